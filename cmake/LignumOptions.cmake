@@ -1,0 +1,10 @@
+# Build options of Lignum, all prefixed LGN_.
+option(BUILD_SHARED_LIBS "Build Lignum as a shared library" ON)
+option(LGN_BUILD_EXAMPLES "Build the examples (also registered as tests)" ON)
+option(LGN_BUILD_TESTS "Build the test suite" ON)
+option(LGN_BUILD_BENCHMARKS "Build the benchmarks in bench/" ON)
+option(LGN_WARNINGS_AS_ERRORS "Compile with -Wall -Wextra -Wpedantic -Werror" ON)
+option(LGN_ENABLE_SANITIZERS "Build with AddressSanitizer and UBSan" OFF)
+option(LGN_ENABLE_KLU "Enable the sparse path with SUNDIALS' KLU linear solver" OFF)
+option(LGN_ENABLE_FORTRAN "Build the Fortran 2003 module" OFF)
+option(LGN_ENABLE_VALGRIND_TESTS "Run examples under valgrind when it is found" ON)
