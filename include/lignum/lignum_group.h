@@ -1,0 +1,169 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * The Lie group object LGNGroup: a configuration space G with its Lie algebra
+ * identified with R^nv, carried around like an N_Vector carries its ops.
+ *
+ * Conventions (spec numerics.md §1):
+ *  - velocities are left-invariant (body-fixed), exp is composed on the RIGHT:
+ *    q_{n+1} = q_n o exp(w);
+ *  - T(w) = sum_i (-1)^i/(i+1)! ad(w)^i  (= dexp_{-w}), so that
+ *    d/dt exp(w(t)) = exp(w(t)) (T(w) wdot)~ ;
+ *  - Tdot(w, wdot) = d/dt T(w(t)) for w' = wdot.
+ *
+ * Storage of group elements (nq reals each):
+ *  - R^n:        q = (x_1..x_n),            nq = nv = n;
+ *  - SO(3):      q = unit quaternion (w, x, y, z) with scalar first, nq = 4,
+ *                nv = 3 (body angular velocity);
+ *  - R^3xSO(3):  q = (x[3], p[4]),          nq = 7, nv = 6 (u inertial, Omega body);
+ *  - products:   the factors' coordinates concatenated in order.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LIGNUM_GROUP_H
+#define LIGNUM_GROUP_H
+
+#include <stdio.h>
+#include <sundials/sundials_types.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct LGNGroupRec *LGNGroup;
+
+/** Group kinds of the built-in groups; LGN_GROUP_CUSTOM for user-supplied ones. */
+typedef enum {
+  LGN_GROUP_CUSTOM = 0,
+  LGN_GROUP_RN,
+  LGN_GROUP_SO3,
+  LGN_GROUP_R3XSO3,
+  LGN_GROUP_SE3,
+  LGN_GROUP_PRODUCT
+} LGNGroupKind;
+
+/**
+ * Operations of a Lie group. All arrays are plain contiguous sunrealtype
+ * arrays; matrices are dense column-major with leading dimension ld.
+ * Every op returns 0 on success and a nonzero value on failure (custom groups).
+ */
+typedef struct LGNGroupOpsRec {
+  /** q_out = q o exp(w); q_out may alias q. */
+  int (*compose_exp)(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                     sunrealtype *q_out);
+  /** y = T(w) x; y may not alias x. */
+  int (*tangent_apply)(LGNGroup G, const sunrealtype *w, const sunrealtype *x,
+                       sunrealtype *y);
+  /** y = T(w)^{-1} x; y may not alias x. */
+  int (*tangent_inverse_apply)(LGNGroup G, const sunrealtype *w,
+                               const sunrealtype *x, sunrealtype *y);
+  /** y = Tdot(w, wdot) x; y may not alias x. */
+  int (*tangent_dot_apply)(LGNGroup G, const sunrealtype *w,
+                           const sunrealtype *wdot, const sunrealtype *x,
+                           sunrealtype *y);
+  /** Tm = T(w), written as a dense nv x nv block (column-major, leading
+   *  dimension ld). Entries outside the nonzero pattern are set to zero. */
+  int (*tangent_matrix)(LGNGroup G, const sunrealtype *w, sunrealtype *Tm,
+                        sunindextype ld);
+  /** q = identity element. */
+  int (*identity)(LGNGroup G, sunrealtype *q);
+  /** Project q back onto the group (e.g. renormalise a quaternion). May be NULL. */
+  int (*normalize)(LGNGroup G, sunrealtype *q);
+  /** Free the content (not the LGNGroup itself). May be NULL. */
+  void (*free_content)(LGNGroup G);
+} *LGNGroupOps;
+
+/** The group object. Built-in constructors fill it; a user-supplied group
+ *  is made with LGNGroup_NewEmpty and its ops filled in by the user. */
+struct LGNGroupRec {
+  LGNGroupKind kind;    /**< which built-in group, or LGN_GROUP_CUSTOM   */
+  sunindextype nq;      /**< number of reals storing one group element    */
+  sunindextype nv;      /**< dimension of the Lie algebra (velocity size) */
+  void *content;        /**< implementation data                          */
+  struct LGNGroupOpsRec ops;
+};
+
+/* -------------------------------------------------------------------------
+ * Constructors and destructor
+ * ---------------------------------------------------------------------- */
+
+/** Vector space R^n as an (additive) Lie group: exp(w) = w, T = I, Tdot = 0.
+ *  @return the group, or NULL if n < 1 or allocation failed. */
+LGNGroup LGNGroup_Rn(sunindextype n);
+
+/** SO(3) with unit-quaternion storage (w, x, y, z). */
+LGNGroup LGNGroup_SO3(void);
+
+/** R^3 x SO(3): q = (x, p), v = (u, Omega) with u inertial and Omega body-fixed. */
+LGNGroup LGNGroup_R3xSO3(void);
+
+/** SE(3): q = (x, p), v = (U, Omega), both body-fixed; xdot = R U.
+ *  q o exp(U, Omega) = (x + R(p) T_SO3(Omega)^T U, p * expq(Omega)); T, T^{-1}
+ *  and Tdot as in spec numerics.md §4.3 (ordering (U, Omega)).
+ *  @return the group, or NULL if allocation failed. */
+LGNGroup LGNGroup_SE3(void);
+
+/**
+ * Direct product G_1 x ... x G_n. The factors are referenced, not copied or
+ * owned: they must outlive the product, and the same factor may appear
+ * several times (e.g. a chain of identical bodies).
+ * @param nfactors number of factors (>= 1)
+ * @param factors  array of nfactors groups
+ * @return the product group, or NULL on bad input or allocation failure.
+ */
+LGNGroup LGNGroup_Product(int nfactors, const LGNGroup *factors);
+
+/** A group with dimensions set and all ops NULL, for user-supplied groups. */
+LGNGroup LGNGroup_NewEmpty(sunindextype nq, sunindextype nv);
+
+/** Free a group made by any constructor above; NULL is allowed. */
+void LGNGroup_Destroy(LGNGroup G);
+
+/* -------------------------------------------------------------------------
+ * Dispatchers (call the op, return its flag; -1 if the op is missing)
+ * ---------------------------------------------------------------------- */
+
+/** q_out = q o exp(w). */
+int LGNGroup_ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                        sunrealtype *q_out);
+/** y = T(w) x. */
+int LGNGroup_TangentApply(LGNGroup G, const sunrealtype *w,
+                          const sunrealtype *x, sunrealtype *y);
+/** y = T(w)^{-1} x. */
+int LGNGroup_TangentInverseApply(LGNGroup G, const sunrealtype *w,
+                                 const sunrealtype *x, sunrealtype *y);
+/** y = Tdot(w, wdot) x. */
+int LGNGroup_TangentDotApply(LGNGroup G, const sunrealtype *w,
+                             const sunrealtype *wdot, const sunrealtype *x,
+                             sunrealtype *y);
+/** Tm = T(w) as a dense column-major nv x nv matrix with leading dimension ld.
+ *  Returns -1 (without calling the op) if ld < nv. */
+int LGNGroup_TangentMatrix(LGNGroup G, const sunrealtype *w, sunrealtype *Tm,
+                           sunindextype ld);
+/** q = identity element. */
+int LGNGroup_Identity(LGNGroup G, sunrealtype *q);
+/** Project q onto the group (no-op when the group has no normalize op). */
+int LGNGroup_Normalize(LGNGroup G, sunrealtype *q);
+
+/* -------------------------------------------------------------------------
+ * Rotation helpers for model code (quaternion p = (w, x, y, z))
+ * ---------------------------------------------------------------------- */
+
+/** R (row-major 3x3, R[3*i+j]) of the unit quaternion p. */
+void LGNQuaternionToRotation(const sunrealtype p[4], sunrealtype R[9]);
+
+/** Unit quaternion p = exp of the rotation vector phi (numerically safe). */
+void LGNQuaternionFromRotationVector(const sunrealtype phi[3], sunrealtype p[4]);
+
+/** Rotation vector phi = log(p), |phi| <= pi (numerically safe). */
+void LGNRotationVectorFromQuaternion(const sunrealtype p[4], sunrealtype phi[3]);
+
+/** r = p1 * p2 (Hamilton product). r may alias p1 or p2. */
+void LGNQuaternionMultiply(const sunrealtype p1[4], const sunrealtype p2[4],
+                           sunrealtype r[4]);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

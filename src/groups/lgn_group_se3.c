@@ -1,0 +1,139 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * SE(3) (spec numerics.md §1, §4.3): q = (x[3], p[4]), v = (U, Omega), both
+ * body-fixed (xdot = R U). (x1,R1) o (x2,R2) = (x1 + R1 x2, R1 R2) and
+ * exp(U, Omega) = (T_SO3(Omega)^T U, exp Omega~), so
+ *   q o exp(U, Omega) = (x + R(p) T(Omega)^T U, p (x) expq(Omega)).
+ * With DT(Omega)[U] := Tdot_SO3(Omega, U) (§4.3):
+ *   T      = [[T, DT[U]], [0, T]]
+ *   T^{-1} = [[T^{-1}, -T^{-1} DT[U] T^{-1}], [0, T^{-1}]]
+ *   Tdot   = [[DT[Wd], D^2T[U,Wd] + DT[Ud]], [0, DT[Wd]]],  wdot = (Ud, Wd).
+ * ---------------------------------------------------------------------------*/
+
+#include <stddef.h>
+
+#include "lgn_so3.h"
+
+#define SE3_NEED_T (LGN_SO3_A | LGN_SO3_B | LGN_SO3_C1 | LGN_SO3_C2)
+
+static int SE3ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                         sunrealtype *q_out)
+{
+  /* T(Omega)^T = T(-Omega) since x~ is skew and x~^2 symmetric */
+  sunrealtype mOm[3], VU[3], R[9];
+  int i;
+  (void)G;
+  mOm[0] = -w[3];
+  mOm[1] = -w[4];
+  mOm[2] = -w[5];
+  lgnSO3_TApply(mOm, w, VU);
+  LGNQuaternionToRotation(q + 3, R);
+  for (i = 0; i < 3; i++)
+    q_out[i] = q[i] + R[3 * i] * VU[0] + R[3 * i + 1] * VU[1]
+             + R[3 * i + 2] * VU[2];
+  lgnSO3_QuatComposeExp(q + 3, w + 3, q_out + 3);
+  return 0;
+}
+
+static int SE3TangentApply(LGNGroup G, const sunrealtype *w,
+                           const sunrealtype *x, sunrealtype *y)
+{
+  /* y_U = T x_U + DT[U] x_Om,  y_Om = T x_Om */
+  lgnSO3_Coef c;
+  sunrealtype t[3];
+  (void)G;
+  lgnSO3_Coefs(lgnSO3_Norm(w + 3), SE3_NEED_T, &c);
+  lgnSO3_TApplyC(&c, w + 3, x, y);
+  lgnSO3_TDotApplyC(&c, w + 3, w, x + 3, t);
+  y[0] += t[0];
+  y[1] += t[1];
+  y[2] += t[2];
+  lgnSO3_TApplyC(&c, w + 3, x + 3, y + 3);
+  return 0;
+}
+
+static int SE3TangentInverseApply(LGNGroup G, const sunrealtype *w,
+                                  const sunrealtype *x, sunrealtype *y)
+{
+  /* y_Om = T^{-1} x_Om,  y_U = T^{-1}(x_U - DT[U] y_Om) */
+  lgnSO3_Coef c;
+  sunrealtype t[3];
+  (void)G;
+  lgnSO3_Coefs(lgnSO3_Norm(w + 3), SE3_NEED_T | LGN_SO3_D, &c);
+  lgnSO3_TInvApplyC(&c, w + 3, x + 3, y + 3);
+  lgnSO3_TDotApplyC(&c, w + 3, w, y + 3, t);
+  t[0] = x[0] - t[0];
+  t[1] = x[1] - t[1];
+  t[2] = x[2] - t[2];
+  lgnSO3_TInvApplyC(&c, w + 3, t, y);
+  return 0;
+}
+
+static int SE3TangentDotApply(LGNGroup G, const sunrealtype *w,
+                              const sunrealtype *wdot, const sunrealtype *x,
+                              sunrealtype *y)
+{
+  /* y_U  = DT[Wd] x_U + D^2T[U,Wd] x_Om + DT[Ud] x_Om,  y_Om = DT[Wd] x_Om */
+  lgnSO3_Coef c;
+  sunrealtype t1[3], t2[3];
+  (void)G;
+  lgnSO3_Coefs(lgnSO3_Norm(w + 3), LGN_SO3_ALL, &c);
+  lgnSO3_TDotApplyC(&c, w + 3, wdot + 3, x, y);
+  lgnSO3_D2TApplyC(&c, w + 3, w, wdot + 3, x + 3, t1);
+  lgnSO3_TDotApplyC(&c, w + 3, wdot, x + 3, t2);
+  y[0] += t1[0] + t2[0];
+  y[1] += t1[1] + t2[1];
+  y[2] += t1[2] + t2[2];
+  lgnSO3_TDotApplyC(&c, w + 3, wdot + 3, x + 3, y + 3);
+  return 0;
+}
+
+static int SE3TangentMatrix(LGNGroup G, const sunrealtype *w, sunrealtype *Tm,
+                            sunindextype ld)
+{
+  lgnSO3_Coef c;
+  int i, j;
+  (void)G;
+  if (ld < 6) return -1;
+  lgnSO3_Coefs(lgnSO3_Norm(w + 3), SE3_NEED_T, &c);
+  lgnSO3_TMatrixC(&c, w + 3, Tm, ld);                /* (U,U)   block */
+  lgnSO3_TDotMatrixC(&c, w + 3, w, Tm + 3 * ld, ld); /* (U,Om)  block */
+  for (j = 0; j < 3; j++)                            /* (Om,U)  block */
+    for (i = 3; i < 6; i++) Tm[i + j * ld] = 0;
+  lgnSO3_TMatrixC(&c, w + 3, Tm + 3 + 3 * ld, ld);   /* (Om,Om) block */
+  return 0;
+}
+
+static int SE3Identity(LGNGroup G, sunrealtype *q)
+{
+  (void)G;
+  q[0] = q[1] = q[2] = 0;
+  q[3] = 1;
+  q[4] = q[5] = q[6] = 0;
+  return 0;
+}
+
+static int SE3Normalize(LGNGroup G, sunrealtype *q)
+{
+  (void)G;
+  lgnSO3_QuatNormalize(q + 3);
+  return 0;
+}
+
+LGNGroup LGNGroup_SE3(void)
+{
+  LGNGroup G = LGNGroup_NewEmpty(7, 6);
+  if (G == NULL) return NULL;
+  G->kind                      = LGN_GROUP_SE3;
+  G->ops.compose_exp           = SE3ComposeExp;
+  G->ops.tangent_apply         = SE3TangentApply;
+  G->ops.tangent_inverse_apply = SE3TangentInverseApply;
+  G->ops.tangent_dot_apply     = SE3TangentDotApply;
+  G->ops.tangent_matrix        = SE3TangentMatrix;
+  G->ops.identity              = SE3Identity;
+  G->ops.normalize             = SE3Normalize;
+  G->ops.free_content          = NULL;
+  return G;
+}

@@ -1,0 +1,319 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Private SO(3) math (spec numerics.md §4.1, §4.3): coefficients of the
+ * tangent operator with small-angle series, operators applied with cross
+ * products (x~ y = x cross y), dense blocks, quaternion exponential.
+ *
+ * Functions: lgnSO3_Coefs, lgnSO3_Norm, lgnSO3_Tilde, lgnSO3_TApply[C],
+ * lgnSO3_TInvApply[C], lgnSO3_TDotApply[C], lgnSO3_D2TApplyC,
+ * lgnSO3_TMatrix[C], lgnSO3_TDotMatrixC, lgnSO3_ExpQuat,
+ * lgnSO3_QuatComposeExp, lgnSO3_QuatNormalize, lgnSO3_QuatRotate.
+ * None of them allocates.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+
+#include "lgn_so3.h"
+
+#define ONE  SUN_RCONST(1.0)
+#define TWO  SUN_RCONST(2.0)
+#define HALF SUN_RCONST(0.5)
+
+/* =============================================================================
+ * Small helpers
+ * ===========================================================================*/
+
+/* r = u x v (r may alias neither argument) */
+static void Cross(const sunrealtype u[3], const sunrealtype v[3],
+                  sunrealtype r[3])
+{
+  r[0] = u[1] * v[2] - u[2] * v[1];
+  r[1] = u[2] * v[0] - u[0] * v[2];
+  r[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+static sunrealtype Dot(const sunrealtype u[3], const sunrealtype v[3])
+{
+  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+
+sunrealtype lgnSO3_Norm(const sunrealtype x[3])
+{
+  return sqrt(Dot(x, x));
+}
+
+void lgnSO3_Tilde(const sunrealtype x[3], sunrealtype M[9])
+{
+  /* x~ = [[0,-x3,x2],[x3,0,-x1],[-x2,x1,0]]  (spec §1) */
+  M[0] = 0;     M[1] = -x[2]; M[2] = x[1];
+  M[3] = x[2];  M[4] = 0;     M[5] = -x[0];
+  M[6] = -x[1]; M[7] = x[0];  M[8] = 0;
+}
+
+/* =============================================================================
+ * Coefficients (spec §4.1 table): series below the threshold, closed form
+ * above. The closed forms use the half angle, 1 - cos(phi) = 2 sin^2(phi/2),
+ * which removes one cancellation.
+ * ===========================================================================*/
+
+void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
+{
+  const sunrealtype p2 = phi * phi;
+  sunrealtype sh = 0, ch = ONE, s = 0, omc = 0, cs = ONE;
+
+  if (phi >= LGN_SO3_THR_SINC) {
+    sh  = sin(HALF * phi);
+    ch  = cos(HALF * phi);
+    s   = TWO * sh * ch;       /* sin(phi)     */
+    omc = TWO * sh * sh;       /* 1 - cos(phi) */
+    cs  = ONE - omc;           /* cos(phi)     */
+  }
+
+  if (need & LGN_SO3_SINC) {
+    c->sinc = (phi < LGN_SO3_THR_SINC)
+      ? ONE + p2 * (-ONE / 6 + p2 * (ONE / 120 - p2 / 5040))
+      : s / phi;
+  }
+  if (need & LGN_SO3_CC) {
+    c->cc = (phi < LGN_SO3_THR_CC)
+      ? HALF + p2 * (-ONE / 24 + p2 * (ONE / 720 - p2 / 40320))
+      : omc / p2;
+  }
+  if (need & LGN_SO3_A) {
+    c->a = (phi < LGN_SO3_THR_A)
+      ? -HALF + p2 * (ONE / 24 + p2 * (-ONE / 720 + p2 / 40320))
+      : -omc / p2;
+  }
+  if (need & LGN_SO3_B) {
+    c->b = (phi < LGN_SO3_THR_B)
+      ? ONE / 6 + p2 * (-ONE / 120 + p2 * (ONE / 5040 - p2 / 362880))
+      : (phi - s) / (p2 * phi);
+  }
+  if (need & LGN_SO3_D) {
+    c->d = (phi < LGN_SO3_THR_D)
+      ? ONE / 12 + p2 * (ONE / 720 + p2 * (ONE / 30240 + p2 / 1209600))
+      : (ONE - HALF * phi * ch / sh) / p2;
+  }
+  if (need & LGN_SO3_C1) {
+    c->c1 = (phi < LGN_SO3_THR_C1)
+      ? ONE / 12 + p2 * (-ONE / 180 + p2 * (ONE / 6720 - p2 / 453600))
+      : (TWO * omc - phi * s) / (p2 * p2);
+  }
+  if (need & LGN_SO3_C2) {
+    c->c2 = (phi < LGN_SO3_THR_C2)
+      ? -ONE / 60 + p2 * (ONE / 1260 + p2 * (-ONE / 60480 + p2 * (ONE / 4989600
+                                              - p2 / 622702080)))
+      : (3 * s - TWO * phi - phi * cs) / (p2 * p2 * phi);
+  }
+  if (need & LGN_SO3_C3) {
+    /* c3 = (8cos - 8 + 5 phi sin - phi^2 cos)/phi^6 */
+    c->c3 = (phi < LGN_SO3_THR_C3)
+      ? -ONE / 90 + p2 * (ONE / 1680 + p2 * (-ONE / 75600 + p2 * (ONE / 5987520
+                                              - p2 / 726485760)))
+      : (-8 * omc + 5 * phi * s - p2 * cs) / (p2 * p2 * p2);
+  }
+  if (need & LGN_SO3_C4) {
+    /* c4 = (phi^2 sin + 7 phi cos + 8 phi - 15 sin)/phi^7 */
+    c->c4 = (phi < LGN_SO3_THR_C4)
+      ? ONE / 630 + p2 * (-ONE / 15120 + p2 * (ONE / 831600 + p2 * (
+            -ONE / 77837760 + p2 / SUN_RCONST(10897286400.0))))
+      : (p2 * s + 7 * phi * cs + 8 * phi - 15 * s) / (p2 * p2 * p2 * phi);
+  }
+}
+
+/* =============================================================================
+ * Operators applied with cross products
+ * ===========================================================================*/
+
+void lgnSO3_TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                    const sunrealtype v[3], sunrealtype y[3])
+{
+  /* T v = v + a x~v + b x~x~v  (spec §4.1) */
+  sunrealtype xv[3], xxv[3];
+  int i;
+  Cross(x, v, xv);
+  Cross(x, xv, xxv);
+  for (i = 0; i < 3; i++) y[i] = v[i] + c->a * xv[i] + c->b * xxv[i];
+}
+
+void lgnSO3_TApply(const sunrealtype x[3], const sunrealtype v[3],
+                   sunrealtype y[3])
+{
+  lgnSO3_Coef c;
+  lgnSO3_Coefs(lgnSO3_Norm(x), LGN_SO3_A | LGN_SO3_B, &c);
+  lgnSO3_TApplyC(&c, x, v, y);
+}
+
+void lgnSO3_TInvApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype v[3], sunrealtype y[3])
+{
+  /* T^{-1} v = v + x~v/2 + d x~x~v  (spec §4.1) */
+  sunrealtype xv[3], xxv[3];
+  int i;
+  Cross(x, v, xv);
+  Cross(x, xv, xxv);
+  for (i = 0; i < 3; i++) y[i] = v[i] + HALF * xv[i] + c->d * xxv[i];
+}
+
+void lgnSO3_TInvApply(const sunrealtype x[3], const sunrealtype v[3],
+                      sunrealtype y[3])
+{
+  lgnSO3_Coef c;
+  lgnSO3_Coefs(lgnSO3_Norm(x), LGN_SO3_D, &c);
+  lgnSO3_TInvApplyC(&c, x, v, y);
+}
+
+void lgnSO3_TDotApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype xd[3], const sunrealtype v[3],
+                       sunrealtype y[3])
+{
+  /* Tdot v = a xd~v + b(xd~x~v + x~xd~v) + (x.xd)(c1 x~v + c2 x~x~v) (§4.1) */
+  sunrealtype xv[3], xxv[3], dv[3], dxv[3], xdv[3];
+  const sunrealtype s = Dot(x, xd);
+  int i;
+  Cross(x, v, xv);
+  Cross(x, xv, xxv);
+  Cross(xd, v, dv);
+  Cross(xd, xv, dxv);
+  Cross(x, dv, xdv);
+  for (i = 0; i < 3; i++)
+    y[i] = c->a * dv[i] + c->b * (dxv[i] + xdv[i])
+         + s * (c->c1 * xv[i] + c->c2 * xxv[i]);
+}
+
+void lgnSO3_TDotApply(const sunrealtype x[3], const sunrealtype xd[3],
+                      const sunrealtype v[3], sunrealtype y[3])
+{
+  lgnSO3_Coef c;
+  lgnSO3_Coefs(lgnSO3_Norm(x),
+               LGN_SO3_A | LGN_SO3_B | LGN_SO3_C1 | LGN_SO3_C2, &c);
+  lgnSO3_TDotApplyC(&c, x, xd, v, y);
+}
+
+void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype U[3], const sunrealtype W[3],
+                      const sunrealtype v[3], sunrealtype y[3])
+{
+  /* D^2T(x)[U,W] v (spec §4.3):
+   *   (c3 (x.W)(x.U) + c1 (W.U)) x~v + c1 ((x.U) W~v + (x.W) U~v)
+   * + (c4 (x.W)(x.U) + c2 (W.U)) x~x~v
+   * + c2 ((x.U)(W~x~ + x~W~)v + (x.W)(U~x~ + x~U~)v) + b (U~W~ + W~U~)v  */
+  sunrealtype xv[3], xxv[3], Wv[3], Uv[3], Wxv[3], xWv[3], Uxv[3], xUv[3];
+  sunrealtype UWv[3], WUv[3];
+  const sunrealtype ou = Dot(x, U), ow = Dot(x, W), wu = Dot(W, U);
+  const sunrealtype k1 = c->c3 * ow * ou + c->c1 * wu;
+  const sunrealtype k2 = c->c4 * ow * ou + c->c2 * wu;
+  int i;
+  Cross(x, v, xv);
+  Cross(x, xv, xxv);
+  Cross(W, v, Wv);
+  Cross(U, v, Uv);
+  Cross(W, xv, Wxv);
+  Cross(x, Wv, xWv);
+  Cross(U, xv, Uxv);
+  Cross(x, Uv, xUv);
+  Cross(U, Wv, UWv);
+  Cross(W, Uv, WUv);
+  for (i = 0; i < 3; i++)
+    y[i] = k1 * xv[i] + c->c1 * (ou * Wv[i] + ow * Uv[i]) + k2 * xxv[i]
+         + c->c2 * (ou * (Wxv[i] + xWv[i]) + ow * (Uxv[i] + xUv[i]))
+         + c->b * (UWv[i] + WUv[i]);
+}
+
+/* =============================================================================
+ * Dense blocks (column-major, leading dimension ld)
+ * ===========================================================================*/
+
+void lgnSO3_TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                     sunrealtype *M, sunindextype ld)
+{
+  /* T = I + a x~ + b x~^2 with x~^2 = x x^T - |x|^2 I */
+  sunrealtype X[9];
+  const sunrealtype p2 = Dot(x, x);
+  int i, j;
+  lgnSO3_Tilde(x, X);
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++)
+      M[i + j * ld] = (i == j ? ONE - c->b * p2 : 0)
+                    + c->b * x[i] * x[j] + c->a * X[3 * i + j];
+}
+
+void lgnSO3_TMatrix(const sunrealtype x[3], sunrealtype *M, sunindextype ld)
+{
+  lgnSO3_Coef c;
+  lgnSO3_Coefs(lgnSO3_Norm(x), LGN_SO3_A | LGN_SO3_B, &c);
+  lgnSO3_TMatrixC(&c, x, M, ld);
+}
+
+void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                        const sunrealtype xd[3], sunrealtype *M,
+                        sunindextype ld)
+{
+  /* Tdot = a xd~ + b(x xd^T + xd x^T - 2(x.xd) I)
+   *      + (x.xd)(c1 x~ + c2 (x x^T - |x|^2 I)),
+   * using xd~x~ + x~xd~ = x xd^T + xd x^T - 2 (x.xd) I. */
+  sunrealtype X[9], D[9];
+  const sunrealtype s = Dot(x, xd), p2 = Dot(x, x);
+  int i, j;
+  lgnSO3_Tilde(x, X);
+  lgnSO3_Tilde(xd, D);
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++)
+      M[i + j * ld] = c->a * D[3 * i + j]
+                    + c->b * (x[i] * xd[j] + xd[i] * x[j])
+                    + s * (c->c1 * X[3 * i + j] + c->c2 * x[i] * x[j])
+                    - (i == j ? TWO * c->b * s + s * c->c2 * p2 : 0);
+}
+
+/* =============================================================================
+ * Quaternions (p = (w, x, y, z), Hamilton product)
+ * ===========================================================================*/
+
+void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
+{
+  /* expq(x) = (cos(phi/2), sin(phi/2)/phi x); sin(h)/phi = sinc(h)/2 with
+   * h = phi/2, series of the sin(phi)/phi row of the §4.1 table */
+  const sunrealtype phi = lgnSO3_Norm(x), h = HALF * phi, h2 = h * h;
+  const sunrealtype k = (h < LGN_SO3_THR_SINC)
+    ? HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 / 5040)))
+    : sin(h) / phi;
+  p[0] = cos(h);
+  p[1] = k * x[0];
+  p[2] = k * x[1];
+  p[3] = k * x[2];
+}
+
+void lgnSO3_QuatNormalize(sunrealtype p[4])
+{
+  const sunrealtype n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]
+                             + p[3] * p[3]);
+  if (n > 0) {
+    const sunrealtype r = ONE / n;
+    p[0] *= r; p[1] *= r; p[2] *= r; p[3] *= r;
+  }
+}
+
+void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
+                           sunrealtype p_out[4])
+{
+  /* p_out = p (x) expq(w), renormalised to stop drift */
+  sunrealtype e[4];
+  lgnSO3_ExpQuat(w, e);
+  LGNQuaternionMultiply(p, e, p_out);
+  lgnSO3_QuatNormalize(p_out);
+}
+
+void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],
+                       sunrealtype y[3])
+{
+  /* R(p) v = v + w t + q x t with t = 2 q x v, q = (p1,p2,p3) */
+  sunrealtype t[3], qt[3];
+  const sunrealtype *q = p + 1;
+  int i;
+  Cross(q, v, t);
+  for (i = 0; i < 3; i++) t[i] *= TWO;
+  Cross(q, t, qt);
+  for (i = 0; i < 3; i++) y[i] = v[i] + p[0] * t[i] + qt[i];
+}

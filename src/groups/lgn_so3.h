@@ -1,0 +1,116 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Private SO(3) math shared by the built-in groups (spec numerics.md §4.1,
+ * §4.3): the scalar coefficients of the tangent operator with their
+ * small-angle series, T, T^{-1}, Tdot and D^2T applied with cross products,
+ * T and DT as dense blocks, and the quaternion exponential.
+ *
+ * With x a rotation vector, phi = |x| and x~ y = x cross y:
+ *   T(x)      = I + a x~ + b x~^2                           (§4.1)
+ *   T(x)^{-1} = I + x~/2 + d x~^2                           (§4.1)
+ *   Tdot(x,xd)= a xd~ + b (xd~ x~ + x~ xd~)
+ *             + (x.xd)(c1 x~ + c2 x~^2)                     (§4.1)
+ *   D^2T(x)[U,W]  as in §4.3 (needs c3 = c1'/phi, c4 = c2'/phi).
+ * Matrices in this header are column-major with leading dimension ld
+ * (element (i,j) at M[i + j*ld]) unless stated otherwise.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LGN_SO3_H
+#define LGN_SO3_H
+
+#include <lignum/lignum_group.h>
+
+/* Below these angles the series of the spec table (§4.1) are used. */
+#define LGN_SO3_THR_SINC SUN_RCONST(0.05) /* sin(phi)/phi        */
+#define LGN_SO3_THR_CC   SUN_RCONST(0.05) /* (1-cos(phi))/phi^2  */
+#define LGN_SO3_THR_A    SUN_RCONST(0.1)
+#define LGN_SO3_THR_B    SUN_RCONST(0.1)
+#define LGN_SO3_THR_D    SUN_RCONST(0.1)
+#define LGN_SO3_THR_C1   SUN_RCONST(0.2)
+#define LGN_SO3_THR_C2   SUN_RCONST(0.3)
+#define LGN_SO3_THR_C3   SUN_RCONST(0.4)
+#define LGN_SO3_THR_C4   SUN_RCONST(0.5)
+
+/* Bits selecting which coefficients lgnSO3_Coefs computes. */
+#define LGN_SO3_SINC (1u << 0)
+#define LGN_SO3_CC   (1u << 1)
+#define LGN_SO3_A    (1u << 2)
+#define LGN_SO3_B    (1u << 3)
+#define LGN_SO3_D    (1u << 4)
+#define LGN_SO3_C1   (1u << 5)
+#define LGN_SO3_C2   (1u << 6)
+#define LGN_SO3_C3   (1u << 7)
+#define LGN_SO3_C4   (1u << 8)
+#define LGN_SO3_ALL  (0x1FFu)
+
+/* Coefficients at one angle phi (spec §4.1 table; those not requested are
+ * left unset):
+ *   sinc = sin(phi)/phi          cc = (1-cos phi)/phi^2
+ *   a    = (cos phi - 1)/phi^2   b  = (phi - sin phi)/phi^3
+ *   d    = (1 - (phi/2)cot(phi/2))/phi^2
+ *   c1   = (2 - 2cos phi - phi sin phi)/phi^4
+ *   c2   = (3 sin phi - 2 phi - phi cos phi)/phi^5
+ *   c3   = c1'(phi)/phi          c4 = c2'(phi)/phi                          */
+typedef struct {
+  sunrealtype sinc, cc, a, b, d, c1, c2, c3, c4;
+} lgnSO3_Coef;
+
+/* Fill the coefficients selected by the bit mask `need` at angle phi >= 0. */
+void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c);
+
+/* Euclidean norm of a 3-vector. */
+sunrealtype lgnSO3_Norm(const sunrealtype x[3]);
+
+/* M = x~ as a row-major 3x3 matrix, M[3*i+j]. */
+void lgnSO3_Tilde(const sunrealtype x[3], sunrealtype M[9]);
+
+/* y = T(x) v, T^{-1}(x) v, Tdot(x,xd) v; y must not alias the inputs.
+ * The *C variants take coefficients computed at phi = |x| by the caller
+ * (T needs A|B, T^{-1} needs D, Tdot needs A|B|C1|C2). */
+void lgnSO3_TApply(const sunrealtype x[3], const sunrealtype v[3],
+                   sunrealtype y[3]);
+void lgnSO3_TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                    const sunrealtype v[3], sunrealtype y[3]);
+void lgnSO3_TInvApply(const sunrealtype x[3], const sunrealtype v[3],
+                      sunrealtype y[3]);
+void lgnSO3_TInvApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype v[3], sunrealtype y[3]);
+void lgnSO3_TDotApply(const sunrealtype x[3], const sunrealtype xd[3],
+                      const sunrealtype v[3], sunrealtype y[3]);
+void lgnSO3_TDotApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype xd[3], const sunrealtype v[3],
+                       sunrealtype y[3]);
+
+/* y = D^2T(x)[U,W] v (spec §4.3), coefficients A|B|C1|C2|C3|C4 at |x|. */
+void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype U[3], const sunrealtype W[3],
+                      const sunrealtype v[3], sunrealtype y[3]);
+
+/* M = T(x) as a 3x3 column-major block with leading dimension ld. */
+void lgnSO3_TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                     sunrealtype *M, sunindextype ld);
+void lgnSO3_TMatrix(const sunrealtype x[3], sunrealtype *M, sunindextype ld);
+
+/* M = Tdot(x, xd) (= DT(x)[xd]) as a 3x3 column-major block, coefficients
+ * A|B|C1|C2 at |x|. */
+void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                        const sunrealtype xd[3], sunrealtype *M,
+                        sunindextype ld);
+
+/* p = (cos(phi/2), sin(phi/2) x/phi), the unit quaternion of exp(x~). */
+void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4]);
+
+/* p_out = p (x) expq(w), renormalised; p_out may alias p. */
+void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
+                           sunrealtype p_out[4]);
+
+/* Scale p to unit length (left unchanged if p = 0). */
+void lgnSO3_QuatNormalize(sunrealtype p[4]);
+
+/* y = R(p) v for a unit quaternion p; y may alias v. */
+void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],
+                       sunrealtype y[3]);
+
+#endif
