@@ -1,0 +1,491 @@
+/* -----------------------------------------------------------------------------
+ * Lignum examples: the heavy top (spec numerics.md §5) in two formulations.
+ *
+ *  Lie group R^3 x SO(3): q = (x, p), v = (u, Omega), spherical joint at 0:
+ *    M = diag(m I, J),  g = [-m gamma_g ; Omega x J Omega],
+ *    Phi = X - R^T x,   B = [-R^T, -X~]           (Brüls-Cardona, Klemps (2.21)-(2.26))
+ *    K_t = [[0, R lambda~], [0, 0]],  C_t = [[0, 0], [0, Omega~ J - (J Omega)~]],
+ *    Z(q)(v, v) = Omega x (R^T u).
+ *
+ *  Euler parameters on R^7 (spec §3): q = (x, p), v = (xdot, pdot):
+ *    M = diag(m I, 4 G^T J G),  g = [-m gamma_g ; 8 Gdot^T J G pdot],
+ *    Phi = [X - R(p)^T x ; p^T p - 1],  B = dPhi/dq,
+ *    with G(p) = [-pbar, -pbar~ + p0 I] and R(p) = (p0^2 - pbar.pbar) I
+ *    + 2 pbar pbar^T + 2 p0 pbar~. Tangent matrices by difference quotients.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include "heavy_top.h"
+
+#include <math.h>
+#include <string.h>
+
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#define ELEM(A, i, j) SM_ELEMENT_D(A, i, j)
+
+static const double X_BODY[3] = {0.0, 1.0, 0.0};       /* centre of mass */
+static const double J_BODY[3] = {HT_J1, HT_J2, HT_J3}; /* principal inertia */
+
+/* =============================================================================
+ * Small vector helpers
+ * ===========================================================================*/
+
+static void Cross(const double a[3], const double b[3], double c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* y = R^T x for row-major R */
+static void MatTVec(const double R[9], const double x[3], double y[3])
+{
+  int i;
+  for (i = 0; i < 3; i++) y[i] = R[i] * x[0] + R[3 + i] * x[1] + R[6 + i] * x[2];
+}
+
+/* =============================================================================
+ * R^3 x SO(3) callbacks
+ * ===========================================================================*/
+
+static int LieMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  int i;
+  (void)t; (void)q; (void)ud;
+  for (i = 0; i < 3; i++) {
+    ELEM(M, i, i)         = HT_MASS;
+    ELEM(M, 3 + i, 3 + i) = J_BODY[i];
+  }
+  return 0;
+}
+
+static int LieForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  const double *vv = N_VGetArrayPointer(v);
+  double *gg = N_VGetArrayPointer(g), JW[3];
+  int i;
+  (void)t; (void)q; (void)ud;
+  gg[0] = 0.0;
+  gg[1] = 0.0;
+  gg[2] = -HT_MASS * HT_GRAVITY;
+  for (i = 0; i < 3; i++) JW[i] = J_BODY[i] * vv[3 + i];
+  Cross(vv + 3, JW, gg + 3);
+  return 0;
+}
+
+static int LieConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q);
+  double *ph = N_VGetArrayPointer(phi), R[9], Rtx[3];
+  int i;
+  (void)t; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  MatTVec(R, qq, Rtx);
+  for (i = 0; i < 3; i++) ph[i] = X_BODY[i] - Rtx[i];
+  return 0;
+}
+
+static int LieConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q);
+  double R[9];
+  int i, j;
+  (void)t; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) ELEM(B, i, j) = -R[3 * j + i]; /* -R^T */
+  /* -X~ */
+  ELEM(B, 0, 4) = X_BODY[2];  ELEM(B, 0, 5) = -X_BODY[1];
+  ELEM(B, 1, 3) = -X_BODY[2]; ELEM(B, 1, 5) = X_BODY[0];
+  ELEM(B, 2, 3) = X_BODY[1];  ELEM(B, 2, 4) = -X_BODY[0];
+  return 0;
+}
+
+static int LieStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                        N_Vector lambda, SUNMatrix K, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q), *l = N_VGetArrayPointer(lambda);
+  double R[9], lt[9];
+  int i, j, k;
+  (void)t; (void)v; (void)vdot; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  /* lambda~ row-major */
+  lt[0] = 0.0;   lt[1] = -l[2]; lt[2] = l[1];
+  lt[3] = l[2];  lt[4] = 0.0;   lt[5] = -l[0];
+  lt[6] = -l[1]; lt[7] = l[0];  lt[8] = 0.0;
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) {
+      double s = 0.0;
+      for (k = 0; k < 3; k++) s += R[3 * i + k] * lt[3 * k + j];
+      ELEM(K, i, 3 + j) = s;
+    }
+  return 0;
+}
+
+static int LieDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  const double *W = N_VGetArrayPointer(v) + 3;
+  double JW[3];
+  int i;
+  (void)t; (void)q; (void)ud;
+  for (i = 0; i < 3; i++) JW[i] = J_BODY[i] * W[i];
+  /* Omega~ J - (J Omega)~ */
+  ELEM(C, 3, 4) = -W[2] * J_BODY[1] + JW[2];
+  ELEM(C, 3, 5) = W[1] * J_BODY[2] - JW[1];
+  ELEM(C, 4, 3) = W[2] * J_BODY[0] - JW[2];
+  ELEM(C, 4, 5) = -W[0] * J_BODY[2] + JW[0];
+  ELEM(C, 5, 3) = -W[1] * J_BODY[0] + JW[1];
+  ELEM(C, 5, 4) = W[0] * J_BODY[1] - JW[0];
+  return 0;
+}
+
+static int LieCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q), *vv = N_VGetArrayPointer(v);
+  double R[9], Rtu[3];
+  (void)t; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  MatTVec(R, vv, Rtu);
+  Cross(vv + 3, Rtu, N_VGetArrayPointer(z));
+  return 0;
+}
+
+/* =============================================================================
+ * Euler-parameter callbacks (q = (x, p0, pbar) in R^7)
+ * ===========================================================================*/
+
+/* G(p) = [-pbar, -pbar~ + p0 I], 3 x 4 row-major */
+static void EPMatrixG(const double p[4], double G[12])
+{
+  G[0] = -p[1]; G[1] = p[0];  G[2] = p[3];   G[3] = -p[2];
+  G[4] = -p[2]; G[5] = -p[3]; G[6] = p[0];   G[7] = p[1];
+  G[8] = -p[3]; G[9] = p[2];  G[10] = -p[1]; G[11] = p[0];
+}
+
+/* R(p) = (p0^2 - pbar.pbar) I + 2 pbar pbar^T + 2 p0 pbar~ (row-major),
+ * the quadratic form used in Phi (spec §3). */
+static void EPRotation(const double p[4], double R[9])
+{
+  const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
+  int i, j;
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) R[3 * i + j] = (i == j ? s : 0.0) + 2.0 * p[1 + i] * p[1 + j];
+  R[1] -= 2.0 * p[0] * p[3]; R[2] += 2.0 * p[0] * p[2];
+  R[3] += 2.0 * p[0] * p[3]; R[5] -= 2.0 * p[0] * p[1];
+  R[6] -= 2.0 * p[0] * p[2]; R[7] += 2.0 * p[0] * p[1];
+}
+
+static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  const double *p = N_VGetArrayPointer(q) + 3;
+  double G[12];
+  int i, j, k;
+  (void)t; (void)ud;
+  EPMatrixG(p, G);
+  for (i = 0; i < 3; i++) ELEM(M, i, i) = HT_MASS;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) {
+      double s = 0.0;
+      for (k = 0; k < 3; k++) s += G[4 * k + i] * J_BODY[k] * G[4 * k + j];
+      ELEM(M, 3 + i, 3 + j) = 4.0 * s;
+    }
+  return 0;
+}
+
+static int EPForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  const double *p = N_VGetArrayPointer(q) + 3, *pd = N_VGetArrayPointer(v) + 3;
+  double *gg = N_VGetArrayPointer(g), G[12], Gd[12], JGpd[3];
+  int i, k;
+  (void)t; (void)ud;
+  EPMatrixG(p, G);
+  EPMatrixG(pd, Gd); /* Gdot = G(pdot) */
+  gg[0] = 0.0;
+  gg[1] = 0.0;
+  gg[2] = -HT_MASS * HT_GRAVITY;
+  for (k = 0; k < 3; k++)
+    JGpd[k] = J_BODY[k] * (G[4 * k] * pd[0] + G[4 * k + 1] * pd[1] +
+                           G[4 * k + 2] * pd[2] + G[4 * k + 3] * pd[3]);
+  for (i = 0; i < 4; i++)
+    gg[3 + i] = 8.0 * (Gd[i] * JGpd[0] + Gd[4 + i] * JGpd[1] + Gd[8 + i] * JGpd[2]);
+  return 0;
+}
+
+static int EPConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q), *p = qq + 3;
+  double *ph = N_VGetArrayPointer(phi), R[9], Rtx[3];
+  int i;
+  (void)t; (void)ud;
+  EPRotation(p, R);
+  MatTVec(R, qq, Rtx);
+  for (i = 0; i < 3; i++) ph[i] = X_BODY[i] - Rtx[i];
+  ph[3] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0;
+  return 0;
+}
+
+/* B = dPhi/dq. With R^T x = (p0^2 - |pbar|^2) x + 2 pbar (pbar.x) - 2 p0 pbar x x:
+ *   d/dp0   = 2 p0 x - 2 pbar x x
+ *   d/dpbar = -2 x pbar^T + 2 (pbar.x) I + 2 pbar x^T + 2 p0 x~            */
+static int EPConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q), *p = x + 3, *pb = p + 1;
+  double R[9], pxx[3], px = pb[0] * x[0] + pb[1] * x[1] + pb[2] * x[2];
+  double xt[9];
+  int i, j;
+  (void)t; (void)ud;
+  EPRotation(p, R);
+  Cross(pb, x, pxx);
+  xt[0] = 0.0;   xt[1] = -x[2]; xt[2] = x[1];
+  xt[3] = x[2];  xt[4] = 0.0;   xt[5] = -x[0];
+  xt[6] = -x[1]; xt[7] = x[0];  xt[8] = 0.0;
+  for (i = 0; i < 3; i++) {
+    for (j = 0; j < 3; j++) ELEM(B, i, j) = -R[3 * j + i];
+    ELEM(B, i, 3) = -(2.0 * p[0] * x[i] - 2.0 * pxx[i]);
+    for (j = 0; j < 3; j++)
+      ELEM(B, i, 4 + j) = -(-2.0 * x[i] * pb[j] + (i == j ? 2.0 * px : 0.0) +
+                            2.0 * pb[i] * x[j] + 2.0 * p[0] * xt[3 * i + j]);
+  }
+  for (j = 0; j < 4; j++) ELEM(B, 3, 3 + j) = 2.0 * p[j];
+  return 0;
+}
+
+/* =============================================================================
+ * Driver
+ * ===========================================================================*/
+
+void heavy_top_default_options(HeavyTopOptions *opt)
+{
+  memset(opt, 0, sizeof *opt);
+  opt->formulation        = HT_LIE;
+  opt->method             = HT_GENALPHA;
+  opt->rho_inf            = 0.9;
+  opt->beta               = 0.25;
+  opt->gamma              = 0.5;
+  opt->constraints        = LGN_CONSTR_INDEX3;
+  opt->kinematics         = LGN_KINEMATICS_SIMPLIFIED;
+  opt->h                  = 1e-3;
+  opt->t_end              = 1.0;
+  opt->analytic_jacobians = 1;
+}
+
+void heavy_top_describe(const HeavyTopOptions *opt, char *buf, size_t len)
+{
+  const char *kin = opt->kinematics == LGN_KINEMATICS_EXACT ? "mod. " : "";
+  const char *idx = opt->constraints == LGN_CONSTR_INDEX2 ? "idx2" : "idx3";
+  if (opt->formulation == HT_EULER_PARAMETERS) {
+    if (opt->method == HT_GENALPHA)
+      snprintf(buf, len, "EP gen-alpha(%.2g) %s", opt->rho_inf, idx);
+    else
+      snprintf(buf, len, "EP Newmark(%.4g,%.4g) %s", opt->beta, opt->gamma, idx);
+  } else if (opt->method == HT_GENALPHA) {
+    snprintf(buf, len, "%sLGGalpha(%.2g) %s", kin, opt->rho_inf, idx);
+  } else {
+    snprintf(buf, len, "%sLGNM(%.4g,%.4g) %s", kin, opt->beta, opt->gamma, idx);
+  }
+}
+
+/* The state in Lie group variables, for either formulation. */
+static void ExtractState(const HeavyTopOptions *opt, const double *q,
+                         const double *v, const double *vdot, const double *a,
+                         HeavyTopResult *res)
+{
+  int i;
+  double nrm;
+  for (i = 0; i < 3; i++) {
+    res->x[i] = q[i];
+    res->u[i] = v[i];
+    res->vdot[i] = vdot[i];
+    res->a[i] = a[i];
+  }
+  nrm = sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+  for (i = 0; i < 4; i++) res->p[i] = (q[3] >= 0.0 ? 1.0 : -1.0) * q[3 + i] / nrm;
+  LGNQuaternionToRotation(res->p, res->R);
+  if (opt->formulation == HT_LIE) {
+    for (i = 0; i < 3; i++) {
+      res->Omega[i] = v[3 + i];
+      res->vdot[3 + i] = vdot[3 + i];
+      res->a[3 + i] = a[3 + i];
+    }
+  } else {
+    /* Omega = 2 G(p) pdot; Omegadot = 2 G(p) pddot since Gdot pdot = 0 */
+    double G[12];
+    int k;
+    EPMatrixG(q + 3, G);
+    for (k = 0; k < 3; k++) {
+      res->Omega[k] = res->vdot[3 + k] = res->a[3 + k] = 0.0;
+      for (i = 0; i < 4; i++) {
+        res->Omega[k] += 2.0 * G[4 * k + i] * v[3 + i];
+        res->vdot[3 + k] += 2.0 * G[4 * k + i] * vdot[3 + i];
+        res->a[3 + k] += 2.0 * G[4 * k + i] * a[3 + i];
+      }
+    }
+  }
+}
+
+static void WriteCsvRow(FILE *fp, const HeavyTopResult *r)
+{
+  fprintf(fp, "%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,"
+              "%.17g,%.17g,%.17g,%.17g\n",
+          r->t, r->x[0], r->x[1], r->x[2], r->p[0], r->p[1], r->p[2], r->p[3],
+          r->Omega[0], r->Omega[1], r->Omega[2], r->lambda[0], r->lambda[1],
+          r->lambda[2]);
+}
+
+/* Objects of one run, freed together. */
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  N_Vector q, v, vdot, a, lambda, tmpl;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  void *mem;
+} RunObjects;
+
+static void FreeRun(RunObjects *o)
+{
+  LGNFree(&o->mem);
+  if (o->LS) SUNLinSolFree(o->LS);
+  if (o->A) SUNMatDestroy(o->A);
+  if (o->q) N_VDestroy(o->q);
+  if (o->v) N_VDestroy(o->v);
+  if (o->vdot) N_VDestroy(o->vdot);
+  if (o->a) N_VDestroy(o->a);
+  if (o->lambda) N_VDestroy(o->lambda);
+  if (o->tmpl) N_VDestroy(o->tmpl);
+  LGNGroup_Destroy(o->G);
+  if (o->ctx) SUNContext_Free(&o->ctx);
+}
+
+/* Set up model, method and linear solver; returns a Lignum flag. */
+static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
+{
+  const int ep = opt->formulation == HT_EULER_PARAMETERS;
+  const sunindextype nv = ep ? 7 : 6, m = ep ? 4 : 3;
+  double *q, *v;
+  int flag;
+
+  if (SUNContext_Create(NULL, &o->ctx) != 0) return LGN_MEM_FAIL;
+  o->G = ep ? LGNGroup_Rn(7) : LGNGroup_R3xSO3();
+  o->q = N_VNew_Serial(7, o->ctx);
+  o->v = N_VNew_Serial(nv, o->ctx);
+  o->vdot = N_VNew_Serial(nv, o->ctx);
+  o->a = N_VNew_Serial(nv, o->ctx);
+  o->lambda = N_VNew_Serial(m, o->ctx);
+  o->A = SUNDenseMatrix(nv + m, nv + m, o->ctx);
+  o->tmpl = N_VNew_Serial(nv + m, o->ctx); /* template of the linear solver */
+  o->LS = (o->A && o->tmpl) ? SUNLinSol_Dense(o->tmpl, o->A, o->ctx) : NULL;
+  o->mem = LGNCreate(o->ctx);
+  if (!o->G || !o->q || !o->v || !o->vdot || !o->a || !o->lambda || !o->LS || !o->mem)
+    return LGN_MEM_FAIL;
+
+  /* initial state: R0 = I, x0 = X, u0 = Omega0 x X, p0 = (1,0,0,0) */
+  q = N_VGetArrayPointer(o->q);
+  v = N_VGetArrayPointer(o->v);
+  memset(q, 0, 7 * sizeof(double));
+  memset(v, 0, (size_t)nv * sizeof(double));
+  q[1] = X_BODY[1];
+  q[3] = 1.0;
+  v[0] = -HT_OMEGA0_Z; /* (Omega0 x X)_x = -Omega_z for X = e_y */
+  if (ep) {
+    /* pdot0 = G(p0)^T Omega0 / 2 with G(1,0,0,0) = [0 | I] */
+    v[4] = 0.0;
+    v[5] = 0.5 * HT_OMEGA0_Y;
+    v[6] = 0.5 * HT_OMEGA0_Z;
+  } else {
+    v[4] = HT_OMEGA0_Y;
+    v[5] = HT_OMEGA0_Z;
+  }
+
+  flag = LGNSetGroup(o->mem, o->G);
+  if (flag == 0) flag = LGNSetMassFn(o->mem, ep ? EPMass : LieMass);
+  if (flag == 0) flag = LGNSetForceFn(o->mem, ep ? EPForce : LieForce);
+  if (flag == 0)
+    flag = LGNSetConstraints(o->mem, m, ep ? EPConstr : LieConstr,
+                             ep ? EPConstrJac : LieConstrJac);
+  if (flag == 0 && !ep && opt->analytic_jacobians) {
+    flag = LGNSetStiffnessFn(o->mem, LieStiffness);
+    if (flag == 0) flag = LGNSetDampingFn(o->mem, LieDamping);
+    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, LieCurvature);
+  }
+  if (flag == 0) flag = LGNInit(o->mem, 0.0, o->q, o->v);
+  if (flag == 0) flag = LGNSetLinearSolver(o->mem, o->LS, o->A);
+  if (flag == 0)
+    flag = opt->method == HT_GENALPHA ? LGNSetGenAlpha(o->mem, opt->rho_inf)
+                                      : LGNSetNewmark(o->mem, opt->beta, opt->gamma);
+  if (flag == 0) flag = LGNSetConstraintIndex(o->mem, opt->constraints);
+  if (flag == 0) flag = LGNSetKinematics(o->mem, opt->kinematics);
+  if (flag == 0) flag = LGNSetStepSize(o->mem, opt->h);
+  if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0))
+    flag = LGNSStolerances(o->mem, opt->rtol, opt->atol);
+  if (flag == 0 && opt->zero_a0) {
+    N_VConst(0.0, o->a);
+    flag = LGNSetInitialAux(o->mem, o->a);
+  }
+  return flag;
+}
+
+/* Fill res from the integrator's current state. */
+static void Collect(const HeavyTopOptions *opt, RunObjects *o, double t,
+                    HeavyTopResult *res)
+{
+  LGNGetAcceleration(o->mem, o->vdot);
+  LGNGetAuxAcceleration(o->mem, o->a);
+  LGNGetMultipliers(o->mem, o->lambda);
+  res->t = t;
+  ExtractState(opt, N_VGetArrayPointer(o->q), N_VGetArrayPointer(o->v),
+               N_VGetArrayPointer(o->vdot), N_VGetArrayPointer(o->a), res);
+  memcpy(res->lambda, N_VGetArrayPointer(o->lambda), 3 * sizeof(double));
+}
+
+static void RecordHistory(const HeavyTopOptions *opt, HeavyTopResult *res)
+{
+  if (opt->com_history != NULL && res->history_points < opt->history_len) {
+    memcpy(opt->com_history + 3 * res->history_points, res->x, 3 * sizeof(double));
+    res->history_points++;
+  }
+  if (opt->csv != NULL) WriteCsvRow(opt->csv, res);
+}
+
+int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
+{
+  RunObjects o;
+  double t = 0.0, tout;
+  long int k, nsteps;
+  int flag;
+
+  memset(&o, 0, sizeof o);
+  memset(res, 0, sizeof *res);
+  flag = SetupRun(opt, &o);
+  if (flag == 0 && opt->csv != NULL)
+    fprintf(opt->csv, "t,x,y,z,p0,p1,p2,p3,Omega1,Omega2,Omega3,lambda1,lambda2,lambda3\n");
+
+  nsteps = (opt->h > 0.0) ? (long int)ceil(opt->t_end / opt->h - 1e-9) : 0;
+  /* the initial state (consistent accelerations after a zero-length solve) */
+  if (flag == 0) flag = LGNSolve(o.mem, 0.0, &t, o.q, o.v, LGN_NORMAL);
+  if (flag == 0) {
+    Collect(opt, &o, t, res);
+    RecordHistory(opt, res);
+  }
+  for (k = 1; flag == 0 && k <= nsteps; k++) {
+    tout = (double)k * opt->h;
+    if (tout > opt->t_end) tout = opt->t_end;
+    flag = LGNSolve(o.mem, tout, &t, o.q, o.v, LGN_NORMAL);
+    Collect(opt, &o, t, res);
+    if (flag == 0) RecordHistory(opt, res);
+  }
+  res->flag = flag;
+  if (o.mem != NULL) {
+    LGNGetNumSteps(o.mem, &res->nsteps);
+    LGNGetNumNewtonIters(o.mem, &res->nniters);
+    LGNGetNumResEvals(o.mem, &res->nres);
+    LGNGetNumDQEvals(o.mem, &res->ndq);
+    LGNGetNumJacEvals(o.mem, &res->njevals);
+    LGNGetNumLinSolves(o.mem, &res->nlsolves);
+  }
+  FreeRun(&o);
+  return flag;
+}

@@ -1,0 +1,336 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Main user interface. The model is the DAE on a Lie group G (spec numerics.md §1)
+ *
+ *     qdot = q v~ ,   M(q) vdot + g(q, v, t) + B(q)^T lambda = 0 ,   Phi(q, t) = 0,
+ *
+ * integrated with Newmark / generalized-alpha steppers (Chung-Hulbert
+ * convention: alpha_m, alpha_f weight the OLD values, equations at t_{n+1}).
+ *
+ * Skeleton of a user program (compare IDA):
+ *   1. SUNContext_Create(NULL, &ctx);
+ *   2. G = LGNGroup_R3xSO3();  q0, v0 = N_VNew_Serial(...)
+ *   3. mem = LGNCreate(ctx);
+ *   4. LGNSetGroup, LGNSetMassFn, LGNSetForceFn, LGNSetConstraints, ...
+ *   5. LGNInit(mem, t0, q0, v0);
+ *   6. A = SUNDenseMatrix(nv+m, nv+m, ctx); LS = SUNLinSol_Dense(tmp, A, ctx);
+ *      LGNSetLinearSolver(mem, LS, A);
+ *   7. LGNSetGenAlpha(mem, 0.9); LGNSetStepSize(mem, 1e-3);
+ *   8. loop: LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
+ *   9. LGNPrintAllStats(mem, stdout, SUN_OUTPUTFORMAT_TABLE);
+ *  10. LGNFree(&mem); SUNLinSolFree(LS); SUNMatDestroy(A); N_VDestroy(...);
+ *      LGNGroup_Destroy(G); SUNContext_Free(&ctx);
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LIGNUM_H
+#define LIGNUM_H
+
+#include <stdio.h>
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nvector.h>
+#include <sundials/sundials_types.h>
+
+#include <lignum/lignum_config.h>
+#include <lignum/lignum_group.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* =============================================================================
+ * Return flags: one flat, non-overlapping space (names via LGNGetReturnFlagName)
+ * ===========================================================================*/
+
+#define LGN_SUCCESS             0   /**< success                                  */
+
+/* solver failures -1 .. -19 */
+#define LGN_TOO_MUCH_WORK      -1   /**< max number of steps reached before tout  */
+#define LGN_CONV_FAILURE       -2   /**< Newton iteration did not converge        */
+#define LGN_MASS_FAIL          -3   /**< mass matrix callback failed              */
+#define LGN_FORCE_FAIL         -4   /**< force callback failed                    */
+#define LGN_CONSTR_FAIL        -5   /**< constraint callback failed               */
+#define LGN_CONSTR_JAC_FAIL    -6   /**< constraint Jacobian callback failed      */
+#define LGN_TANGENT_FAIL       -7   /**< stiffness / damping / curvature failed   */
+#define LGN_GROUP_FAIL         -8   /**< a Lie group operation failed             */
+#define LGN_NONFINITE          -9   /**< a callback produced NaN or Inf           */
+#define LGN_REPTD_CALLBACK_ERR -10  /**< a recoverable callback error persisted   */
+#define LGN_IC_FAIL            -11  /**< consistent initial values not computable */
+
+/* usage errors -20 .. -29 */
+#define LGN_MEM_NULL           -20  /**< the memory argument is NULL              */
+#define LGN_MEM_FAIL           -21  /**< a memory allocation failed               */
+#define LGN_ILL_INPUT          -22  /**< an argument is illegal                   */
+#define LGN_NO_MALLOC          -23  /**< LGNInit has not been called              */
+#define LGN_NO_LINSOL          -24  /**< no linear solver attached                */
+#define LGN_MISSING_FN         -25  /**< a required callback is not set           */
+#define LGN_BAD_TOUT           -26  /**< tout lies behind the current time        */
+
+/* linear solver interface -30 .. -39 */
+#define LGN_LINIT_FAIL         -30  /**< SUNLinSolInitialize failed               */
+#define LGN_LSETUP_FAIL        -31  /**< SUNLinSolSetup failed (e.g. singular)     */
+#define LGN_LSOLVE_FAIL        -32  /**< SUNLinSolSolve failed                    */
+#define LGN_LS_MISMATCH        -33  /**< matrix / linear solver do not fit        */
+
+#define LGN_UNRECOGNIZED_ERR   -99  /**< unknown failure                          */
+
+/* =============================================================================
+ * Other constants
+ * ===========================================================================*/
+
+/** itask of LGNSolve: advance to tout (last step shortened to hit tout). */
+#define LGN_NORMAL   1
+/** itask of LGNSolve: take a single step and return. */
+#define LGN_ONE_STEP 2
+
+/** Constraint formulation: position level Phi(q) = 0 (index 3, scaled). */
+#define LGN_CONSTR_INDEX3 3
+/** Constraint formulation: velocity level B(q) v = 0 (index 2). */
+#define LGN_CONSTR_INDEX2 2
+
+/** Kinematics: v = xdot, vdot = xddot in each step (LGNM, LGGalpha). */
+#define LGN_KINEMATICS_SIMPLIFIED 0
+/** Kinematics: v = T(x) xdot, vdot = T xddot + Tdot xdot (mod. LGNM / LGGalpha). */
+#define LGN_KINEMATICS_EXACT      1
+/** Kinematics of the sigma variant (Holzinger-Arnold-Gerstmayr 2025). */
+#define LGN_KINEMATICS_SIGMA      2
+
+/* =============================================================================
+ * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
+ * an unrecoverable one. Matrices passed to the user are zeroed beforehand.
+ * ===========================================================================*/
+
+/** Mass matrix: M = M(q, t), nv x nv. */
+typedef int (*LGNMassFn)(sunrealtype t, N_Vector q, SUNMatrix M,
+                         void *user_data);
+
+/** Forces: g = g(q, v, t), so that M vdot + g + B^T lambda = 0. */
+typedef int (*LGNForceFn)(sunrealtype t, N_Vector q, N_Vector v, N_Vector g,
+                          void *user_data);
+
+/** Constraints: phi = Phi(q, t), length m. */
+typedef int (*LGNConstrFn)(sunrealtype t, N_Vector q, N_Vector phi,
+                           void *user_data);
+
+/** Constraint Jacobian in Lie algebra directions: B(q) with
+ *  DPhi(q).(q w~) = B(q) w, an m x nv matrix. */
+typedef int (*LGNConstrJacFn)(sunrealtype t, N_Vector q, SUNMatrix B,
+                              void *user_data);
+
+/** Tangent stiffness K_t: D_q[M vdot + g + B^T lambda].(q w~) = K_t w (nv x nv). */
+typedef int (*LGNStiffnessFn)(sunrealtype t, N_Vector q, N_Vector v,
+                              N_Vector vdot, N_Vector lambda, SUNMatrix K,
+                              void *user_data);
+
+/** Tangent damping C_t = dg/dv (nv x nv). */
+typedef int (*LGNDampingFn)(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C,
+                            void *user_data);
+
+/** Constraint curvature z = Z(q)(v, v), with d/dt(B v) = B vdot + Z(q)(v, v). */
+typedef int (*LGNCurvatureFn)(sunrealtype t, N_Vector q, N_Vector v,
+                              N_Vector z, void *user_data);
+
+/** Error handler (replaceable); the default prints to stderr. */
+typedef void (*LGNErrHandlerFn)(int error_code, const char *module,
+                                const char *function, const char *msg,
+                                void *eh_data);
+
+/* =============================================================================
+ * Lifecycle
+ * ===========================================================================*/
+
+/** Create an integrator memory block.
+ *  @param sunctx the SUNDIALS context (must not be NULL)
+ *  @return the memory block, or NULL on failure (message on stderr). */
+void *LGNCreate(SUNContext sunctx);
+
+/** Provide the initial state and allocate the state vectors.
+ *  The Lie group must have been set with LGNSetGroup.
+ *  @param lgn_mem memory from LGNCreate
+ *  @param t0 initial time
+ *  @param q0 initial configuration (length nq of the group; serial N_Vector)
+ *  @param v0 initial velocity (length nv of the group)
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT, LGN_MEM_FAIL. */
+int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0);
+
+/** Restart from a new initial state, keeping all settings. Counters are reset
+ *  and the consistent initial values recomputed at the next LGNSolve.
+ *  @return as LGNInit; LGN_NO_MALLOC if LGNInit was never called. */
+int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0);
+
+/** Advance the solution.
+ *  @param lgn_mem memory block
+ *  @param tout    the output time (LGN_NORMAL) or a direction hint (LGN_ONE_STEP)
+ *  @param tret    on return, the time reached
+ *  @param q       on return, the configuration at tret (length nq)
+ *  @param v       on return, the velocity at tret (length nv)
+ *  @param itask   LGN_NORMAL: steps of the fixed size h until tout, the last
+ *                 one shortened to land on tout; LGN_ONE_STEP: one step
+ *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
+ *          last accepted state (tret, q, v are that state), so it can continue
+ *          after the cause has been fixed (e.g. a smaller step size). */
+int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+             N_Vector v, int itask);
+
+/** Free the memory block and everything Lignum allocated; sets *lgn_mem = NULL.
+ *  Objects the user created (group, vectors, matrix, linear solver) are not freed. */
+void LGNFree(void **lgn_mem);
+
+/* =============================================================================
+ * Model description
+ * ===========================================================================*/
+
+/** Set the Lie group (configuration space). Required before LGNInit.
+ *  The group is referenced, not copied; it must outlive the memory block. */
+int LGNSetGroup(void *lgn_mem, LGNGroup G);
+
+/** Set the pointer passed to every callback. */
+int LGNSetUserData(void *lgn_mem, void *user_data);
+
+/** Set the mass matrix callback (required). */
+int LGNSetMassFn(void *lgn_mem, LGNMassFn mass);
+
+/** Set the force callback (required). */
+int LGNSetForceFn(void *lgn_mem, LGNForceFn force);
+
+/** Set the number of constraints and their callbacks.
+ *  @param m   number of constraints (0 for an unconstrained system)
+ *  @param phi Phi(q, t) (required if m > 0)
+ *  @param B   its Jacobian in Lie algebra directions (required if m > 0) */
+int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
+                      LGNConstrJacFn B);
+
+/** Set the tangent stiffness callback. NULL (default): difference quotients
+ *  along the group. */
+int LGNSetStiffnessFn(void *lgn_mem, LGNStiffnessFn K);
+
+/** Set the tangent damping callback. NULL (default): difference quotients. */
+int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C);
+
+/** Set the constraint curvature callback Z(q)(v,v). NULL (default):
+ *  difference quotients of B(q exp(eps v)) v. */
+int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z);
+
+/* =============================================================================
+ * Method and solver settings (zero restores a default where stated)
+ * ===========================================================================*/
+
+/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)).
+ *  Supported now: SUNDenseMatrix with SUNLinSol_Dense (or any direct solver
+ *  on a dense matrix). Lignum does not take ownership. */
+int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A);
+
+/** Fixed step size h > 0 (required). */
+int LGNSetStepSize(void *lgn_mem, sunrealtype h);
+
+/** Newmark method (alpha_m = alpha_f = 0) with parameters beta, gamma.
+ *  Requires 0 < beta <= 1/2 and 0 < gamma <= 1. Second order iff gamma = 1/2. */
+int LGNSetNewmark(void *lgn_mem, sunrealtype beta, sunrealtype gamma);
+
+/** Generalized-alpha with the Chung-Hulbert parameters for spectral radius
+ *  at infinity rho_inf in [0, 1] (see LGNGenAlphaFromRhoInf). This is the
+ *  default with rho_inf = 0.9. */
+int LGNSetGenAlpha(void *lgn_mem, sunrealtype rho_inf);
+
+/** Generalized-alpha with all four parameters (Chung-Hulbert convention).
+ *  Requires alpha_m < 1, alpha_f < 1, beta > 0, gamma > 0. */
+int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
+                         sunrealtype alpha_f, sunrealtype beta,
+                         sunrealtype gamma);
+
+/** Constraint formulation: LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2. */
+int LGNSetConstraintIndex(void *lgn_mem, int index);
+
+/** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default)
+ *  or LGN_KINEMATICS_EXACT. */
+int LGNSetKinematics(void *lgn_mem, int kinematics);
+
+/** Newton stop test tolerances: stop when the WRMS norm of the increment
+ *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores. */
+int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol);
+
+/** Maximum number of Newton iterations per step (0: default 20). */
+int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters);
+
+/** Maximum number of steps per LGNSolve call (0: default 1000000, < 0: no limit). */
+int LGNSetMaxNumSteps(void *lgn_mem, long int mxsteps);
+
+/** Give consistent initial values vdot0 (length nv) and lambda0 (length m,
+ *  may be NULL when m = 0) instead of letting Lignum compute them. Must be
+ *  called after LGNInit/LGNReInit. */
+int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0);
+
+/** Set the initial algorithmic acceleration a_0 (default a_0 = vdot_0).
+ *  Must be called after LGNInit/LGNReInit. */
+int LGNSetInitialAux(void *lgn_mem, N_Vector a0);
+
+/** Replace the error handler (NULL restores the default). */
+int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun, void *eh_data);
+
+/** Set the stream of the default error handler (NULL silences it). */
+int LGNSetErrFile(void *lgn_mem, FILE *errfp);
+
+/* =============================================================================
+ * Parameter maps (pure functions, no memory block)
+ * ===========================================================================*/
+
+/** Chung-Hulbert generalized-alpha parameters from rho_inf in [0, 1]:
+ *  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
+ *  gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4.
+ *  @return LGN_SUCCESS, or LGN_ILL_INPUT if rho_inf is outside [0, 1] or
+ *          an output pointer is NULL. */
+int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
+                          sunrealtype *alpha_f, sunrealtype *beta,
+                          sunrealtype *gamma);
+
+/* =============================================================================
+ * Outputs
+ * ===========================================================================*/
+
+/** Acceleration vdot at the current time (length nv). */
+int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
+/** Multipliers lambda at the current time (length m). */
+int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
+/** Algorithmic acceleration a at the current time (length nv). */
+int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
+/** Current time. */
+int LGNGetCurrentTime(void *lgn_mem, sunrealtype *tcur);
+/** Size of the last step taken. */
+int LGNGetLastStep(void *lgn_mem, sunrealtype *hlast);
+/** Method parameters in use. */
+int LGNGetMethodParams(void *lgn_mem, sunrealtype *alpha_m,
+                       sunrealtype *alpha_f, sunrealtype *beta,
+                       sunrealtype *gamma);
+/** Number of steps taken. */
+int LGNGetNumSteps(void *lgn_mem, long int *nsteps);
+/** Number of Newton iterations. */
+int LGNGetNumNewtonIters(void *lgn_mem, long int *nniters);
+/** Number of Newton convergence failures. */
+int LGNGetNumNewtonConvFails(void *lgn_mem, long int *nncfails);
+/** Number of failed step attempts (any cause). */
+int LGNGetNumStepFails(void *lgn_mem, long int *nfails);
+/** Number of residual evaluations (M, g, B, Phi at one point) in Newton. */
+int LGNGetNumResEvals(void *lgn_mem, long int *nres);
+/** Number of residual-type evaluations spent in difference quotients. */
+int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
+/** Number of iteration matrix evaluations (Jacobian builds). */
+int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
+/** Number of linear solver setups (factorisations). */
+int LGNGetNumLinSolvSetups(void *lgn_mem, long int *nlsetups);
+/** Number of linear solves. */
+int LGNGetNumLinSolves(void *lgn_mem, long int *nlsolves);
+/** Return flag of the last linear solver call. */
+int LGNGetLastLinFlag(void *lgn_mem, long int *flag);
+/** Print all counters as aligned "Name = value" lines or CSV. */
+int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt);
+/** Name of a return flag, e.g. "LGN_CONV_FAILURE" (static string, never NULL). */
+const char *LGNGetReturnFlagName(long int flag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

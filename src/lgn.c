@@ -1,0 +1,439 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Lifecycle and the time loop:
+ *   LGNCreate, LGNInit, LGNReInit, LGNSolve, LGNFree,
+ *   lgnAllocWork / lgnFreeWork (work space sized by nv and m),
+ *   lgnAccessMem (the common guard of every public function).
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "lgn_impl.h"
+
+/* =============================================================================
+ * Creation and destruction
+ * ===========================================================================*/
+
+void *LGNCreate(SUNContext sunctx)
+{
+  LGNMem mem;
+  if (sunctx == NULL) {
+    LGN_ERROR(NULL, LGN_ILL_INPUT, "sunctx = NULL illegal.");
+    return NULL;
+  }
+  mem = (LGNMem)calloc(1, sizeof *mem);
+  if (mem == NULL) {
+    LGN_ERROR(NULL, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return NULL;
+  }
+  mem->sunctx = sunctx;
+  (void)LGNGenAlphaFromRhoInf(LGN_RHO_INF_DEFAULT, &mem->alpha_m,
+                              &mem->alpha_f, &mem->beta, &mem->gamma);
+  mem->constr_index = LGN_CONSTR_INDEX3;
+  mem->kinematics   = LGN_KINEMATICS_SIMPLIFIED;
+  mem->rtol         = LGN_RTOL_DEFAULT;
+  mem->atol         = LGN_ATOL_DEFAULT;
+  mem->maxcor       = LGN_MAXCOR_DEFAULT;
+  mem->mxstep       = LGN_MXSTEP_DEFAULT;
+  mem->errfp        = stderr;
+  return mem;
+}
+
+static void DestroyVector(N_Vector *x)
+{
+  if (*x != NULL) N_VDestroy(*x);
+  *x = NULL;
+}
+
+static void DestroyMatrix(SUNMatrix *A)
+{
+  if (*A != NULL) SUNMatDestroy(*A);
+  *A = NULL;
+}
+
+static void FreeState(LGNMem mem)
+{
+  DestroyVector(&mem->q);
+  DestroyVector(&mem->v);
+  DestroyVector(&mem->vdot);
+  DestroyVector(&mem->a);
+  DestroyVector(&mem->q1);
+  DestroyVector(&mem->v1);
+  DestroyVector(&mem->vdot1);
+  DestroyVector(&mem->dq_q);
+  DestroyVector(&mem->dq_v);
+  mem->malloc_done = SUNFALSE;
+}
+
+void lgnFreeWork(LGNMem mem)
+{
+  DestroyVector(&mem->lambda);
+  DestroyVector(&mem->lambda1);
+  DestroyVector(&mem->g);
+  DestroyVector(&mem->rdyn);
+  DestroyVector(&mem->phi);
+  DestroyVector(&mem->rhs);
+  DestroyVector(&mem->sol);
+  DestroyVector(&mem->dq_g);
+  DestroyVector(&mem->dq_r);
+  DestroyVector(&mem->dq_z);
+  DestroyMatrix(&mem->Mmat);
+  DestroyMatrix(&mem->Bmat);
+  DestroyMatrix(&mem->Kmat);
+  DestroyMatrix(&mem->Cmat);
+  DestroyMatrix(&mem->Mdq);
+  DestroyMatrix(&mem->Bdq);
+  free(mem->sigma);
+  mem->sigma = NULL;
+  mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
+  free(mem->Tm);
+  mem->Tm = NULL;
+  mem->work_done = SUNFALSE;
+  mem->ic_done = SUNFALSE;
+}
+
+void LGNFree(void **lgn_mem)
+{
+  LGNMem mem;
+  if (lgn_mem == NULL || *lgn_mem == NULL) return;
+  mem = (LGNMem)(*lgn_mem);
+  lgnFreeWork(mem);
+  FreeState(mem);
+  free(mem);
+  *lgn_mem = NULL;
+}
+
+/* The guard every public function starts with. */
+int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem)
+{
+  if (lgn_mem == NULL) {
+    lgnProcessError(NULL, LGN_MEM_NULL, __LINE__, func, __FILE__, MSG_NO_MEM);
+    return LGN_MEM_NULL;
+  }
+  *mem = (LGNMem)lgn_mem;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Work space: everything whose size depends on nv and m. Allocated lazily at
+ * the first LGNSolve (so the model may be described in any order) and
+ * reallocated when m changes.
+ * ===========================================================================*/
+
+int lgnAllocWork(LGNMem mem)
+{
+  sunindextype nv = mem->nv, m = mem->m;
+  SUNContext ctx = mem->sunctx;
+  int fail = 0;
+
+  lgnFreeWork(mem);
+  mem->g    = N_VNew_Serial(nv, ctx);
+  mem->rdyn = N_VNew_Serial(nv, ctx);
+  mem->dq_g = N_VNew_Serial(nv, ctx);
+  mem->dq_r = N_VNew_Serial(nv, ctx);
+  mem->rhs  = N_VNew_Serial(nv + m, ctx);
+  mem->sol  = N_VNew_Serial(nv + m, ctx);
+  mem->Mmat = SUNDenseMatrix(nv, nv, ctx);
+  mem->Kmat = SUNDenseMatrix(nv, nv, ctx);
+  mem->Cmat = SUNDenseMatrix(nv, nv, ctx);
+  mem->Mdq  = SUNDenseMatrix(nv, nv, ctx);
+  fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
+          mem->dq_r == NULL || mem->rhs == NULL || mem->sol == NULL ||
+          mem->Mmat == NULL || mem->Kmat == NULL || mem->Cmat == NULL ||
+          mem->Mdq == NULL);
+  if (m > 0 && !fail) {
+    mem->lambda  = N_VNew_Serial(m, ctx);
+    mem->lambda1 = N_VNew_Serial(m, ctx);
+    mem->phi     = N_VNew_Serial(m, ctx);
+    mem->dq_z    = N_VNew_Serial(m, ctx);
+    mem->Bmat    = SUNDenseMatrix(m, nv, ctx);
+    mem->Bdq     = SUNDenseMatrix(m, nv, ctx);
+    fail = (mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
+            mem->dq_z == NULL || mem->Bmat == NULL || mem->Bdq == NULL);
+  }
+  if (!fail) {
+    /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(5 * nv), sizeof(sunrealtype));
+    mem->Tm    = (sunrealtype *)calloc((size_t)(nv * nv), sizeof(sunrealtype));
+    fail       = (mem->sigma == NULL || mem->Tm == NULL);
+  }
+  if (fail) {
+    lgnFreeWork(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->sigma_dot  = mem->sigma + nv;
+  mem->sigma_ddot = mem->sigma + 2 * nv;
+  mem->a_pred     = mem->sigma + 3 * nv;
+  mem->work_nv    = mem->sigma + 4 * nv;
+  if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
+  mem->work_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Initialisation
+ * ===========================================================================*/
+
+/* Check a vector argument: not NULL, with an array of the expected length. */
+static int CheckVector(LGNMem mem, N_Vector x, sunindextype len,
+                       const char *name, const char *func)
+{
+  if (x == NULL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = NULL illegal.", name);
+    return LGN_ILL_INPUT;
+  }
+  if (N_VGetArrayPointer(x) == NULL && len > 0) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s has no data array (a serial N_Vector is required).",
+                    name);
+    return LGN_ILL_INPUT;
+  }
+  if (N_VGetLength(x) != len) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s has length %lld but the Lie group needs %lld.", name,
+                    (long long)N_VGetLength(x), (long long)len);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+static void ResetCounters(LGNMem mem)
+{
+  mem->nst = mem->nni = mem->nncf = mem->nfails = 0;
+  mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
+  mem->hlast = SUN_RCONST(0.0);
+  mem->last_lin_flag = 0;
+}
+
+/* Copy the initial state; shared by LGNInit and LGNReInit. */
+static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
+                           N_Vector v0, const char *func)
+{
+  int flag;
+  if (mem->G == NULL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    MSG_NO_GROUP);
+    return LGN_ILL_INPUT;
+  }
+  flag = CheckVector(mem, q0, mem->G->nq, "q0", func);
+  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v0, mem->G->nv, "v0", func);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!isfinite(t0)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "t0 is not finite.");
+    return LGN_ILL_INPUT;
+  }
+  N_VScale(SUN_RCONST(1.0), q0, mem->q);
+  N_VScale(SUN_RCONST(1.0), v0, mem->v);
+  if (LGNGroup_Normalize(mem->G, lgnData(mem->q)) != 0) {
+    lgnProcessError(mem, LGN_GROUP_FAIL, __LINE__, func, __FILE__,
+                    "The Lie group could not normalise q0.");
+    return LGN_GROUP_FAIL;
+  }
+  mem->tn         = t0;
+  mem->ic_done    = SUNFALSE;
+  mem->user_vdot0 = SUNFALSE;
+  mem->user_a0    = SUNFALSE;
+  ResetCounters(mem);
+  return LGN_SUCCESS;
+}
+
+int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->G == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, MSG_NO_GROUP);
+    return LGN_ILL_INPUT;
+  }
+  flag = CheckVector(mem, q0, mem->G->nq, "q0", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v0, mem->G->nv, "v0", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+
+  lgnFreeWork(mem);
+  FreeState(mem);
+  mem->nq    = mem->G->nq;
+  mem->nv    = mem->G->nv;
+  mem->q     = N_VClone(q0);
+  mem->q1    = N_VClone(q0);
+  mem->dq_q  = N_VClone(q0);
+  mem->v     = N_VClone(v0);
+  mem->vdot  = N_VClone(v0);
+  mem->a     = N_VClone(v0);
+  mem->v1    = N_VClone(v0);
+  mem->vdot1 = N_VClone(v0);
+  mem->dq_v  = N_VClone(v0);
+  if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
+      mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
+      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
+    FreeState(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->malloc_done = SUNTRUE;
+  flag = SetInitialState(mem, t0, q0, v0, __func__);
+  if (flag != LGN_SUCCESS) FreeState(mem);
+  return flag;
+}
+
+int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->malloc_done) {
+    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
+    return LGN_NO_MALLOC;
+  }
+  if (mem->G == NULL || mem->G->nq != mem->nq || mem->G->nv != mem->nv) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The Lie group changed size since LGNInit: call LGNInit.");
+    return LGN_ILL_INPUT;
+  }
+  return SetInitialState(mem, t0, q0, v0, __func__);
+}
+
+/* =============================================================================
+ * LGNSolve
+ * ===========================================================================*/
+
+/* Everything LGNSolve needs before the first step: callbacks, step size,
+ * linear solver, work space and consistent initial values. */
+static int CheckReadyToSolve(LGNMem mem)
+{
+  int flag;
+  if (mem->mass == NULL) {
+    LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");
+    return LGN_MISSING_FN;
+  }
+  if (mem->force == NULL) {
+    LGN_ERROR(mem, LGN_MISSING_FN, "No force function: call LGNSetForceFn.");
+    return LGN_MISSING_FN;
+  }
+  if (mem->m > 0 && (mem->constr == NULL || mem->constr_jac == NULL)) {
+    LGN_ERROR(mem, LGN_MISSING_FN,
+              "m = %lld constraints but no constraint function or Jacobian.",
+              (long long)mem->m);
+    return LGN_MISSING_FN;
+  }
+  if (mem->G->ops.compose_exp == NULL || mem->G->ops.tangent_matrix == NULL ||
+      mem->G->ops.tangent_apply == NULL ||
+      (mem->kinematics == LGN_KINEMATICS_EXACT &&
+       mem->G->ops.tangent_dot_apply == NULL)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The Lie group lacks an operation the method needs "
+              "(compose_exp, tangent_apply, tangent_matrix%s).",
+              mem->kinematics == LGN_KINEMATICS_EXACT ? ", tangent_dot_apply"
+                                                      : "");
+    return LGN_ILL_INPUT;
+  }
+  if (!(mem->h > SUN_RCONST(0.0))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "No step size: call LGNSetStepSize.");
+    return LGN_ILL_INPUT;
+  }
+  if (mem->LS == NULL || mem->A == NULL) {
+    LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
+    return LGN_NO_LINSOL;
+  }
+  if (!mem->work_done) {
+    flag = lgnAllocWork(mem);
+    if (flag != LGN_SUCCESS) return flag;
+  }
+  flag = lgnLsCheck(mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->ic_done) {
+    flag = lgnInitialConditions(mem);
+    if (flag != LGN_SUCCESS) return flag;
+  }
+  return LGN_SUCCESS;
+}
+
+static void CopyOut(LGNMem mem, sunrealtype *tret, N_Vector q, N_Vector v)
+{
+  *tret = mem->tn;
+  N_VScale(SUN_RCONST(1.0), mem->q, q);
+  N_VScale(SUN_RCONST(1.0), mem->v, v);
+}
+
+int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+             N_Vector v, int itask)
+{
+  LGNMem mem;
+  sunrealtype troundoff, remaining, hstep;
+  long int nstloc = 0;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->malloc_done) {
+    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
+    return LGN_NO_MALLOC;
+  }
+  if (tret == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "tret = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  flag = CheckVector(mem, q, mem->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v, mem->nv, "v", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (itask != LGN_NORMAL && itask != LGN_ONE_STEP) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "itask = %d illegal: use LGN_NORMAL or LGN_ONE_STEP.", itask);
+    return LGN_ILL_INPUT;
+  }
+  if (!isfinite(tout)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "tout is not finite.");
+    return LGN_ILL_INPUT;
+  }
+  flag = CheckReadyToSolve(mem);
+  if (flag != LGN_SUCCESS) {
+    CopyOut(mem, tret, q, v);
+    return flag;
+  }
+
+  if (itask == LGN_ONE_STEP) {
+    flag = lgnStep(mem, mem->h);
+    CopyOut(mem, tret, q, v);
+    return flag;
+  }
+
+  /* LGN_NORMAL: fixed steps; the last one lands exactly on tout. A remainder
+   * up to 1e-6 h longer than h is taken as one step, so that roundoff in t
+   * never produces a tiny extra step. */
+  troundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
+              SUNMAX(fabs(mem->tn), fabs(tout));
+  if (tout < mem->tn - troundoff) {
+    LGN_ERROR(mem, LGN_BAD_TOUT,
+              "tout = %.17g is behind the current time t = %.17g.",
+              (double)tout, (double)mem->tn);
+    CopyOut(mem, tret, q, v);
+    return LGN_BAD_TOUT;
+  }
+  while (tout - mem->tn > troundoff) {
+    if (mem->mxstep > 0 && nstloc >= mem->mxstep) {
+      LGN_ERROR(mem, LGN_TOO_MUCH_WORK,
+                MSG_TIME "mxstep = %ld steps taken before reaching tout.",
+                (double)mem->tn, mem->mxstep);
+      flag = LGN_TOO_MUCH_WORK;
+      break;
+    }
+    remaining = tout - mem->tn;
+    hstep     = (remaining <= mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)))
+                    ? remaining
+                    : mem->h;
+    flag = lgnStep(mem, hstep);
+    if (flag != LGN_SUCCESS) break;
+    if (hstep == remaining) mem->tn = tout; /* exact arrival */
+    nstloc++;
+  }
+  CopyOut(mem, tret, q, v);
+  return flag;
+}

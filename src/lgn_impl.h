@@ -1,0 +1,211 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Private header: the integrator memory record, defaults, internal return
+ * codes and message texts, and the functions shared between source files.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LGN_IMPL_H
+#define LGN_IMPL_H
+
+#include <stdarg.h>
+#include <lignum/lignum.h>
+#include <sundials/sundials_math.h>
+
+/* =============================================================================
+ * Defaults
+ * ===========================================================================*/
+
+#define LGN_RHO_INF_DEFAULT   SUN_RCONST(0.9)
+#define LGN_RTOL_DEFAULT      SUN_RCONST(1.0e-8)
+#define LGN_ATOL_DEFAULT      SUN_RCONST(1.0e-8)
+#define LGN_MAXCOR_DEFAULT    20
+#define LGN_MXSTEP_DEFAULT    1000000L
+
+/* =============================================================================
+ * Internal return codes of the step (never returned to the user)
+ * ===========================================================================*/
+
+#define LGN_RECOVERABLE 1 /* a callback asked for a retry */
+
+/* Which callback produced an error: used to pick the flag and message. */
+typedef enum {
+  LGN_CB_MASS = 0,
+  LGN_CB_FORCE,
+  LGN_CB_CONSTR,
+  LGN_CB_CONSTR_JAC,
+  LGN_CB_STIFFNESS,
+  LGN_CB_DAMPING,
+  LGN_CB_CURVATURE,
+  LGN_CB_GROUP,
+  LGN_CB_COUNT
+} LGNCallbackId;
+
+/* =============================================================================
+ * Message texts
+ * ===========================================================================*/
+
+#define MSG_NO_MEM      "lgn_mem = NULL illegal."
+#define MSG_NO_MALLOC   "Attempt to call before LGNInit."
+#define MSG_NO_GROUP    "No Lie group: call LGNSetGroup before LGNInit."
+#define MSG_MEM_FAIL    "A memory request failed."
+#define MSG_TIME        "t = %.17g: "
+
+/* =============================================================================
+ * The memory record
+ * ===========================================================================*/
+
+typedef struct LGNMemRec {
+  SUNContext sunctx;
+
+  /* ---- model ---- */
+  LGNGroup G;               /* configuration space (not owned)            */
+  sunindextype nq;          /* reals per group element                    */
+  sunindextype nv;          /* Lie algebra dimension                      */
+  sunindextype m;           /* number of constraints                      */
+  void *user_data;
+  LGNMassFn mass;
+  LGNForceFn force;
+  LGNConstrFn constr;
+  LGNConstrJacFn constr_jac;
+  LGNStiffnessFn stiffness; /* NULL: difference quotients                 */
+  LGNDampingFn damping;     /* NULL: difference quotients                 */
+  LGNCurvatureFn curvature; /* NULL: difference quotients                 */
+
+  /* ---- method ---- */
+  sunrealtype alpha_m, alpha_f, beta, gamma; /* Chung-Hulbert convention  */
+  int constr_index;         /* LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2      */
+  int kinematics;           /* LGN_KINEMATICS_*                            */
+  sunrealtype h;            /* fixed step size (0 = not set)               */
+  sunrealtype rtol, atol;   /* Newton stop test                            */
+  int maxcor;               /* max Newton iterations per step              */
+  long int mxstep;          /* max steps per LGNSolve (< 0: no limit)       */
+
+  /* ---- state at t_n ---- */
+  sunrealtype tn;
+  N_Vector q, v, vdot, a;   /* configuration, velocity, acceleration, aux  */
+  N_Vector lambda;          /* multipliers (NULL when m = 0)               */
+  sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
+  sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
+  sunbooleantype user_a0;   /* a0 given by the user                        */
+
+  /* ---- step work space (iterates at t_{n+1}) ---- */
+  N_Vector q1, v1, vdot1;   /* configuration, velocity, acceleration       */
+  N_Vector lambda1;         /* multipliers (NULL when m = 0)               */
+  sunrealtype *sigma;       /* local coordinate: q1 = q_n o exp(sigma)     */
+  sunrealtype *sigma_dot;   /* its first derivative                        */
+  sunrealtype *sigma_ddot;  /* its second derivative                       */
+  sunrealtype *a_pred;      /* a+ = (alpha_f vdot_n - alpha_m a_n)/(1-am)  */
+  sunrealtype *Tm;          /* T(sigma), dense nv x nv column-major        */
+  sunrealtype *work_nv;     /* scratch of length nv                        */
+  N_Vector g;               /* forces g(q1, v1, t)                         */
+  N_Vector rdyn;            /* unscaled dynamic residual M vdot + g + B^T l*/
+  N_Vector phi;             /* Phi(q1) or B v (NULL when m = 0)            */
+  N_Vector rhs;             /* Newton right-hand side, length nv + m       */
+  N_Vector sol;             /* Newton correction, length nv + m            */
+
+  /* ---- difference quotient scratch ---- */
+  N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
+
+  /* ---- matrices of the model (dense, Lignum-owned) ---- */
+  SUNMatrix Mmat;           /* nv x nv                                      */
+  SUNMatrix Bmat;           /* m x nv (NULL when m = 0)                     */
+  SUNMatrix Kmat;           /* nv x nv tangent stiffness                    */
+  SUNMatrix Cmat;           /* nv x nv tangent damping                      */
+  SUNMatrix Mdq;            /* nv x nv scratch for difference quotients     */
+  SUNMatrix Bdq;            /* m x nv scratch for difference quotients      */
+
+  /* ---- linear solver (not owned) ---- */
+  SUNLinearSolver LS;
+  SUNMatrix A;
+  sunbooleantype ls_initialized;
+  long int last_lin_flag;
+
+  /* ---- bookkeeping ---- */
+  sunbooleantype malloc_done; /* LGNInit called                             */
+  sunbooleantype work_done;   /* work space allocated for current nv, m     */
+  sunrealtype hlast;
+
+  /* ---- counters ---- */
+  long int nst;      /* steps                                              */
+  long int nni;      /* Newton iterations                                  */
+  long int nncf;     /* Newton convergence failures                        */
+  long int nfails;   /* failed step attempts                               */
+  long int nre;      /* residual evaluations in Newton                     */
+  long int ndq;      /* residual-type evaluations in difference quotients  */
+  long int nje;      /* iteration matrix evaluations                       */
+  long int nlsetup;  /* linear solver setups                               */
+  long int nlsolve;  /* linear solves                                      */
+
+  /* ---- error reporting ---- */
+  LGNErrHandlerFn ehfun;
+  void *eh_data;
+  FILE *errfp;
+} *LGNMem;
+
+/* =============================================================================
+ * Shared internal functions
+ * ===========================================================================*/
+
+/* lgn_err.c */
+void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
+                     const char *file, const char *msgfmt, ...);
+void lgnDefaultErrHandler(int error_code, const char *module,
+                          const char *function, const char *msg, void *data);
+int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval,
+                    const char *func);
+
+/* Report an error from inside a function: fills in line, function and file. */
+#define LGN_ERROR(mem, code, ...) \
+  lgnProcessError((mem), (code), __LINE__, __func__, __FILE__, __VA_ARGS__)
+
+/* lgn_methods.c */
+int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
+                         sunrealtype beta, sunrealtype gamma,
+                         const char **why);
+
+/* lgn.c */
+int lgnAllocWork(LGNMem mem);
+void lgnFreeWork(LGNMem mem);
+int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
+
+/* lgn_step.c */
+int lgnStep(LGNMem mem, sunrealtype h);
+
+/* lgn_residual.c */
+int lgnEvalModel(LGNMem mem, sunrealtype t);
+int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
+                      sunrealtype cv);
+void lgnDenseMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                    sunbooleantype add);
+void lgnDenseMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                     sunbooleantype add);
+sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n);
+
+/* lgn_assemble.c */
+int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
+                         sunrealtype cC, sunrealtype cK,
+                         sunbooleantype use_tangent);
+
+/* lgn_ic.c */
+int lgnInitialConditions(LGNMem mem);
+
+/* lgn_dq.c */
+int lgnStiffnessDQ(LGNMem mem, sunrealtype t);
+int lgnDampingDQ(LGNMem mem, sunrealtype t);
+int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                   N_Vector z);
+
+/* lgn_ls.c */
+int lgnLsCheck(LGNMem mem);
+int lgnLsSetup(LGNMem mem);
+int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
+
+/* helpers */
+static inline sunrealtype *lgnData(N_Vector x)
+{
+  return N_VGetArrayPointer(x);
+}
+
+#endif

@@ -1,0 +1,519 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Optional inputs (LGNSet*), outputs (LGNGet*), LGNPrintAllStats and
+ * LGNGetReturnFlagName. Every function checks the memory block first, then
+ * each argument, and names the bad argument in its message.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <string.h>
+
+#include "lgn_impl.h"
+
+/* Common preamble: the memory block must exist. */
+#define ACCESS_MEM(lgn_mem, mem)                             \
+  do {                                                       \
+    int access_flag_ = lgnAccessMem(lgn_mem, __func__, &mem); \
+    if (access_flag_ != LGN_SUCCESS) return access_flag_;    \
+  } while (0)
+
+/* Common preamble of functions that need LGNInit. */
+#define ACCESS_MALLOC(lgn_mem, mem)                          \
+  do {                                                       \
+    ACCESS_MEM(lgn_mem, mem);                                \
+    if (!mem->malloc_done) {                                 \
+      LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);          \
+      return LGN_NO_MALLOC;                                  \
+    }                                                        \
+  } while (0)
+
+/* =============================================================================
+ * Model description
+ * ===========================================================================*/
+
+int LGNSetGroup(void *lgn_mem, LGNGroup G)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (G == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "G = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (G->nq < 1 || G->nv < 1) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "The Lie group has nq = %lld, nv = %lld.",
+              (long long)G->nq, (long long)G->nv);
+    return LGN_ILL_INPUT;
+  }
+  if (mem->malloc_done && (G->nq != mem->nq || G->nv != mem->nv)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The new Lie group (nq = %lld, nv = %lld) does not match the "
+              "state given to LGNInit (nq = %lld, nv = %lld): call LGNInit.",
+              (long long)G->nq, (long long)G->nv, (long long)mem->nq,
+              (long long)mem->nv);
+    return LGN_ILL_INPUT;
+  }
+  mem->G = G;
+  return LGN_SUCCESS;
+}
+
+int LGNSetUserData(void *lgn_mem, void *user_data)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->user_data = user_data;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMassFn(void *lgn_mem, LGNMassFn mass)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (mass == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "mass = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  mem->mass = mass;
+  return LGN_SUCCESS;
+}
+
+int LGNSetForceFn(void *lgn_mem, LGNForceFn force)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (force == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "force = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  mem->force = force;
+  return LGN_SUCCESS;
+}
+
+int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
+                      LGNConstrJacFn B)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (m < 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "m = %lld illegal: must be >= 0.",
+              (long long)m);
+    return LGN_ILL_INPUT;
+  }
+  if (m > 0 && (phi == NULL || B == NULL)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "%s = NULL illegal with m = %lld constraints.",
+              phi == NULL ? "phi" : "B", (long long)m);
+    return LGN_ILL_INPUT;
+  }
+  if (m != mem->m) {
+    lgnFreeWork(mem); /* sizes change: reallocate at the next LGNSolve */
+    mem->user_vdot0 = SUNFALSE;
+  }
+  mem->m          = m;
+  mem->constr     = phi;
+  mem->constr_jac = B;
+  return LGN_SUCCESS;
+}
+
+int LGNSetStiffnessFn(void *lgn_mem, LGNStiffnessFn K)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->stiffness = K;
+  return LGN_SUCCESS;
+}
+
+int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->damping = C;
+  return LGN_SUCCESS;
+}
+
+int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->curvature = Z;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Method and solver settings
+ * ===========================================================================*/
+
+int LGNSetStepSize(void *lgn_mem, sunrealtype h)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!(h > SUN_RCONST(0.0)) || !isfinite(h)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "h = %g illegal: the step size must be > 0.",
+              (double)h);
+    return LGN_ILL_INPUT;
+  }
+  mem->h = h;
+  return LGN_SUCCESS;
+}
+
+static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
+                     sunrealtype beta, sunrealtype gamma, const char *func)
+{
+  const char *why = NULL;
+  if (lgnCheckMethodParams(am, af, beta, gamma, &why) != LGN_SUCCESS) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "Illegal method parameters (alpha_m = %g, alpha_f = %g, "
+                    "beta = %g, gamma = %g): %s.", (double)am, (double)af,
+                    (double)beta, (double)gamma, why);
+    return LGN_ILL_INPUT;
+  }
+  mem->alpha_m = am;
+  mem->alpha_f = af;
+  mem->beta    = beta;
+  mem->gamma   = gamma;
+  return LGN_SUCCESS;
+}
+
+int LGNSetNewmark(void *lgn_mem, sunrealtype beta, sunrealtype gamma)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!(beta > SUN_RCONST(0.0) && beta <= SUN_RCONST(0.5))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "beta = %g illegal: Newmark needs 0 < beta <= 1/2.",
+              (double)beta);
+    return LGN_ILL_INPUT;
+  }
+  if (!(gamma > SUN_RCONST(0.0) && gamma <= SUN_RCONST(1.0))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "gamma = %g illegal: Newmark needs 0 < gamma <= 1.",
+              (double)gamma);
+    return LGN_ILL_INPUT;
+  }
+  return SetParams(mem, SUN_RCONST(0.0), SUN_RCONST(0.0), beta, gamma, __func__);
+}
+
+int LGNSetGenAlpha(void *lgn_mem, sunrealtype rho_inf)
+{
+  LGNMem mem;
+  sunrealtype am, af, beta, gamma;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!(rho_inf >= SUN_RCONST(0.0) && rho_inf <= SUN_RCONST(1.0))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "rho_inf = %g illegal: it must lie in [0, 1].",
+              (double)rho_inf);
+    return LGN_ILL_INPUT;
+  }
+  (void)LGNGenAlphaFromRhoInf(rho_inf, &am, &af, &beta, &gamma);
+  return SetParams(mem, am, af, beta, gamma, __func__);
+}
+
+int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m, sunrealtype alpha_f,
+                         sunrealtype beta, sunrealtype gamma)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  return SetParams(mem, alpha_m, alpha_f, beta, gamma, __func__);
+}
+
+int LGNSetConstraintIndex(void *lgn_mem, int index)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (index != LGN_CONSTR_INDEX3 && index != LGN_CONSTR_INDEX2) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "index = %d illegal: use LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2.",
+              index);
+    return LGN_ILL_INPUT;
+  }
+  mem->constr_index = index;
+  return LGN_SUCCESS;
+}
+
+int LGNSetKinematics(void *lgn_mem, int kinematics)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (kinematics != LGN_KINEMATICS_SIMPLIFIED &&
+      kinematics != LGN_KINEMATICS_EXACT) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "kinematics = %d illegal: use LGN_KINEMATICS_SIMPLIFIED or "
+              "LGN_KINEMATICS_EXACT%s.", kinematics,
+              kinematics == LGN_KINEMATICS_SIGMA
+                  ? " (the sigma variant is not available in this version)"
+                  : "");
+    return LGN_ILL_INPUT;
+  }
+  mem->kinematics = kinematics;
+  return LGN_SUCCESS;
+}
+
+int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
+    return LGN_ILL_INPUT;
+  }
+  if (!(atol >= SUN_RCONST(0.0)) || !isfinite(atol)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "atol = %g illegal: must be >= 0.", (double)atol);
+    return LGN_ILL_INPUT;
+  }
+  mem->rtol = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
+  mem->atol = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (maxiters < 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "maxiters = %d illegal: must be >= 0.", maxiters);
+    return LGN_ILL_INPUT;
+  }
+  mem->maxcor = maxiters == 0 ? LGN_MAXCOR_DEFAULT : maxiters;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMaxNumSteps(void *lgn_mem, long int mxsteps)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->mxstep = mxsteps == 0 ? LGN_MXSTEP_DEFAULT : mxsteps;
+  return LGN_SUCCESS;
+}
+
+/* Check an N_Vector argument of a Set/Get function against its length. */
+static int CheckVec(LGNMem mem, N_Vector x, sunindextype len, const char *name,
+                    const char *func)
+{
+  if (x == NULL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = NULL illegal.", name);
+    return LGN_ILL_INPUT;
+  }
+  if (N_VGetLength(x) != len || (len > 0 && N_VGetArrayPointer(x) == NULL)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s must be a serial N_Vector of length %lld (it has %lld).",
+                    name, (long long)len, (long long)N_VGetLength(x));
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  flag = CheckVec(mem, vdot0, mem->nv, "vdot0", __func__);
+  if (flag == LGN_SUCCESS && mem->m > 0)
+    flag = CheckVec(mem, lambda0, mem->m, "lambda0", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
+      (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");
+    return LGN_ILL_INPUT;
+  }
+  if (!mem->work_done) {
+    flag = lgnAllocWork(mem);
+    if (flag != LGN_SUCCESS) return flag;
+  }
+  N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
+  if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  mem->user_vdot0 = SUNTRUE;
+  mem->ic_done    = SUNFALSE;
+  return LGN_SUCCESS;
+}
+
+int LGNSetInitialAux(void *lgn_mem, N_Vector a0)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  flag = CheckVec(mem, a0, mem->nv, "a0", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!lgnAllFinite(N_VGetArrayPointer(a0), mem->nv)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "a0 has a NaN or Inf entry.");
+    return LGN_ILL_INPUT;
+  }
+  if (mem->nst > 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "a0 can only be set before the first step (call LGNReInit).");
+    return LGN_ILL_INPUT;
+  }
+  N_VScale(SUN_RCONST(1.0), a0, mem->a);
+  mem->user_a0 = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun, void *eh_data)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->ehfun   = ehfun;
+  mem->eh_data = eh_data;
+  return LGN_SUCCESS;
+}
+
+int LGNSetErrFile(void *lgn_mem, FILE *errfp)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->errfp = errfp;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Outputs
+ * ===========================================================================*/
+
+int LGNGetAcceleration(void *lgn_mem, N_Vector vdot)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  flag = CheckVec(mem, vdot, mem->nv, "vdot", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
+  return LGN_SUCCESS;
+}
+
+int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  flag = CheckVec(mem, lambda, mem->m, "lambda", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->m > 0) {
+    if (mem->lambda == NULL) {
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "No multipliers yet: they are computed at the first LGNSolve.");
+      return LGN_ILL_INPUT;
+    }
+    N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  flag = CheckVec(mem, a, mem->nv, "a", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  N_VScale(SUN_RCONST(1.0), mem->a, a);
+  return LGN_SUCCESS;
+}
+
+/* Getters of one scalar: guard the memory block and the output pointer. */
+#define SCALAR_GETTER(NAME, TYPE, ARG, EXPR)              \
+  int NAME(void *lgn_mem, TYPE *ARG)                      \
+  {                                                       \
+    LGNMem mem;                                           \
+    ACCESS_MEM(lgn_mem, mem);                             \
+    if (ARG == NULL) {                                    \
+      LGN_ERROR(mem, LGN_ILL_INPUT, #ARG " = NULL illegal."); \
+      return LGN_ILL_INPUT;                               \
+    }                                                     \
+    *ARG = (EXPR);                                        \
+    return LGN_SUCCESS;                                   \
+  }
+
+SCALAR_GETTER(LGNGetCurrentTime, sunrealtype, tcur, mem->tn)
+SCALAR_GETTER(LGNGetLastStep, sunrealtype, hlast, mem->hlast)
+SCALAR_GETTER(LGNGetNumSteps, long int, nsteps, mem->nst)
+SCALAR_GETTER(LGNGetNumNewtonIters, long int, nniters, mem->nni)
+SCALAR_GETTER(LGNGetNumNewtonConvFails, long int, nncfails, mem->nncf)
+SCALAR_GETTER(LGNGetNumStepFails, long int, nfails, mem->nfails)
+SCALAR_GETTER(LGNGetNumResEvals, long int, nres, mem->nre)
+SCALAR_GETTER(LGNGetNumDQEvals, long int, ndq, mem->ndq)
+SCALAR_GETTER(LGNGetNumJacEvals, long int, njevals, mem->nje)
+SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
+SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
+SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
+
+int LGNGetMethodParams(void *lgn_mem, sunrealtype *alpha_m, sunrealtype *alpha_f,
+                       sunrealtype *beta, sunrealtype *gamma)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (alpha_m == NULL || alpha_f == NULL || beta == NULL || gamma == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "An output argument is NULL.");
+    return LGN_ILL_INPUT;
+  }
+  *alpha_m = mem->alpha_m;
+  *alpha_f = mem->alpha_f;
+  *beta    = mem->beta;
+  *gamma   = mem->gamma;
+  return LGN_SUCCESS;
+}
+
+int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
+{
+  LGNMem mem;
+  const char *fmt_l, *fmt_r;
+  ACCESS_MEM(lgn_mem, mem);
+  if (outfile == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "outfile = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (fmt == SUN_OUTPUTFORMAT_TABLE) {
+    fmt_l = "%-28s = %ld\n";
+    fmt_r = "%-28s = %.6g\n";
+  } else if (fmt == SUN_OUTPUTFORMAT_CSV) {
+    fmt_l = "%s,%ld\n";
+    fmt_r = "%s,%.17g\n";
+  } else {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "fmt illegal: use SUN_OUTPUTFORMAT_TABLE or SUN_OUTPUTFORMAT_CSV.");
+    return LGN_ILL_INPUT;
+  }
+  fprintf(outfile, fmt_r, "Current time", (double)mem->tn);
+  fprintf(outfile, fmt_r, "Last step size", (double)mem->hlast);
+  fprintf(outfile, fmt_l, "Steps", mem->nst);
+  fprintf(outfile, fmt_l, "Newton iterations", mem->nni);
+  fprintf(outfile, fmt_r, "Newton iterations per step",
+          mem->nst > 0 ? (double)mem->nni / (double)mem->nst : 0.0);
+  fprintf(outfile, fmt_l, "Newton convergence fails", mem->nncf);
+  fprintf(outfile, fmt_l, "Step fails", mem->nfails);
+  fprintf(outfile, fmt_l, "Residual evals", mem->nre);
+  fprintf(outfile, fmt_l, "DQ evals", mem->ndq);
+  fprintf(outfile, fmt_l, "Jacobian evals", mem->nje);
+  fprintf(outfile, fmt_l, "Linear solver setups", mem->nlsetup);
+  fprintf(outfile, fmt_l, "Linear solves", mem->nlsolve);
+  fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  return LGN_SUCCESS;
+}
+
+const char *LGNGetReturnFlagName(long int flag)
+{
+  switch (flag) {
+  case LGN_SUCCESS:            return "LGN_SUCCESS";
+  case LGN_TOO_MUCH_WORK:      return "LGN_TOO_MUCH_WORK";
+  case LGN_CONV_FAILURE:       return "LGN_CONV_FAILURE";
+  case LGN_MASS_FAIL:          return "LGN_MASS_FAIL";
+  case LGN_FORCE_FAIL:         return "LGN_FORCE_FAIL";
+  case LGN_CONSTR_FAIL:        return "LGN_CONSTR_FAIL";
+  case LGN_CONSTR_JAC_FAIL:    return "LGN_CONSTR_JAC_FAIL";
+  case LGN_TANGENT_FAIL:       return "LGN_TANGENT_FAIL";
+  case LGN_GROUP_FAIL:         return "LGN_GROUP_FAIL";
+  case LGN_NONFINITE:          return "LGN_NONFINITE";
+  case LGN_REPTD_CALLBACK_ERR: return "LGN_REPTD_CALLBACK_ERR";
+  case LGN_IC_FAIL:            return "LGN_IC_FAIL";
+  case LGN_MEM_NULL:           return "LGN_MEM_NULL";
+  case LGN_MEM_FAIL:           return "LGN_MEM_FAIL";
+  case LGN_ILL_INPUT:          return "LGN_ILL_INPUT";
+  case LGN_NO_MALLOC:          return "LGN_NO_MALLOC";
+  case LGN_NO_LINSOL:          return "LGN_NO_LINSOL";
+  case LGN_MISSING_FN:         return "LGN_MISSING_FN";
+  case LGN_BAD_TOUT:           return "LGN_BAD_TOUT";
+  case LGN_LINIT_FAIL:         return "LGN_LINIT_FAIL";
+  case LGN_LSETUP_FAIL:        return "LGN_LSETUP_FAIL";
+  case LGN_LSOLVE_FAIL:        return "LGN_LSOLVE_FAIL";
+  case LGN_LS_MISMATCH:        return "LGN_LS_MISMATCH";
+  case LGN_UNRECOGNIZED_ERR:   return "LGN_UNRECOGNIZED_ERR";
+  default:                     return "NONE";
+  }
+}

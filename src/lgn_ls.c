@@ -1,0 +1,98 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * The bridge to SUNDIALS' SUNLinearSolver: LGNSetLinearSolver, the check of
+ * matrix and solver against the problem size, setup (factorisation) and solve.
+ * The iteration matrix is filled by lgn_assemble.c; the linear solver only
+ * sees a SUNMatrix, so another matrix type plugs in through the assembler.
+ * ---------------------------------------------------------------------------*/
+
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "lgn_impl.h"
+
+int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (LS == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "LS = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (A == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "A = NULL illegal: Lignum needs a matrix-based (direct) solver.");
+    return LGN_ILL_INPUT;
+  }
+  if (SUNLinSolGetType(LS) != SUNLINEARSOLVER_DIRECT) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The linear solver is not a direct (matrix-based) solver.");
+    return LGN_LS_MISMATCH;
+  }
+  if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "Matrix type %d not supported: use a SUNDenseMatrix.",
+              (int)SUNMatGetID(A));
+    return LGN_LS_MISMATCH;
+  }
+  mem->LS             = LS;
+  mem->A              = A;
+  mem->ls_initialized = SUNFALSE;
+  return LGN_SUCCESS;
+}
+
+/* Before the first solve: the matrix must be (nv+m) x (nv+m). */
+int lgnLsCheck(LGNMem mem)
+{
+  sunindextype n = mem->nv + mem->m;
+  int ret;
+  if (SM_ROWS_D(mem->A) != n || SM_COLUMNS_D(mem->A) != n) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The matrix A is %lld x %lld but the problem needs %lld x %lld "
+              "(nv = %lld velocities + m = %lld constraints).",
+              (long long)SM_ROWS_D(mem->A), (long long)SM_COLUMNS_D(mem->A),
+              (long long)n, (long long)n, (long long)mem->nv,
+              (long long)mem->m);
+    return LGN_LS_MISMATCH;
+  }
+  if (!mem->ls_initialized) {
+    ret = SUNLinSolInitialize(mem->LS);
+    mem->last_lin_flag = ret;
+    if (ret != 0) {
+      LGN_ERROR(mem, LGN_LINIT_FAIL, "SUNLinSolInitialize failed (%d).", ret);
+      return LGN_LINIT_FAIL;
+    }
+    mem->ls_initialized = SUNTRUE;
+  }
+  return LGN_SUCCESS;
+}
+
+int lgnLsSetup(LGNMem mem)
+{
+  int ret = SUNLinSolSetup(mem->LS, mem->A);
+  mem->nlsetup++;
+  mem->last_lin_flag = ret;
+  if (ret != 0) {
+    LGN_ERROR(mem, LGN_LSETUP_FAIL,
+              MSG_TIME "the linear solver setup failed (%d%s).",
+              (double)mem->tn, ret,
+              ret > 0 ? ": the iteration matrix is singular" : "");
+    return LGN_LSETUP_FAIL;
+  }
+  return LGN_SUCCESS;
+}
+
+int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
+{
+  int ret = SUNLinSolSolve(mem->LS, mem->A, x, b, SUN_RCONST(0.0));
+  mem->nlsolve++;
+  mem->last_lin_flag = ret;
+  if (ret != 0) {
+    LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the linear solve failed (%d).",
+              (double)mem->tn, ret);
+    return LGN_LSOLVE_FAIL;
+  }
+  return LGN_SUCCESS;
+}

@@ -1,0 +1,63 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Method parameters as pure functions (spec numerics.md §2): the Chung-Hulbert
+ * map rho_inf -> (alpha_m, alpha_f, beta, gamma), and the admissibility check
+ * of a parameter set.
+ *
+ * Convention (Chung-Hulbert, Arnold-Brüls): alpha_m and alpha_f weight the OLD
+ * values, (1-am) a_{n+1} + am a_n = (1-af) vdot_{n+1} + af vdot_n, and the
+ * equations of motion are imposed at t_{n+1}. PETSc's TSALPHA2 uses
+ * alpha_PETSc = 1 - alpha_CH.
+ * ---------------------------------------------------------------------------*/
+
+#include "lgn_impl.h"
+
+int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
+                          sunrealtype *alpha_f, sunrealtype *beta,
+                          sunrealtype *gamma)
+{
+  sunrealtype gp;
+  if (alpha_m == NULL || alpha_f == NULL || beta == NULL || gamma == NULL) {
+    LGN_ERROR(NULL, LGN_ILL_INPUT, "An output argument is NULL.");
+    return LGN_ILL_INPUT;
+  }
+  if (!(rho_inf >= SUN_RCONST(0.0) && rho_inf <= SUN_RCONST(1.0))) {
+    LGN_ERROR(NULL, LGN_ILL_INPUT,
+              "rho_inf = %g illegal: it must lie in [0, 1].", (double)rho_inf);
+    return LGN_ILL_INPUT;
+  }
+  *alpha_m = (SUN_RCONST(2.0) * rho_inf - SUN_RCONST(1.0)) /
+             (rho_inf + SUN_RCONST(1.0));
+  *alpha_f = rho_inf / (rho_inf + SUN_RCONST(1.0));
+  *gamma   = SUN_RCONST(0.5) + *alpha_f - *alpha_m;
+  gp       = *gamma + SUN_RCONST(0.5);
+  *beta    = SUN_RCONST(0.25) * gp * gp;
+  return LGN_SUCCESS;
+}
+
+/* A parameter set is usable when the step is well defined: alpha_m, alpha_f
+ * < 1 (they divide), beta > 0 (it divides) and gamma > 0. Stability or order
+ * are the user's choice; LGNGetMethodParams reports what is used. */
+int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
+                         sunrealtype beta, sunrealtype gamma, const char **why)
+{
+  if (!(alpha_m < SUN_RCONST(1.0))) {
+    *why = "alpha_m must be < 1";
+    return LGN_ILL_INPUT;
+  }
+  if (!(alpha_f < SUN_RCONST(1.0))) {
+    *why = "alpha_f must be < 1";
+    return LGN_ILL_INPUT;
+  }
+  if (!(beta > SUN_RCONST(0.0) && beta <= SUN_RCONST(1.0))) {
+    *why = "beta must lie in (0, 1]";
+    return LGN_ILL_INPUT;
+  }
+  if (!(gamma > SUN_RCONST(0.0) && gamma <= SUN_RCONST(1.5))) {
+    *why = "gamma must lie in (0, 1.5]";
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}

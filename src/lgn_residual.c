@@ -1,0 +1,115 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Evaluation of the model at the current iterate (q1, v1, vdot1, lambda1):
+ * mass matrix, forces, constraint Jacobian, and the scaled Newton residual
+ *
+ *   r = [ beta h^2 (M vdot + g + B^T lambda) ;  Phi(q)          ]   (index 3)
+ *       [                                    ;  B(q) v / gamma' ]   (index 2)
+ *
+ * (spec numerics.md §2 "Scaling"), plus small dense kernels.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "lgn_impl.h"
+
+sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n)
+{
+  sunindextype i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(x[i])) return SUNFALSE;
+  return SUNTRUE;
+}
+
+/* y (+)= A x for a dense (column-major) matrix A. */
+void lgnDenseMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                    sunbooleantype add)
+{
+  sunindextype i, j, M = SM_ROWS_D(A), N = SM_COLUMNS_D(A);
+  const sunrealtype *col;
+  if (!add)
+    for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+  for (j = 0; j < N; j++) {
+    col = SM_COLUMN_D(A, j);
+    for (i = 0; i < M; i++) y[i] += col[i] * x[j];
+  }
+}
+
+/* y (+)= A^T x for a dense (column-major) matrix A. */
+void lgnDenseMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                     sunbooleantype add)
+{
+  sunindextype i, j, M = SM_ROWS_D(A), N = SM_COLUMNS_D(A);
+  const sunrealtype *col;
+  sunrealtype s;
+  for (j = 0; j < N; j++) {
+    col = SM_COLUMN_D(A, j);
+    s   = add ? y[j] : SUN_RCONST(0.0);
+    for (i = 0; i < M; i++) s += col[i] * x[i];
+    y[j] = s;
+  }
+}
+
+/* M(q1), g(q1, v1, t) and, when m > 0, B(q1): one "residual evaluation". */
+int lgnEvalModel(LGNMem mem, sunrealtype t)
+{
+  int ret;
+  mem->nre++;
+  SUNMatZero(mem->Mmat);
+  ret = mem->mass(t, mem->q1, mem->Mmat, mem->user_data);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
+  N_VConst(SUN_RCONST(0.0), mem->g);
+  ret = mem->force(t, mem->q1, mem->v1, mem->g, mem->user_data);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+  if (mem->m > 0) {
+    SUNMatZero(mem->Bmat);
+    ret = mem->constr_jac(t, mem->q1, mem->Bmat, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
+  }
+  return LGN_SUCCESS;
+}
+
+/* The scaled residual into mem->rhs, negated (the Newton right-hand side);
+ * the unscaled dynamic residual stays in mem->rdyn for difference quotients. */
+int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
+                      sunrealtype cv)
+{
+  sunindextype i, nv = mem->nv, m = mem->m;
+  sunrealtype *rdyn = lgnData(mem->rdyn), *rhs = lgnData(mem->rhs);
+  const sunrealtype *g = lgnData(mem->g);
+  int ret, flag;
+
+  flag = lgnEvalModel(mem, t);
+  if (flag != LGN_SUCCESS) return flag;
+
+  lgnDenseMatvec(mem->Mmat, lgnData(mem->vdot1), rdyn, SUNFALSE);
+  for (i = 0; i < nv; i++) rdyn[i] += g[i];
+  if (m > 0) {
+    sunrealtype *phi = lgnData(mem->phi);
+    lgnDenseMatTvec(mem->Bmat, lgnData(mem->lambda1), rdyn, SUNTRUE);
+    if (mem->constr_index == LGN_CONSTR_INDEX3) {
+      N_VConst(SUN_RCONST(0.0), mem->phi);
+      ret = mem->constr(t, mem->q1, mem->phi, mem->user_data);
+      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__);
+    } else {
+      lgnDenseMatvec(mem->Bmat, lgnData(mem->v1), phi, SUNFALSE);
+      for (i = 0; i < m; i++) phi[i] /= cv;
+    }
+    for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];
+  }
+  for (i = 0; i < nv; i++) rhs[i] = -scale * rdyn[i];
+
+  if (!lgnAllFinite(rhs, nv + m)) {
+    LGN_ERROR(mem, LGN_NONFINITE,
+              MSG_TIME "the %s residual has a NaN or Inf component "
+              "(mass, force or constraint callback output).",
+              (double)mem->tn,
+              lgnAllFinite(rhs, nv) ? "constraint" : "dynamic");
+    return LGN_NONFINITE;
+  }
+  return LGN_SUCCESS;
+}

@@ -1,0 +1,211 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * One step t_n -> t_n + h of the Newmark / generalized-alpha family on a Lie
+ * group, for every kinematics variant (spec numerics.md §2, §3 and
+ * modified-kinematics.md §1-2). The step works in the local coordinate sigma
+ * of the step, q_{n+1} = q_n o exp(sigma), with Newmark formulas on sigma:
+ *
+ *   sigma      = h v_n + h^2 (1/2 - beta) a_n + h^2 beta a_{n+1}
+ *   sigma_dot  = v_n + h (1 - gamma) a_n + h gamma a_{n+1}
+ *   a_{n+1}    = a+ + (1-af)/(1-am) sigma_ddot,   a+ = (af vdot_n - am a_n)/(1-am)
+ *
+ * The variants differ only in the map (sigma, sigma_dot, sigma_ddot) -> (v, vdot):
+ *   simplified: v = sigma_dot,            vdot = sigma_ddot          (LGNM, LGGalpha)
+ *   exact:      v = T(sigma) sigma_dot,   vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot
+ * (sigma = h Delta q_n of the Brüls-Cardona form). On R^n both coincide with
+ * the conventional Newmark / generalized-alpha method.
+ *
+ * Step structure (IDA's IDAStep): Predict -> Newton -> Complete. The state at
+ * t_n is only overwritten in Complete, so a failed step leaves it intact.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <string.h>
+
+#include "lgn_impl.h"
+
+/* Per-step constants. */
+typedef struct {
+  sunrealtype h, t1;
+  sunrealtype beta_p;  /* beta'  = (1-am)/(h^2 beta (1-af)): d sigma_ddot / d sigma */
+  sunrealtype gamma_p; /* gamma' = gamma/(h beta):           d sigma_dot  / d sigma */
+  sunrealtype scale;   /* beta h^2: scaling of the dynamic rows (spec §2)         */
+} StepCoeffs;
+
+static StepCoeffs SetCoeffs(LGNMem mem, sunrealtype h)
+{
+  StepCoeffs c;
+  c.h       = h;
+  c.t1      = mem->tn + h;
+  c.beta_p  = (SUN_RCONST(1.0) - mem->alpha_m) /
+              (h * h * mem->beta * (SUN_RCONST(1.0) - mem->alpha_f));
+  c.gamma_p = mem->gamma / (h * mem->beta);
+  c.scale   = mem->beta * h * h;
+  return c;
+}
+
+/* Predictor (sigma_ddot = 0, lambda from the last step): modified-kinematics.md
+ * §2 step 1, identical to numerics.md §2 step 1 for the simplified variant. */
+static void Predict(LGNMem mem, const StepCoeffs *c)
+{
+  sunindextype i, nv = mem->nv;
+  const sunrealtype h = c->h, am = mem->alpha_m, af = mem->alpha_f;
+  const sunrealtype beta = mem->beta, gamma = mem->gamma;
+  const sunrealtype *v = lgnData(mem->v), *vdot = lgnData(mem->vdot);
+  const sunrealtype *a = lgnData(mem->a);
+
+  for (i = 0; i < nv; i++) {
+    mem->a_pred[i]     = (af * vdot[i] - am * a[i]) / (SUN_RCONST(1.0) - am);
+    mem->sigma[i]      = h * v[i] + h * h * ((SUN_RCONST(0.5) - beta) * a[i] +
+                                             beta * mem->a_pred[i]);
+    mem->sigma_dot[i]  = v[i] + h * ((SUN_RCONST(1.0) - gamma) * a[i] +
+                                     gamma * mem->a_pred[i]);
+    mem->sigma_ddot[i] = SUN_RCONST(0.0);
+  }
+  if (mem->m > 0) N_VScale(SUN_RCONST(1.0), mem->lambda, mem->lambda1);
+}
+
+/* q1 = q_n o exp(sigma), Tm = T(sigma), and (v1, vdot1) from the kinematics
+ * variant (table above). */
+static int Kinematics(LGNMem mem)
+{
+  LGNGroup G = mem->G;
+  sunindextype nv = mem->nv;
+  sunrealtype *v1 = lgnData(mem->v1), *vdot1 = lgnData(mem->vdot1);
+  sunindextype i;
+  int ret;
+
+  ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
+  if (ret == 0) ret = G->ops.tangent_matrix(G, mem->sigma, mem->Tm, nv);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+
+  if (mem->kinematics == LGN_KINEMATICS_EXACT) {
+    /* v = T sigma_dot, vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot */
+    ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
+    if (ret == 0) ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_ddot, vdot1);
+    if (ret == 0)
+      ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot,
+                                     mem->sigma_dot, mem->work_nv);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+    for (i = 0; i < nv; i++) vdot1[i] += mem->work_nv[i];
+  } else {
+    memcpy(v1, mem->sigma_dot, (size_t)nv * sizeof(sunrealtype));
+    memcpy(vdot1, mem->sigma_ddot, (size_t)nv * sizeof(sunrealtype));
+  }
+  return LGN_SUCCESS;
+}
+
+/* Weighted RMS norm of the Newton correction in the variables of the spec's
+ * stop test (numerics.md §2): xi = (sigma/h, h lambda). The multiplier part
+ * of the correction arrives scaled, dmu = beta h^2 dlambda. */
+static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
+                                  const sunrealtype *delta,
+                                  const sunrealtype *dmu)
+{
+  sunindextype i, nv = mem->nv, m = mem->m;
+  const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
+  const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
+  sunrealtype sum = SUN_RCONST(0.0), w;
+
+  for (i = 0; i < nv; i++) {
+    w = (delta[i] / h) / (atol + rtol * fabs(mem->sigma[i] / h));
+    sum += w * w;
+  }
+  for (i = 0; i < m; i++) {
+    w = (h * dmu[i] / c->scale) / (atol + rtol * fabs(h * lambda1[i]));
+    sum += w * w;
+  }
+  return sqrt(sum / (sunrealtype)(nv + m));
+}
+
+/* Apply a Newton correction: sigma += delta, sigma_dot += gamma' delta,
+ * sigma_ddot += beta' delta, lambda += dmu/(beta h^2) (the multiplier unknown
+ * is scaled, spec §2 D_R). */
+static void ApplyCorrection(LGNMem mem, const StepCoeffs *c,
+                            const sunrealtype *delta, const sunrealtype *dmu)
+{
+  sunindextype i, nv = mem->nv, m = mem->m;
+  sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
+  for (i = 0; i < nv; i++) {
+    mem->sigma[i] += delta[i];
+    mem->sigma_dot[i] += c->gamma_p * delta[i];
+    mem->sigma_ddot[i] += c->beta_p * delta[i];
+  }
+  for (i = 0; i < m; i++) lambda1[i] += dmu[i] / c->scale;
+}
+
+/* Newton iteration on (sigma, lambda) with the scaled iteration matrix
+ * (spec §2; modified-kinematics.md §2 for the exact variant). */
+static int Newton(LGNMem mem, const StepCoeffs *c)
+{
+  sunindextype nv = mem->nv;
+  sunrealtype *sol, norm;
+  int iter, flag;
+  /* index 2: the row B v is scaled by 1/gamma' so that its block is B T */
+  const sunrealtype cv = c->gamma_p;
+
+  for (iter = 0; iter < mem->maxcor; iter++) {
+    flag = Kinematics(mem);
+    if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
+    if (flag == LGN_SUCCESS)
+      flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,
+                                  c->scale * c->gamma_p, c->scale, SUNTRUE);
+    if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
+    if (flag != LGN_SUCCESS) return flag;
+    mem->nni++;
+
+    sol  = lgnData(mem->sol); /* (delta, dmu) */
+    norm = CorrectionNorm(mem, c, sol, sol + nv);
+    if (!isfinite(norm)) break;
+    ApplyCorrection(mem, c, sol, sol + nv);
+    if (norm <= SUN_RCONST(1.0)) return Kinematics(mem);
+  }
+  mem->nncf++;
+  LGN_ERROR(mem, LGN_CONV_FAILURE,
+            MSG_TIME "the Newton iteration failed to converge in %d "
+            "iterations with h = %g (the state at t is kept).",
+            (double)mem->tn, mem->maxcor, (double)c->h);
+  return LGN_CONV_FAILURE;
+}
+
+/* After convergence: a_{n+1} (with the chart shift of the exact variant,
+ * modified-kinematics.md §2 step 3), then commit the new state. */
+static void Complete(LGNMem mem, const StepCoeffs *c)
+{
+  sunindextype i, nv = mem->nv;
+  const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
+                         (SUN_RCONST(1.0) - mem->alpha_m);
+  sunrealtype *a = lgnData(mem->a), *vdot1 = lgnData(mem->vdot1);
+  N_Vector tmp;
+
+  for (i = 0; i < nv; i++)
+    a[i] = mem->a_pred[i] + ca * mem->sigma_ddot[i] +
+           (vdot1[i] - mem->sigma_ddot[i]);
+
+  tmp = mem->q;    mem->q = mem->q1;       mem->q1 = tmp;
+  tmp = mem->v;    mem->v = mem->v1;       mem->v1 = tmp;
+  tmp = mem->vdot; mem->vdot = mem->vdot1; mem->vdot1 = tmp;
+  if (mem->m > 0) {
+    tmp = mem->lambda; mem->lambda = mem->lambda1; mem->lambda1 = tmp;
+  }
+  mem->tn    = c->t1;
+  mem->hlast = c->h;
+  mem->nst++;
+}
+
+int lgnStep(LGNMem mem, sunrealtype h)
+{
+  StepCoeffs c = SetCoeffs(mem, h);
+  int flag;
+
+  Predict(mem, &c);
+  flag = Newton(mem, &c);
+  if (flag != LGN_SUCCESS) {
+    mem->nfails++;
+    return flag;
+  }
+  Complete(mem, &c);
+  return LGN_SUCCESS;
+}
