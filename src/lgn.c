@@ -42,6 +42,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->atol         = LGN_ATOL_DEFAULT;
   mem->maxcor       = LGN_MAXCOR_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
+  mem->predictor    = LGN_PREDICTOR_ZERO;
   mem->errfp        = stderr;
   return mem;
 }
@@ -93,8 +94,10 @@ void lgnFreeWork(LGNMem mem)
   free(mem->sigma);
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
+  mem->work2_nv = mem->vdot_prev = mem->lambda_prev = NULL;
+  mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
-  mem->Tm = NULL;
+  mem->Tm = mem->Tv = mem->Ta = NULL;
   mem->work_done = SUNFALSE;
   mem->ic_done = SUNFALSE;
 }
@@ -159,9 +162,11 @@ int lgnAllocWork(LGNMem mem)
             mem->dq_z == NULL || mem->Bmat == NULL || mem->Bdq == NULL);
   }
   if (!fail) {
-    /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(5 * nv), sizeof(sunrealtype));
-    mem->Tm    = (sunrealtype *)calloc((size_t)(nv * nv), sizeof(sunrealtype));
+    /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv, work2_nv, vdot_prev
+     * (nv each) and lambda_prev (m) in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + m), sizeof(sunrealtype));
+    /* Tm, Tv, Ta in one block */
+    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv), sizeof(sunrealtype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL);
   }
   if (fail) {
@@ -169,10 +174,15 @@ int lgnAllocWork(LGNMem mem)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
+  mem->Tv         = mem->Tm + nv * nv;
+  mem->Ta         = mem->Tm + 2 * nv * nv;
   mem->sigma_dot  = mem->sigma + nv;
   mem->sigma_ddot = mem->sigma + 2 * nv;
   mem->a_pred     = mem->sigma + 3 * nv;
   mem->work_nv    = mem->sigma + 4 * nv;
+  mem->work2_nv   = mem->sigma + 5 * nv;
+  mem->vdot_prev  = mem->sigma + 6 * nv;
+  mem->lambda_prev = m > 0 ? mem->sigma + 7 * nv : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
@@ -240,6 +250,7 @@ static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
     return LGN_GROUP_FAIL;
   }
   mem->tn         = t0;
+  mem->h_prev     = SUN_RCONST(0.0);
   mem->ic_done    = SUNFALSE;
   mem->user_vdot0 = SUNFALSE;
   mem->user_a0    = SUNFALSE;
@@ -328,13 +339,16 @@ static int CheckReadyToSolve(LGNMem mem)
   }
   if (mem->G->ops.compose_exp == NULL || mem->G->ops.tangent_matrix == NULL ||
       mem->G->ops.tangent_apply == NULL ||
+      (mem->kinematics != LGN_KINEMATICS_SIMPLIFIED &&
+       mem->G->ops.tangent_dot_apply == NULL) ||
       (mem->kinematics == LGN_KINEMATICS_EXACT &&
-       mem->G->ops.tangent_dot_apply == NULL)) {
+       mem->G->ops.tangent_inverse_apply == NULL)) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The Lie group lacks an operation the method needs "
               "(compose_exp, tangent_apply, tangent_matrix%s).",
-              mem->kinematics == LGN_KINEMATICS_EXACT ? ", tangent_dot_apply"
-                                                      : "");
+              mem->kinematics == LGN_KINEMATICS_SIMPLIFIED
+                  ? ""
+                  : ", tangent_dot_apply, tangent_inverse_apply");
     return LGN_ILL_INPUT;
   }
   if (!(mem->h > SUN_RCONST(0.0))) {

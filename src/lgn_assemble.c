@@ -5,11 +5,13 @@
  * Assembly of the (scaled) iteration matrix into the user's dense matrix A and
  * its factorisation (spec numerics.md §2, modified-kinematics.md §2):
  *
- *   simplified:  A = [[ cM M + cC C + cK K T ,  B^T ],  [ B T_c , 0 ]]
- *   exact:       A = [[ (cM M + cC C + cK K) T,  B^T ],  [ B T   , 0 ]]
+ *   simplified:  A = [[ cM M + cC C + cK K T ,        B^T ],  [ B T_c , 0 ]]
+ *   exact:       A = [[ cM M Ta + cC C Tv + cK K T,  B^T ],  [ B T_e , 0 ]]
  *
- * with cM = beta h^2 beta', cC = beta h^2 gamma', cK = beta h^2 and T = T(sigma);
- * T_c = T at index 3, I at index 2 (the row B v / gamma' varies as B dv).
+ * with cM = beta h^2 beta', cC = beta h^2 gamma', cK = beta h^2, T = T(sigma),
+ * and Ta, Tv the normalised derivatives of vdot and v (lgn_step.c; Ta = Tv = T
+ * in the spec's simpler matrix). T_c = T at index 3 and I at index 2 (the row
+ * B v / gamma' varies as B dv / gamma'); T_e = T at index 3, Tv at index 2.
  * The same routine with (cM, cC, cK) = (1, 0, 0) and no tangent gives the
  * saddle-point matrix [[M, B^T], [B, 0]] of the consistent initial values.
  * ---------------------------------------------------------------------------*/
@@ -77,8 +79,8 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
   const sunrealtype *C = SUNDenseMatrix_Data(mem->Cmat);
   const sunrealtype *K = SUNDenseMatrix_Data(mem->Kmat);
   const sunrealtype *Tm = mem->Tm;
-  const sunbooleantype identity_T = !use_tangent || mem->G->kind == LGN_GROUP_RN;
   const sunbooleantype exact = use_tangent && mem->kinematics == LGN_KINEMATICS_EXACT;
+  const sunbooleantype identity_T = !use_tangent || (!exact && mem->G->kind == LGN_GROUP_RN);
   sunrealtype *W = SUNDenseMatrix_Data(mem->Mdq); /* nv x nv scratch */
   int flag;
 
@@ -89,22 +91,28 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
   memset(A, 0, (size_t)(n * n) * sizeof(sunrealtype));
 
   /* top left */
-  for (j = 0; j < nv; j++)
-    for (i = 0; i < nv; i++) {
-      W[i + j * nv] = cM * M[i + j * nv];
-      if (cC != SUN_RCONST(0.0)) W[i + j * nv] += cC * C[i + j * nv];
-      if (cK != SUN_RCONST(0.0) && (exact || identity_T))
-        W[i + j * nv] += cK * K[i + j * nv];
-    }
-  if (identity_T) {
+  if (exact) {
+    MultiplyByTangent(M, nv, nv, mem->Ta, nv, W, nv);
     for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) A[i + j * n] = W[i + j * nv];
-  } else if (exact) {
-    MultiplyByTangent(W, nv, nv, Tm, nv, A, n);
+      for (i = 0; i < nv; i++) A[i + j * n] = cM * W[i + j * nv];
+    if (cC != SUN_RCONST(0.0)) {
+      MultiplyByTangent(C, nv, nv, mem->Tv, nv, W, nv);
+      for (j = 0; j < nv; j++)
+        for (i = 0; i < nv; i++) A[i + j * n] += cC * W[i + j * nv];
+    }
+    if (cK != SUN_RCONST(0.0)) {
+      MultiplyByTangent(K, nv, nv, Tm, nv, W, nv);
+      for (j = 0; j < nv; j++)
+        for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
+    }
   } else {
     for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) A[i + j * n] = W[i + j * nv];
-    if (cK != SUN_RCONST(0.0)) {
+      for (i = 0; i < nv; i++) {
+        A[i + j * n] = cM * M[i + j * nv];
+        if (cC != SUN_RCONST(0.0)) A[i + j * n] += cC * C[i + j * nv];
+        if (cK != SUN_RCONST(0.0) && identity_T) A[i + j * n] += cK * K[i + j * nv];
+      }
+    if (cK != SUN_RCONST(0.0) && !identity_T) {
       MultiplyByTangent(K, nv, nv, Tm, nv, W, nv);
       for (j = 0; j < nv; j++)
         for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
@@ -116,8 +124,10 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
     /* top right: B^T */
     for (j = 0; j < m; j++)
       for (i = 0; i < nv; i++) A[i + (nv + j) * n] = B[j + i * m];
-    /* bottom left: B T (index 3, or exact kinematics) or B */
-    if (identity_T || (!exact && mem->constr_index == LGN_CONSTR_INDEX2)) {
+    /* bottom left: B T_c (simplified) or B T_e (exact) */
+    if (exact && mem->constr_index == LGN_CONSTR_INDEX2) {
+      MultiplyByTangent(B, m, m, mem->Tv, nv, A + nv, n);
+    } else if (identity_T || mem->constr_index == LGN_CONSTR_INDEX2) {
       for (j = 0; j < nv; j++)
         for (i = 0; i < m; i++) A[nv + i + j * n] = B[i + j * m];
     } else {

@@ -98,7 +98,14 @@ typedef struct LGNMemRec {
   sunrealtype *sigma_ddot;  /* its second derivative                       */
   sunrealtype *a_pred;      /* a+ = (alpha_f vdot_n - alpha_m a_n)/(1-am)  */
   sunrealtype *Tm;          /* T(sigma), dense nv x nv column-major        */
+  sunrealtype *Tv;          /* exact kinematics: (dv/dsigma)/gamma'        */
+  sunrealtype *Ta;          /* exact kinematics: (dvdot/dsigma)/beta'      */
   sunrealtype *work_nv;     /* scratch of length nv                        */
+  sunrealtype *work2_nv;    /* second scratch of length nv                 */
+  sunrealtype *vdot_prev;   /* vdot_{n-1}, for the extrapolating predictor */
+  sunrealtype *lambda_prev; /* lambda_{n-1} (NULL when m = 0)              */
+  sunrealtype h_prev;       /* step size that produced vdot_n (0: none)    */
+  int predictor;            /* LGN_PREDICTOR_*                             */
   N_Vector g;               /* forces g(q1, v1, t)                         */
   N_Vector rdyn;            /* unscaled dynamic residual M vdot + g + B^T l*/
   N_Vector phi;             /* Phi(q1) or B v (NULL when m = 0)            */

@@ -232,16 +232,27 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   if (kinematics != LGN_KINEMATICS_SIMPLIFIED &&
-      kinematics != LGN_KINEMATICS_EXACT) {
+      kinematics != LGN_KINEMATICS_EXACT && kinematics != LGN_KINEMATICS_SIGMA) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
-              "kinematics = %d illegal: use LGN_KINEMATICS_SIMPLIFIED or "
-              "LGN_KINEMATICS_EXACT%s.", kinematics,
-              kinematics == LGN_KINEMATICS_SIGMA
-                  ? " (the sigma variant is not available in this version)"
-                  : "");
+              "kinematics = %d illegal: use LGN_KINEMATICS_SIMPLIFIED, "
+              "LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA.", kinematics);
     return LGN_ILL_INPUT;
   }
   mem->kinematics = kinematics;
+  return LGN_SUCCESS;
+}
+
+int LGNSetPredictor(void *lgn_mem, int predictor)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (predictor != LGN_PREDICTOR_ZERO && predictor != LGN_PREDICTOR_EXTRAPOLATE) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "predictor = %d illegal: use LGN_PREDICTOR_ZERO or "
+              "LGN_PREDICTOR_EXTRAPOLATE.", predictor);
+    return LGN_ILL_INPUT;
+  }
+  mem->predictor = predictor;
   return LGN_SUCCESS;
 }
 

@@ -14,6 +14,9 @@
  * The variants differ only in the map (sigma, sigma_dot, sigma_ddot) -> (v, vdot):
  *   simplified: v = sigma_dot,            vdot = sigma_ddot          (LGNM, LGGalpha)
  *   exact:      v = T(sigma) sigma_dot,   vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot
+ *   sigma:      as simplified, but the predicted increment is scaled by Xi and
+ *               Newton corrections are composed on the right of q1
+ *               (modified-kinematics.md §3); no T in the iteration matrix.
  * (sigma = h Delta q_n of the Brüls-Cardona form). On R^n both coincide with
  * the conventional Newmark / generalized-alpha method.
  *
@@ -46,41 +49,134 @@ static StepCoeffs SetCoeffs(LGNMem mem, sunrealtype h)
   return c;
 }
 
-/* Predictor (sigma_ddot = 0, lambda from the last step): modified-kinematics.md
- * §2 step 1, identical to numerics.md §2 step 1 for the simplified variant. */
-static void Predict(LGNMem mem, const StepCoeffs *c)
+/* sigma and sigma_dot from the current sigma_ddot (Newmark on sigma):
+ * a_{n+1} = a+ + (1-af)/(1-am) sigma_ddot. */
+static void FormIncrement(LGNMem mem, const StepCoeffs *c)
 {
   sunindextype i, nv = mem->nv;
-  const sunrealtype h = c->h, am = mem->alpha_m, af = mem->alpha_f;
-  const sunrealtype beta = mem->beta, gamma = mem->gamma;
-  const sunrealtype *v = lgnData(mem->v), *vdot = lgnData(mem->vdot);
-  const sunrealtype *a = lgnData(mem->a);
+  const sunrealtype h = c->h, beta = mem->beta, gamma = mem->gamma;
+  const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
+                         (SUN_RCONST(1.0) - mem->alpha_m);
+  const sunrealtype *v = lgnData(mem->v), *a = lgnData(mem->a);
+  sunrealtype a1;
 
   for (i = 0; i < nv; i++) {
-    mem->a_pred[i]     = (af * vdot[i] - am * a[i]) / (SUN_RCONST(1.0) - am);
-    mem->sigma[i]      = h * v[i] + h * h * ((SUN_RCONST(0.5) - beta) * a[i] +
-                                             beta * mem->a_pred[i]);
-    mem->sigma_dot[i]  = v[i] + h * ((SUN_RCONST(1.0) - gamma) * a[i] +
-                                     gamma * mem->a_pred[i]);
-    mem->sigma_ddot[i] = SUN_RCONST(0.0);
+    a1                = mem->a_pred[i] + ca * mem->sigma_ddot[i];
+    mem->sigma[i]     = h * v[i] + h * h * ((SUN_RCONST(0.5) - beta) * a[i] + beta * a1);
+    mem->sigma_dot[i] = v[i] + h * ((SUN_RCONST(1.0) - gamma) * a[i] + gamma * a1);
   }
-  if (mem->m > 0) N_VScale(SUN_RCONST(1.0), mem->lambda, mem->lambda1);
 }
 
-/* q1 = q_n o exp(sigma), Tm = T(sigma), and (v1, vdot1) from the kinematics
- * variant (table above). */
+/* Predictor. LGN_PREDICTOR_ZERO is the spec's (numerics.md §2 step 1,
+ * modified-kinematics.md §2 step 1): sigma_ddot = 0, lambda = lambda_n.
+ * LGN_PREDICTOR_EXTRAPOLATE guesses vdot_{n+1} and lambda_{n+1} by linear
+ * extrapolation and, for exact kinematics, maps the guess into the chart of
+ * the step: sigma_ddot = T(sigma)^{-1} (vdot - Tdot(sigma, sigma_dot) sigma_dot)
+ * (one fixed-point pass). The sigma variant always uses the spec's predictor
+ * followed by the scaling Xi = I - (h beta/(2 gamma)) ad(sigma_dot) of the
+ * increment (modified-kinematics.md §3): its result depends on the path of
+ * the Newton iterates, so the predictor is part of the method. */
+static int Predict(LGNMem mem, const StepCoeffs *c)
+{
+  LGNGroup G = mem->G;
+  sunindextype i, nv = mem->nv, m = mem->m;
+  const sunrealtype am = mem->alpha_m, af = mem->alpha_f;
+  const sunrealtype *vdot = lgnData(mem->vdot), *a = lgnData(mem->a);
+  const sunbooleantype extrapolate = mem->predictor == LGN_PREDICTOR_EXTRAPOLATE &&
+                                     mem->kinematics != LGN_KINEMATICS_SIGMA;
+  const sunrealtype r = mem->h_prev > SUN_RCONST(0.0) ? c->h / mem->h_prev
+                                                      : SUN_RCONST(0.0);
+  sunrealtype *acc = mem->work2_nv; /* guess of vdot_{n+1} */
+  int ret = 0;
+
+  for (i = 0; i < nv; i++) {
+    mem->a_pred[i] = (af * vdot[i] - am * a[i]) / (SUN_RCONST(1.0) - am);
+    acc[i] = extrapolate ? vdot[i] + r * (vdot[i] - mem->vdot_prev[i]) : SUN_RCONST(0.0);
+    mem->sigma_ddot[i] = acc[i];
+  }
+  if (m > 0) {
+    sunrealtype *l1 = lgnData(mem->lambda1);
+    const sunrealtype *l0 = lgnData(mem->lambda);
+    for (i = 0; i < m; i++)
+      l1[i] = extrapolate ? l0[i] + r * (l0[i] - mem->lambda_prev[i]) : l0[i];
+  }
+  FormIncrement(mem, c);
+
+  if (extrapolate && mem->kinematics == LGN_KINEMATICS_EXACT) {
+    ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot,
+                                   mem->sigma_dot, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++) mem->work_nv[i] = acc[i] - mem->work_nv[i];
+    if (ret == 0)
+      ret = G->ops.tangent_inverse_apply(G, mem->sigma, mem->work_nv, mem->sigma_ddot);
+    if (ret == 0) FormIncrement(mem, c);
+  }
+
+  if (mem->kinematics == LGN_KINEMATICS_SIGMA) {
+    /* Xi sigma = sigma - (h beta/(2 gamma)) ad(sigma_dot) sigma, with
+     * ad(w) y = -2 Tdot(0, w) y in any Lie group (numerics.md §4.1) */
+    sunrealtype *zero = acc;
+    for (i = 0; i < nv; i++) zero[i] = SUN_RCONST(0.0);
+    ret = G->ops.tangent_dot_apply(G, zero, mem->sigma_dot, mem->sigma, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++)
+      mem->sigma[i] += (c->h * mem->beta / mem->gamma) * mem->work_nv[i];
+    if (ret == 0)
+      ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
+  }
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+  return LGN_SUCCESS;
+}
+
+/* Derivatives of the exact kinematics with respect to the correction delta
+ * (sigma += delta, sigma_dot += gamma' delta, sigma_ddot += beta' delta):
+ *   dv/ddelta    = gamma' T + P,                  P e_j = DT(sigma)[e_j] sigma_dot
+ *   dvdot/ddelta = beta' T + gamma' (P + Tdot(sigma, sigma_dot)) + O(1)
+ * with DT(sigma)[w] = Tdot(sigma, w). The O(1) terms (DT[.] sigma_ddot and
+ * the second derivative of T) are dropped: relative to beta' they are
+ * O(h^2); the kept ones are O(h |v|) and make Newton converge as fast as for
+ * the simplified kinematics. Stored normalised: Tv = (dv/ddelta)/gamma',
+ * Ta = (dvdot/ddelta)/beta', so the assembly forms cM M Ta + cC C Tv + cK K T. */
+static int ExactKinematicsDerivatives(LGNMem mem, const StepCoeffs *c)
+{
+  LGNGroup G = mem->G;
+  sunindextype i, j, nv = mem->nv;
+  sunrealtype *e = mem->work2_nv, *col = mem->work_nv;
+  const sunrealtype ratio = c->gamma_p / c->beta_p;
+  int ret = 0;
+
+  for (i = 0; i < nv; i++) e[i] = SUN_RCONST(0.0);
+  for (j = 0; j < nv && ret == 0; j++) {
+    e[j] = SUN_RCONST(1.0);
+    /* P e_j */
+    ret = G->ops.tangent_dot_apply(G, mem->sigma, e, mem->sigma_dot, col);
+    for (i = 0; i < nv && ret == 0; i++) {
+      mem->Tv[i + j * nv] = mem->Tm[i + j * nv] + col[i] / c->gamma_p;
+      mem->Ta[i + j * nv] = mem->Tm[i + j * nv] + ratio * col[i];
+    }
+    /* Tdot(sigma, sigma_dot) e_j */
+    if (ret == 0) ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot, e, col);
+    for (i = 0; i < nv && ret == 0; i++) mem->Ta[i + j * nv] += ratio * col[i];
+    e[j] = SUN_RCONST(0.0);
+  }
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+  return LGN_SUCCESS;
+}
+
+/* The iterate (q1, v1, vdot1) from (sigma, sigma_dot, sigma_ddot) by the
+ * kinematics variant (table above); Tm = T(sigma) for the iteration matrix.
+ * The sigma variant carries q1 itself (corrections composed on the right). */
 static int Kinematics(LGNMem mem)
 {
   LGNGroup G = mem->G;
   sunindextype nv = mem->nv;
   sunrealtype *v1 = lgnData(mem->v1), *vdot1 = lgnData(mem->vdot1);
   sunindextype i;
-  int ret;
+  int ret = 0;
 
-  ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
-  if (ret == 0) ret = G->ops.tangent_matrix(G, mem->sigma, mem->Tm, nv);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
-
+  if (mem->kinematics != LGN_KINEMATICS_SIGMA) {
+    ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
+    if (ret == 0) ret = G->ops.tangent_matrix(G, mem->sigma, mem->Tm, nv);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+  }
   if (mem->kinematics == LGN_KINEMATICS_EXACT) {
     /* v = T sigma_dot, vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot */
     ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
@@ -123,17 +219,24 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
 /* Apply a Newton correction: sigma += delta, sigma_dot += gamma' delta,
  * sigma_ddot += beta' delta, lambda += dmu/(beta h^2) (the multiplier unknown
  * is scaled, spec §2 D_R). */
-static void ApplyCorrection(LGNMem mem, const StepCoeffs *c,
-                            const sunrealtype *delta, const sunrealtype *dmu)
+static int ApplyCorrection(LGNMem mem, const StepCoeffs *c,
+                           const sunrealtype *delta, const sunrealtype *dmu)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
+  int ret;
   for (i = 0; i < nv; i++) {
     mem->sigma[i] += delta[i];
     mem->sigma_dot[i] += c->gamma_p * delta[i];
     mem->sigma_ddot[i] += c->beta_p * delta[i];
   }
   for (i = 0; i < m; i++) lambda1[i] += dmu[i] / c->scale;
+  if (mem->kinematics == LGN_KINEMATICS_SIGMA) {
+    /* sigma variant: q1 <- q1 o exp(delta) */
+    ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), delta, lgnData(mem->q1));
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+  }
+  return LGN_SUCCESS;
 }
 
 /* Newton iteration on (sigma, lambda) with the scaled iteration matrix
@@ -148,10 +251,13 @@ static int Newton(LGNMem mem, const StepCoeffs *c)
 
   for (iter = 0; iter < mem->maxcor; iter++) {
     flag = Kinematics(mem);
+    if (flag == LGN_SUCCESS && mem->kinematics == LGN_KINEMATICS_EXACT)
+      flag = ExactKinematicsDerivatives(mem, c);
     if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
     if (flag == LGN_SUCCESS)
       flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,
-                                  c->scale * c->gamma_p, c->scale, SUNTRUE);
+                                  c->scale * c->gamma_p, c->scale,
+                                  mem->kinematics != LGN_KINEMATICS_SIGMA);
     if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
     if (flag != LGN_SUCCESS) return flag;
     mem->nni++;
@@ -159,7 +265,8 @@ static int Newton(LGNMem mem, const StepCoeffs *c)
     sol  = lgnData(mem->sol); /* (delta, dmu) */
     norm = CorrectionNorm(mem, c, sol, sol + nv);
     if (!isfinite(norm)) break;
-    ApplyCorrection(mem, c, sol, sol + nv);
+    flag = ApplyCorrection(mem, c, sol, sol + nv);
+    if (flag != LGN_SUCCESS) return flag;
     if (norm <= SUN_RCONST(1.0)) return Kinematics(mem);
   }
   mem->nncf++;
@@ -183,6 +290,11 @@ static void Complete(LGNMem mem, const StepCoeffs *c)
   for (i = 0; i < nv; i++)
     a[i] = mem->a_pred[i] + ca * mem->sigma_ddot[i] +
            (vdot1[i] - mem->sigma_ddot[i]);
+  /* keep vdot_n, lambda_n for the extrapolating predictor */
+  memcpy(mem->vdot_prev, lgnData(mem->vdot), (size_t)nv * sizeof(sunrealtype));
+  if (mem->m > 0)
+    memcpy(mem->lambda_prev, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+  mem->h_prev = c->h;
 
   tmp = mem->q;    mem->q = mem->q1;       mem->q1 = tmp;
   tmp = mem->v;    mem->v = mem->v1;       mem->v1 = tmp;
@@ -200,8 +312,8 @@ int lgnStep(LGNMem mem, sunrealtype h)
   StepCoeffs c = SetCoeffs(mem, h);
   int flag;
 
-  Predict(mem, &c);
-  flag = Newton(mem, &c);
+  flag = Predict(mem, &c);
+  if (flag == LGN_SUCCESS) flag = Newton(mem, &c);
   if (flag != LGN_SUCCESS) {
     mem->nfails++;
     return flag;

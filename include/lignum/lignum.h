@@ -95,8 +95,18 @@ extern "C" {
 #define LGN_KINEMATICS_SIMPLIFIED 0
 /** Kinematics: v = T(x) xdot, vdot = T xddot + Tdot xdot (mod. LGNM / LGGalpha). */
 #define LGN_KINEMATICS_EXACT      1
-/** Kinematics of the sigma variant (Holzinger-Arnold-Gerstmayr 2025). */
+/** Kinematics of the sigma variant (Holzinger-Arnold-Gerstmayr 2025):
+ *  predictor increment scaled by Xi = I - (h beta/(2 gamma)) ad(v_pred),
+ *  Newton corrections composed on the right, no tangent operator. Linearly
+ *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
 #define LGN_KINEMATICS_SIGMA      2
+
+/** Newton predictor (default): sigma_ddot = 0 and lambda = lambda_n (spec §2). */
+#define LGN_PREDICTOR_ZERO        0
+/** Newton predictor: vdot and lambda extrapolated linearly from
+ *  the last two steps (constant on the first step), mapped into the chart of
+ *  the step for exact kinematics. */
+#define LGN_PREDICTOR_EXTRAPOLATE 1
 
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
@@ -244,9 +254,16 @@ int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
 /** Constraint formulation: LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2. */
 int LGNSetConstraintIndex(void *lgn_mem, int index);
 
-/** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default)
- *  or LGN_KINEMATICS_EXACT. */
+/** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default),
+ *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants). */
 int LGNSetKinematics(void *lgn_mem, int kinematics);
+
+/** Newton predictor: LGN_PREDICTOR_ZERO (default) or LGN_PREDICTOR_EXTRAPOLATE.
+ *  The converged solution does not depend on it (to the Newton tolerance),
+ *  the number of Newton iterations does. Extrapolation saves about one
+ *  iteration per step on damped methods but amplifies the parasitic
+ *  multiplier oscillation of undamped index-3 Newmark (which then may fail). */
+int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment
  *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores. */
