@@ -1,9 +1,9 @@
 /* -----------------------------------------------------------------------------
  * Lignum example: the heavy top (spec numerics.md §5) from the command line.
  *
- *   heavy_top [--formulation lie|ep] [--method newmark|genalpha] [--rho-inf R]
+ *   heavy_top [--formulation lie|se3|ep] [--method newmark|genalpha] [--rho-inf R]
  *             [--beta B --gamma G] [--constraints index3|index2]
- *             [--kinematics simplified|exact] [--jacobian analytic|dq]
+ *             [--kinematics simplified|exact|sigma] [--jacobian analytic|dq]
  *             [--h H] [--t-end T] [--a0 consistent|zero] [--csv FILE]
  *
  * Prints the final state, one line "com_final <x> <y> <z>" with 17
@@ -20,9 +20,9 @@
 static void Usage(const char *prog)
 {
   fprintf(stderr,
-          "usage: %s [--formulation lie|ep] [--method newmark|genalpha]\n"
-          "          [--rho-inf R] [--beta B --gamma G]\n"
-          "          [--constraints index3|index2] [--kinematics simplified|exact]\n"
+          "usage: %s [--formulation lie|se3|ep] [--method newmark|genalpha]\n"
+          "          [--rho-inf R] [--beta B --gamma G] [--constraints index3|index2]\n"
+          "          [--kinematics simplified|exact|sigma]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T]\n"
           "          [--a0 consistent|zero] [--csv FILE]\n", prog);
 }
@@ -45,6 +45,7 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     if (val == NULL) return 1;
     if (!strcmp(key, "--formulation")) {
       if (!strcmp(val, "lie")) opt->formulation = HT_LIE;
+      else if (!strcmp(val, "se3")) opt->formulation = HT_SE3;
       else if (!strcmp(val, "ep")) opt->formulation = HT_EULER_PARAMETERS;
       else bad = 1;
     } else if (!strcmp(key, "--method")) {
@@ -58,6 +59,7 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     } else if (!strcmp(key, "--kinematics")) {
       if (!strcmp(val, "simplified")) opt->kinematics = LGN_KINEMATICS_SIMPLIFIED;
       else if (!strcmp(val, "exact")) opt->kinematics = LGN_KINEMATICS_EXACT;
+      else if (!strcmp(val, "sigma")) opt->kinematics = LGN_KINEMATICS_SIGMA;
       else bad = 1;
     } else if (!strcmp(key, "--jacobian")) {
       if (!strcmp(val, "analytic")) opt->analytic_jacobians = 1;
@@ -105,7 +107,9 @@ int main(int argc, char **argv)
   }
   heavy_top_describe(&opt, name, sizeof name);
   printf("Heavy top (Brüls-Cardona 2010), %s, %s formulation\n", name,
-         opt.formulation == HT_LIE ? "R^3 x SO(3)" : "Euler parameters");
+         opt.formulation == HT_LIE   ? "R^3 x SO(3)"
+         : opt.formulation == HT_SE3 ? "SE(3)"
+                                     : "Euler parameters");
   printf("h = %g, t_end = %g, Jacobians: %s\n\n", opt.h, opt.t_end,
          opt.analytic_jacobians ? "analytic" : "difference quotients");
 
@@ -117,7 +121,8 @@ int main(int argc, char **argv)
   printf("com_final %.17g %.17g %.17g\n", res.x[0], res.x[1], res.x[2]);
   printf("quat_final %.17g %.17g %.17g %.17g\n", res.p[0], res.p[1], res.p[2], res.p[3]);
   printf("omega_final %.17g %.17g %.17g\n", res.Omega[0], res.Omega[1], res.Omega[2]);
-  printf("lambda_final %.17g %.17g %.17g\n\n", res.lambda[0], res.lambda[1], res.lambda[2]);
+  printf("lambda_final %.17g %.17g %.17g\n", res.lambda[0], res.lambda[1], res.lambda[2]);
+  printf("max_phi    %.3e\n\n", res.max_phi);
   printf("steps                 %ld\n", res.nsteps);
   printf("newton_iters          %ld\n", res.nniters);
   printf("newton_per_step       %.4f\n",

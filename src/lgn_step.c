@@ -244,7 +244,7 @@ static int ApplyCorrection(LGNMem mem, const StepCoeffs *c,
 static int Newton(LGNMem mem, const StepCoeffs *c)
 {
   sunindextype nv = mem->nv;
-  sunrealtype *sol, norm;
+  sunrealtype *sol, norm, norm_prev = SUN_RCONST(0.0);
   int iter, flag;
   /* index 2: the row B v is scaled by 1/gamma' so that its block is B T */
   const sunrealtype cv = c->gamma_p;
@@ -265,14 +265,18 @@ static int Newton(LGNMem mem, const StepCoeffs *c)
     sol  = lgnData(mem->sol); /* (delta, dmu) */
     norm = CorrectionNorm(mem, c, sol, sol + nv);
     if (!isfinite(norm)) break;
+    /* divergence: from the third iteration on, a correction larger than the
+     * previous one means Newton is not contracting (IDA's rate test) */
+    if (iter >= 2 && norm > 10 * norm_prev && norm > SUN_RCONST(1.0)) break;
+    norm_prev = norm;
     flag = ApplyCorrection(mem, c, sol, sol + nv);
     if (flag != LGN_SUCCESS) return flag;
     if (norm <= SUN_RCONST(1.0)) return Kinematics(mem);
   }
   mem->nncf++;
   LGN_ERROR(mem, LGN_CONV_FAILURE,
-            MSG_TIME "the Newton iteration failed to converge in %d "
-            "iterations with h = %g (the state at t is kept).",
+            MSG_TIME "the Newton iteration failed to converge (diverged or "
+            "more than %d iterations) with h = %g (the state at t is kept).",
             (double)mem->tn, mem->maxcor, (double)c->h);
   return LGN_CONV_FAILURE;
 }

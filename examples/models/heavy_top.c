@@ -1,11 +1,24 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the heavy top (spec numerics.md §5) in two formulations.
+ * Lignum examples: the heavy top (spec numerics.md §5) in three formulations.
  *
  *  Lie group R^3 x SO(3): q = (x, p), v = (u, Omega), spherical joint at 0:
  *    M = diag(m I, J),  g = [-m gamma_g ; Omega x J Omega],
  *    Phi = X - R^T x,   B = [-R^T, -X~]           (Brüls-Cardona, Klemps (2.21)-(2.26))
  *    K_t = [[0, R lambda~], [0, 0]],  C_t = [[0, 0], [0, Omega~ J - (J Omega)~]],
  *    Z(q)(v, v) = Omega x (R^T u).
+ *
+ *  Lie group SE(3) (spec §5 "SE(3) variant", §7.4): q = (x, p) with x the
+ *  centre of mass (the body frame's origin), v = (U, Omega) both body-fixed,
+ *  xdot = R U, q o exp(w) moves x by R dU and R by R dpsi~:
+ *    M = diag(m I, J),  g = [m Omega x U - m R^T gamma_g ; Omega x J Omega],
+ *    Phi = X - R^T x,   B = [-I, -X~]                (Klemps (2.25), (2.27))
+ *    K_t = [[0, -m (R^T gamma_g)~], [0, 0]],
+ *    C_t = [[m Omega~, -m U~], [0, Omega~ J - (J Omega)~]],   Z = 0.
+ *  The exact derivative is B(q) = [-I, -(R^T x)~]; it equals [-I, -X~] on the
+ *  constraint manifold, and the constant form (as in the spec) is used, as the
+ *  R^3 x SO(3) model uses -X~ for -(R^T x)~. B is constant, so Z = 0 and B^T
+ *  lambda adds nothing to K_t. The multiplier is the same as in R^3 x SO(3):
+ *  m(Udot + Omega x U) = R^T m udot, so lambda = R^T(m udot - m gamma_g).
  *
  *  Euler parameters on R^7 (spec §3): q = (x, p), v = (xdot, pdot):
  *    M = diag(m I, 4 G^T J G),  g = [-m gamma_g ; 8 Gdot^T J G pdot],
@@ -154,6 +167,87 @@ static int LieCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void 
 }
 
 /* =============================================================================
+ * SE(3) callbacks (q = (x, p), v = (U, Omega), both body-fixed)
+ * ===========================================================================*/
+
+/* The mass matrix is the same as in R^3 x SO(3): LieMass. Phi too: LieConstr. */
+
+static int SE3Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q), *vv = N_VGetArrayPointer(v);
+  double *gg = N_VGetArrayPointer(g), R[9], Rtg[3], WxU[3], JW[3];
+  const double grav[3] = {0.0, 0.0, HT_GRAVITY};
+  int i;
+  (void)t; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  MatTVec(R, grav, Rtg);
+  Cross(vv + 3, vv, WxU);
+  for (i = 0; i < 3; i++) {
+    gg[i] = HT_MASS * (WxU[i] - Rtg[i]);
+    JW[i] = J_BODY[i] * vv[3 + i];
+  }
+  Cross(vv + 3, JW, gg + 3);
+  return 0;
+}
+
+static int SE3ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  int i;
+  (void)t; (void)q; (void)ud;
+  for (i = 0; i < 3; i++) ELEM(B, i, i) = -1.0; /* -I */
+  /* -X~ */
+  ELEM(B, 0, 4) = X_BODY[2];  ELEM(B, 0, 5) = -X_BODY[1];
+  ELEM(B, 1, 3) = -X_BODY[2]; ELEM(B, 1, 5) = X_BODY[0];
+  ELEM(B, 2, 3) = X_BODY[1];  ELEM(B, 2, 4) = -X_BODY[0];
+  return 0;
+}
+
+/* K_t: only -m R^T gamma_g depends on q; along R -> R exp(dpsi~),
+ * d(R^T gamma_g) = -dpsi~ R^T gamma_g = (R^T gamma_g)~ dpsi. */
+static int SE3Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                        N_Vector lambda, SUNMatrix K, void *ud)
+{
+  const double *qq = N_VGetArrayPointer(q);
+  const double grav[3] = {0.0, 0.0, HT_GRAVITY};
+  double R[9], c[3];
+  int i;
+  (void)t; (void)v; (void)vdot; (void)lambda; (void)ud;
+  LGNQuaternionToRotation(qq + 3, R);
+  MatTVec(R, grav, c);
+  for (i = 0; i < 3; i++) c[i] *= -HT_MASS; /* K_12 = (c)~, c = -m R^T gamma_g */
+  ELEM(K, 0, 4) = -c[2]; ELEM(K, 0, 5) = c[1];
+  ELEM(K, 1, 3) = c[2];  ELEM(K, 1, 5) = -c[0];
+  ELEM(K, 2, 3) = -c[1]; ELEM(K, 2, 4) = c[0];
+  return 0;
+}
+
+static int SE3Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  const double *U = N_VGetArrayPointer(v), *W = U + 3;
+  const double m = HT_MASS;
+  int flag;
+  /* rotational block as in R^3 x SO(3) */
+  flag = LieDamping(t, q, v, C, ud);
+  /* d(m Omega x U)/dU = m Omega~ */
+  ELEM(C, 0, 1) = -m * W[2]; ELEM(C, 0, 2) = m * W[1];
+  ELEM(C, 1, 0) = m * W[2];  ELEM(C, 1, 2) = -m * W[0];
+  ELEM(C, 2, 0) = -m * W[1]; ELEM(C, 2, 1) = m * W[0];
+  /* d(m Omega x U)/dOmega = -m U~ */
+  ELEM(C, 0, 4) = m * U[2];  ELEM(C, 0, 5) = -m * U[1];
+  ELEM(C, 1, 3) = -m * U[2]; ELEM(C, 1, 5) = m * U[0];
+  ELEM(C, 2, 3) = m * U[1];  ELEM(C, 2, 4) = -m * U[0];
+  return flag;
+}
+
+/* Z(q)(v, v) = d/dt(B v) - B vdot = 0, since B is constant. */
+static int SE3Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)ud;
+  N_VConst(0.0, z);
+  return 0;
+}
+
+/* =============================================================================
  * Euler-parameter callbacks (q = (x, p0, pbar) in R^7)
  * ===========================================================================*/
 
@@ -274,7 +368,10 @@ void heavy_top_default_options(HeavyTopOptions *opt)
 
 void heavy_top_describe(const HeavyTopOptions *opt, char *buf, size_t len)
 {
-  const char *kin = opt->kinematics == LGN_KINEMATICS_EXACT ? "mod. " : "";
+  const char *kin = opt->kinematics == LGN_KINEMATICS_EXACT   ? "mod. "
+                    : opt->kinematics == LGN_KINEMATICS_SIGMA ? "sigma-"
+                                                              : "";
+  const char *grp = opt->formulation == HT_SE3 ? "SE3 " : "";
   const char *idx = opt->constraints == LGN_CONSTR_INDEX2 ? "idx2" : "idx3";
   if (opt->formulation == HT_EULER_PARAMETERS) {
     if (opt->method == HT_GENALPHA)
@@ -282,9 +379,9 @@ void heavy_top_describe(const HeavyTopOptions *opt, char *buf, size_t len)
     else
       snprintf(buf, len, "EP Newmark(%.4g,%.4g) %s", opt->beta, opt->gamma, idx);
   } else if (opt->method == HT_GENALPHA) {
-    snprintf(buf, len, "%sLGGalpha(%.2g) %s", kin, opt->rho_inf, idx);
+    snprintf(buf, len, "%s%sLGGalpha(%.2g) %s", grp, kin, opt->rho_inf, idx);
   } else {
-    snprintf(buf, len, "%sLGNM(%.4g,%.4g) %s", kin, opt->beta, opt->gamma, idx);
+    snprintf(buf, len, "%s%sLGNM(%.4g,%.4g) %s", grp, kin, opt->beta, opt->gamma, idx);
   }
 }
 
@@ -304,7 +401,7 @@ static void ExtractState(const HeavyTopOptions *opt, const double *q,
   nrm = sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
   for (i = 0; i < 4; i++) res->p[i] = (q[3] >= 0.0 ? 1.0 : -1.0) * q[3 + i] / nrm;
   LGNQuaternionToRotation(res->p, res->R);
-  if (opt->formulation == HT_LIE) {
+  if (opt->formulation == HT_LIE || opt->formulation == HT_SE3) {
     for (i = 0; i < 3; i++) {
       res->Omega[i] = v[3 + i];
       res->vdot[3 + i] = vdot[3 + i];
@@ -324,6 +421,38 @@ static void ExtractState(const HeavyTopOptions *opt, const double *q,
       }
     }
   }
+  if (opt->formulation == HT_SE3) {
+    /* body-fixed (U, Udot) -> inertial u = R U, udot = R (Udot + Omega x U);
+     * the algorithmic a_U is mapped like Udot, R (a_U + Omega x U). */
+    const double *R = res->R;
+    double WxU[3], bu[3], bd[3], ba[3];
+    Cross(v + 3, v, WxU);
+    for (i = 0; i < 3; i++) {
+      bu[i] = v[i];
+      bd[i] = vdot[i] + WxU[i];
+      ba[i] = a[i] + WxU[i];
+    }
+    for (i = 0; i < 3; i++) {
+      res->u[i] = R[3 * i] * bu[0] + R[3 * i + 1] * bu[1] + R[3 * i + 2] * bu[2];
+      res->vdot[i] = R[3 * i] * bd[0] + R[3 * i + 1] * bd[1] + R[3 * i + 2] * bd[2];
+      res->a[i] = R[3 * i] * ba[0] + R[3 * i + 1] * ba[1] + R[3 * i + 2] * ba[2];
+    }
+  }
+}
+
+/* |X - R^T x|_inf of the raw state q (R from the unnormalised quaternion,
+ * as in the constraint callbacks of the Lie group formulations). */
+static double JointViolation(const HeavyTopOptions *opt, const double *q)
+{
+  double R[9], Rtx[3], mx = 0.0;
+  int i;
+  if (opt->formulation == HT_EULER_PARAMETERS)
+    EPRotation(q + 3, R);
+  else
+    LGNQuaternionToRotation(q + 3, R);
+  MatTVec(R, q, Rtx);
+  for (i = 0; i < 3; i++) mx = fmax(mx, fabs(X_BODY[i] - Rtx[i]));
+  return mx;
 }
 
 static void WriteCsvRow(FILE *fp, const HeavyTopResult *r)
@@ -364,12 +493,13 @@ static void FreeRun(RunObjects *o)
 static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
 {
   const int ep = opt->formulation == HT_EULER_PARAMETERS;
+  const int se3 = opt->formulation == HT_SE3;
   const sunindextype nv = ep ? 7 : 6, m = ep ? 4 : 3;
   double *q, *v;
   int flag;
 
   if (SUNContext_Create(NULL, &o->ctx) != 0) return LGN_MEM_FAIL;
-  o->G = ep ? LGNGroup_Rn(7) : LGNGroup_R3xSO3();
+  o->G = ep ? LGNGroup_Rn(7) : se3 ? LGNGroup_SE3() : LGNGroup_R3xSO3();
   o->q = N_VNew_Serial(7, o->ctx);
   o->v = N_VNew_Serial(nv, o->ctx);
   o->vdot = N_VNew_Serial(nv, o->ctx);
@@ -382,7 +512,8 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   if (!o->G || !o->q || !o->v || !o->vdot || !o->a || !o->lambda || !o->LS || !o->mem)
     return LGN_MEM_FAIL;
 
-  /* initial state: R0 = I, x0 = X, u0 = Omega0 x X, p0 = (1,0,0,0) */
+  /* initial state: R0 = I, x0 = X, u0 = Omega0 x X, p0 = (1,0,0,0);
+   * on SE(3) U0 = R0^T u0 = Omega0 x X, the same numbers since R0 = I */
   q = N_VGetArrayPointer(o->q);
   v = N_VGetArrayPointer(o->v);
   memset(q, 0, 7 * sizeof(double));
@@ -402,11 +533,16 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
 
   flag = LGNSetGroup(o->mem, o->G);
   if (flag == 0) flag = LGNSetMassFn(o->mem, ep ? EPMass : LieMass);
-  if (flag == 0) flag = LGNSetForceFn(o->mem, ep ? EPForce : LieForce);
+  if (flag == 0)
+    flag = LGNSetForceFn(o->mem, ep ? EPForce : se3 ? SE3Force : LieForce);
   if (flag == 0)
     flag = LGNSetConstraints(o->mem, m, ep ? EPConstr : LieConstr,
-                             ep ? EPConstrJac : LieConstrJac);
-  if (flag == 0 && !ep && opt->analytic_jacobians) {
+                             ep ? EPConstrJac : se3 ? SE3ConstrJac : LieConstrJac);
+  if (flag == 0 && se3 && opt->analytic_jacobians) {
+    flag = LGNSetStiffnessFn(o->mem, SE3Stiffness);
+    if (flag == 0) flag = LGNSetDampingFn(o->mem, SE3Damping);
+    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, SE3Curvature);
+  } else if (flag == 0 && !ep && opt->analytic_jacobians) {
     flag = LGNSetStiffnessFn(o->mem, LieStiffness);
     if (flag == 0) flag = LGNSetDampingFn(o->mem, LieDamping);
     if (flag == 0) flag = LGNSetCurvatureFn(o->mem, LieCurvature);
@@ -439,6 +575,7 @@ static void Collect(const HeavyTopOptions *opt, RunObjects *o, double t,
   ExtractState(opt, N_VGetArrayPointer(o->q), N_VGetArrayPointer(o->v),
                N_VGetArrayPointer(o->vdot), N_VGetArrayPointer(o->a), res);
   memcpy(res->lambda, N_VGetArrayPointer(o->lambda), 3 * sizeof(double));
+  res->max_phi = fmax(res->max_phi, JointViolation(opt, N_VGetArrayPointer(o->q)));
 }
 
 static void RecordHistory(const HeavyTopOptions *opt, HeavyTopResult *res)

@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * Lignum examples: the heavy top benchmark (spec numerics.md §5), as a model
- * (callbacks for R^3 x SO(3) and for Euler parameters on R^7) and as a driver
+ * (callbacks for R^3 x SO(3), for SE(3) and for Euler parameters on R^7) and as a driver
  * that runs one configuration and reports the final state and statistics.
  * Shared by the heavy_top example, the demo, the tests and the benchmarks.
  * SPDX-License-Identifier: BSD-3-Clause
@@ -21,7 +21,8 @@
 #define HT_OMEGA0_Y 150.0
 #define HT_OMEGA0_Z (-4.61538)  /* Omega0 = (0, 150, -4.61538), body frame */
 
-typedef enum { HT_LIE = 0, HT_EULER_PARAMETERS = 1 } HeavyTopFormulation;
+/* HT_LIE: R^3 x SO(3); HT_EULER_PARAMETERS: R^7; HT_SE3: SE(3) (spec §5, §7.4). */
+typedef enum { HT_LIE = 0, HT_EULER_PARAMETERS = 1, HT_SE3 = 2 } HeavyTopFormulation;
 typedef enum { HT_NEWMARK = 0, HT_GENALPHA = 1 } HeavyTopMethod;
 
 /* One run of the heavy top. */
@@ -41,8 +42,10 @@ typedef struct {
   long int history_len;    /* capacity of com_history in points          */
 } HeavyTopOptions;
 
-/* Result of a run: state at the time reached, in the Lie group variables
- * (x, R, u, Omega and the spherical-joint multiplier for Phi = X - R^T x). */
+/* Result of a run: state at the time reached, in the R^3 x SO(3) variables
+ * (x, R, u, Omega and the spherical-joint multiplier for Phi = X - R^T x),
+ * whatever the formulation: for HT_SE3, u = R U is the inertial centre-of-mass
+ * velocity and vdot[0..2] = udot = R (Udot + Omega x U) (a[0..2] likewise). */
 typedef struct {
   int flag;                /* LGN_SUCCESS or the failure flag           */
   double t;                /* time reached                              */
@@ -52,6 +55,8 @@ typedef struct {
   double lambda[3];        /* joint multiplier                          */
   long int nsteps, nniters, nres, ndq, njevals, nlsolves;
   long int history_points; /* points written to com_history             */
+  double max_phi;          /* max over the output grid of |X - R^T x|_inf,
+                              evaluated on the integrator's raw q        */
 } HeavyTopResult;
 
 /* Default options: Lie group, generalized-alpha rho_inf = 0.9, index 3,
