@@ -4,7 +4,8 @@
  *   heavy_top [--formulation lie|se3|ep] [--method newmark|genalpha] [--rho-inf R]
  *             [--beta B --gamma G] [--constraints index3|index2]
  *             [--kinematics simplified|exact|sigma] [--jacobian analytic|dq]
- *             [--h H] [--t-end T] [--a0 consistent|zero] [--csv FILE]
+ *             [--h H] [--t-end T] [--a0 consistent|zero]
+ *             [--predictor zero|extrapolate] [--csv FILE]
  *
  * Prints the final state, one line "com_final <x> <y> <z>" with 17
  * significant digits, and the integrator statistics. Exit status 0 on success.
@@ -24,7 +25,8 @@ static void Usage(const char *prog)
           "          [--rho-inf R] [--beta B --gamma G] [--constraints index3|index2]\n"
           "          [--kinematics simplified|exact|sigma]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T]\n"
-          "          [--a0 consistent|zero] [--csv FILE]\n", prog);
+          "          [--a0 consistent|zero] [--predictor zero|extrapolate]\n"
+          "          [--csv FILE]\n", prog);
 }
 
 /* Parse a number; returns 0 on success. */
@@ -64,6 +66,10 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     } else if (!strcmp(key, "--jacobian")) {
       if (!strcmp(val, "analytic")) opt->analytic_jacobians = 1;
       else if (!strcmp(val, "dq")) opt->analytic_jacobians = 0;
+      else bad = 1;
+    } else if (!strcmp(key, "--predictor")) {
+      if (!strcmp(val, "zero")) opt->predictor = LGN_PREDICTOR_ZERO;
+      else if (!strcmp(val, "extrapolate")) opt->predictor = LGN_PREDICTOR_EXTRAPOLATE;
       else bad = 1;
     } else if (!strcmp(key, "--a0")) {
       if (!strcmp(val, "consistent")) opt->zero_a0 = 0;

@@ -557,6 +557,7 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   if (flag == 0) flag = LGNSetStepSize(o->mem, opt->h);
   if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0))
     flag = LGNSStolerances(o->mem, opt->rtol, opt->atol);
+  if (flag == 0) flag = LGNSetPredictor(o->mem, opt->predictor);
   if (flag == 0 && opt->zero_a0) {
     N_VConst(0.0, o->a);
     flag = LGNSetInitialAux(o->mem, o->a);

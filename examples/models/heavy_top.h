@@ -37,6 +37,7 @@ typedef struct {
   double rtol, atol;       /* Newton tolerances (0: Lignum's defaults)   */
   int analytic_jacobians;  /* 1: K_t, C_t, Z from the model; 0: DQ      */
   int zero_a0;             /* 1: start with a_0 = 0 (reproduction target A) */
+  int predictor;           /* LGN_PREDICTOR_* (default LGN_PREDICTOR_ZERO) */
   FILE *csv;               /* time history (NULL: none)                 */
   double *com_history;     /* if not NULL: x at t_k = k h, 3*(nsteps+1)  */
   long int history_len;    /* capacity of com_history in points          */
