@@ -26,6 +26,7 @@ static void Usage(const char *prog)
           "          [--kinematics simplified|exact|sigma]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T]\n"
           "          [--a0 consistent|zero] [--predictor zero|extrapolate]\n"
+          "          [--rtol R] [--atol A] (Newton tolerances)\n"
           "          [--csv FILE]\n", prog);
 }
 
@@ -80,6 +81,8 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     else if (!strcmp(key, "--gamma")) bad = ParseReal(val, &opt->gamma);
     else if (!strcmp(key, "--h")) bad = ParseReal(val, &opt->h);
     else if (!strcmp(key, "--t-end")) bad = ParseReal(val, &opt->t_end);
+    else if (!strcmp(key, "--rtol")) bad = ParseReal(val, &opt->rtol);
+    else if (!strcmp(key, "--atol")) bad = ParseReal(val, &opt->atol);
     else if (!strcmp(key, "--csv")) *csv_path = val;
     else bad = 1;
     if (bad) {

@@ -194,8 +194,14 @@ static int Kinematics(LGNMem mem)
 }
 
 /* Weighted RMS norm of the Newton correction in the variables of the spec's
- * stop test (numerics.md §2): xi = (sigma/h, h lambda). The multiplier part
- * of the correction arrives scaled, dmu = beta h^2 dlambda. */
+ * stop test (numerics.md §2): xi = (sigma/h, h lambda), weights
+ * 1/(atol + rtol |xi_i| + floor_i). The multiplier part of the correction
+ * arrives scaled, dmu = beta h^2 dlambda.
+ * The floors are the roundoff level of the iteration: the configuration is
+ * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
+ * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
+ * tight tolerance at small h asks Newton to resolve noise (it stalls at a
+ * constant correction). */
 static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
                                   const sunrealtype *delta,
                                   const sunrealtype *dmu)
@@ -203,14 +209,18 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
+  const sunrealtype qscale = SUNMAX(SUN_RCONST(1.0), N_VMaxNorm(mem->q1));
+  const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
+  const sunrealtype floor_sigma = roundoff / h, floor_lambda = roundoff / (mem->beta * h);
   sunrealtype sum = SUN_RCONST(0.0), w;
 
   for (i = 0; i < nv; i++) {
-    w = (delta[i] / h) / (atol + rtol * fabs(mem->sigma[i] / h));
+    w = (delta[i] / h) / (atol + rtol * fabs(mem->sigma[i] / h) + floor_sigma);
     sum += w * w;
   }
   for (i = 0; i < m; i++) {
-    w = (h * dmu[i] / c->scale) / (atol + rtol * fabs(h * lambda1[i]));
+    w = (h * dmu[i] / c->scale) /
+        (atol + rtol * fabs(h * lambda1[i]) + floor_lambda);
     sum += w * w;
   }
   return sqrt(sum / (sunrealtype)(nv + m));
