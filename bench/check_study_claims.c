@@ -6,7 +6,9 @@
  *     accurate than simplified at every h <= 1.25e-3;
  *  3. index 3, undamped Newmark: exact kinematics runs on [0, 1] s at every
  *     h <= 1e-3, simplified fails at every h;
- *  4. Newton iterations: exact <= simplified + 1 at every h (same method,
+ *  4. Newton iterations: exact <= simplified at every h for gen-alpha(0.9),
+ *     index 3; for Newmark index 2 within 0.01 at h <= 1e-3 and at most one
+ *     more at h = 2e-3 (what the exact variant achieves; same method,
  *     constraints, rho_inf), and mod. LGNM (index 2) needs fewer than
  *     conventional Euler-parameter Newmark (index 2) at every h.
  * Usage: check_study_claims FILE.csv */
@@ -140,13 +142,13 @@ int main(int argc, char **argv)
     }
     /* 4. Newton iterations */
     if (Ok(s) && Ok(e)) {
-      snprintf(what, sizeof what, "h = %.4e: Newton/step mod-lggalpha %.2f <= lggalpha %.2f + 1", h, e->nps, s->nps);
-      Check(e->nps <= s->nps + 1.0 + 1e-9, what);
+      snprintf(what, sizeof what, "h = %.4e: Newton/step mod-lggalpha %.2f <= lggalpha %.2f", h, e->nps, s->nps);
+      Check(e->nps <= s->nps + 1e-9, what);
     }
     if (Ok(n2) && Ok(e2) && Ok(ep2)) {
-      snprintf(what, sizeof what, "h = %.4e: Newton/step idx2 mod-lgnm %.2f <= lgnm %.2f + 1, < newmark-ep %.2f",
+      snprintf(what, sizeof what, "h = %.4e: Newton/step idx2 mod-lgnm %.3f <= lgnm %.3f (+1 at h = 2e-3), < newmark-ep %.3f",
                h, e2->nps, n2->nps, ep2->nps);
-      Check(e2->nps <= n2->nps + 1.0 + 1e-9 && e2->nps < ep2->nps, what);
+      Check(e2->nps <= n2->nps + (h > 1.5e-3 ? 1.0 : 0.01) && e2->nps < ep2->nps, what);
     }
   }
   printf("check_study_claims: %d checks, %d failures (%d rows)\n", checks, failures, nrows);

@@ -165,8 +165,8 @@ int lgnAllocWork(LGNMem mem)
     /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv, work2_nv, vdot_prev
      * (nv each) and lambda_prev (m) in one block */
     mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + m), sizeof(sunrealtype));
-    /* Tm, Tv, Ta in one block */
-    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv), sizeof(sunrealtype));
+    /* Tm, Tv, Ta (nv x nv each) and one scratch column in one block */
+    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv + nv), sizeof(sunrealtype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL);
   }
   if (fail) {
