@@ -35,6 +35,14 @@ static void Check(int ok, const char *what)
   printf("%s %s\n", ok ? "ok  " : "FAIL", what);
 }
 
+/* Copy a field, truncated to the destination (CSV fields here are short). */
+static void CopyField(char *dst, size_t size, const char *src)
+{
+  size_t i;
+  for (i = 0; i + 1 < size && src[i] != '\0'; i++) dst[i] = src[i];
+  dst[i] = '\0';
+}
+
 /* Parse one CSV line with possibly empty fields. */
 static int ParseLine(char *line, Row *r)
 {
@@ -49,13 +57,13 @@ static int ParseLine(char *line, Row *r)
   }
   if (n != 12) return 1;
   f[11][strcspn(f[11], "\r\n")] = '\0';
-  snprintf(r->method, sizeof r->method, "%s", f[0]);
+  CopyField(r->method, sizeof r->method, f[0]);
   r->constraints = atoi(f[1]);
   r->rho = f[2][0] ? atof(f[2]) : -1.0;
   r->h = atof(f[3]);
   r->err_com = f[4][0] ? atof(f[4]) : -1.0;
   r->nps = f[9][0] ? atof(f[9]) : -1.0;
-  snprintf(r->status, sizeof r->status, "%s", f[11]);
+  CopyField(r->status, sizeof r->status, f[11]);
   return 0;
 }
 
