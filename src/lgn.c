@@ -97,7 +97,7 @@ void lgnFreeWork(LGNMem mem)
   mem->work2_nv = mem->vdot_prev = mem->lambda_prev = NULL;
   mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
-  mem->Tm = mem->Tv = mem->Ta = NULL;
+  mem->Tm = mem->Tv = mem->Ta = mem->Bvq = NULL;
   mem->work_done = SUNFALSE;
   mem->ic_done = SUNFALSE;
 }
@@ -165,8 +165,8 @@ int lgnAllocWork(LGNMem mem)
     /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv, work2_nv, vdot_prev
      * (nv each) and lambda_prev (m) in one block */
     mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + m), sizeof(sunrealtype));
-    /* Tm, Tv, Ta (nv x nv each) and one scratch column in one block */
-    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv + nv), sizeof(sunrealtype));
+    /* Tm, Tv, Ta (nv x nv each), one scratch column and Bvq (m x nv) */
+    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv + nv + m * nv), sizeof(sunrealtype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL);
   }
   if (fail) {
@@ -176,6 +176,7 @@ int lgnAllocWork(LGNMem mem)
   }
   mem->Tv         = mem->Tm + nv * nv;
   mem->Ta         = mem->Tm + 2 * nv * nv;
+  mem->Bvq        = mem->Tm + 3 * nv * nv + nv;
   mem->sigma_dot  = mem->sigma + nv;
   mem->sigma_ddot = mem->sigma + 2 * nv;
   mem->a_pred     = mem->sigma + 3 * nv;

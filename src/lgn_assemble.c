@@ -133,6 +133,20 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
     } else {
       MultiplyByTangent(B, m, m, Tm, nv, A + nv, n);
     }
+    /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
+    if (use_tangent && mem->constr_index == LGN_CONSTR_INDEX2 && cC != SUN_RCONST(0.0)) {
+      const sunrealtype f = cK / cC;
+      flag = lgnConstraintVelocityDQ(mem, t);
+      if (flag != LGN_SUCCESS) return flag;
+      if (identity_T) {
+        for (j = 0; j < nv; j++)
+          for (i = 0; i < m; i++) A[nv + i + j * n] += f * mem->Bvq[i + j * m];
+      } else {
+        MultiplyByTangent(mem->Bvq, m, m, Tm, nv, W, m);
+        for (j = 0; j < nv; j++)
+          for (i = 0; i < m; i++) A[nv + i + j * n] += f * W[i + j * m];
+      }
+    }
   }
   return lgnLsSetup(mem);
 }

@@ -8,6 +8,7 @@
  *   K_t e_j = [ r(q o exp(eps e_j)) - r(q) ] / eps,   r = M(q) vdot + g(q,v,t) + B(q)^T lambda
  *   C_t e_j = [ g(q, v + eps e_j, t) - g(q, v, t) ] / eps
  *   Z(q)(v,v) = [ B(q o exp(eps v)) v - B(q o exp(-eps v)) v ] / (2 eps)
+ *   Bvq e_j   = [ B(q o exp(eps e_j)) v - B(q) v ] / eps   (index-2 Newton row)
  *
  * (definitions of K_t, C_t and Z: spec numerics.md §1). Forward differences
  * suffice for Newton; Z enters the initial values, so it gets a central one.
@@ -130,5 +131,32 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
     flag = ConstraintVelocityAlong(mem, t, q, v, -eps, zm);
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < m; i++) zd[i] = (zd[i] - zm[i]) / (SUN_RCONST(2.0) * eps);
+  return LGN_SUCCESS;
+}
+
+/* Bvq = D_q(B(q) v1).(q w~) at q1 by forward differences, m x nv
+ * column-major: the change of the index-2 constraint B(q) v with the
+ * configuration, which the iteration matrix needs next to B dv. */
+int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
+{
+  sunindextype i, j, nv = mem->nv, m = mem->m;
+  const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
+  sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq_z), eps;
+  int ret;
+
+  lgnDenseMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  for (j = 0; j < nv; j++) {
+    eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(mem->sigma[j]));
+    memset(w, 0, (size_t)nv * sizeof(sunrealtype));
+    w[j] = eps;
+    ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w, lgnData(mem->dq_q));
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    mem->ndq++;
+    SUNMatZero(mem->Bdq);
+    ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
+    lgnDenseMatvec(mem->Bdq, lgnData(mem->v1), mem->Bvq + j * m, SUNFALSE);
+    for (i = 0; i < m; i++) mem->Bvq[i + j * m] = (mem->Bvq[i + j * m] - z0[i]) / eps;
+  }
   return LGN_SUCCESS;
 }

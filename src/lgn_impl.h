@@ -100,6 +100,7 @@ typedef struct LGNMemRec {
   sunrealtype *Tm;          /* T(sigma), dense nv x nv column-major        */
   sunrealtype *Tv;          /* exact kinematics: (dv/dsigma)/gamma'        */
   sunrealtype *Ta;          /* exact kinematics: (dvdot/dsigma)/beta'      */
+  sunrealtype *Bvq;         /* index 2: D_q(B(q) v).(q w~), m x nv          */
   sunrealtype *work_nv;     /* scratch of length nv                        */
   sunrealtype *work2_nv;    /* second scratch of length nv                 */
   sunrealtype *vdot_prev;   /* vdot_{n-1}, for the extrapolating predictor */
@@ -203,6 +204,7 @@ int lgnStiffnessDQ(LGNMem mem, sunrealtype t);
 int lgnDampingDQ(LGNMem mem, sunrealtype t);
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    N_Vector z);
+int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t);
 
 /* lgn_ls.c */
 int lgnLsCheck(LGNMem mem);
