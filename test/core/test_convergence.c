@@ -8,28 +8,10 @@
 
 #include "lgn_reference.h"
 #include "models/heavy_top.h"
+#include "heavy_top_errors.h"
 #include "test_util.h"
 
 #define NH 4
-
-static double ComError(const HeavyTopResult *r, const LGNRefHeavyTop *ref)
-{
-  double e = 0.0;
-  int k;
-  for (k = 0; k < 3; k++) e += (r->x[k] - ref->x[k]) * (r->x[k] - ref->x[k]);
-  return sqrt(e);
-}
-
-static double FittedOrder(const double *h, const double *err, int n)
-{
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  int j;
-  for (j = 0; j < n; j++) {
-    double x = log(h[j]), y = log(err[j]);
-    sx += x; sy += y; sxx += x * x; sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
 
 /* Run one method over the step sizes; returns the fitted order (0 if a run
  * failed) and prints a table row per step size. */
