@@ -385,6 +385,10 @@ static int GnuplotOnPath(void)
   return 0;
 }
 
+static const char *const COLOURS[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                      "#d62728", "#0072b2", "#8c564b", "#000000"};
+#define NCOLOURS ((int)(sizeof COLOURS / sizeof COLOURS[0]))
+
 static int PlotRho(const Config *g, double rho_plot)
 {
   return g->rho < 0.0 || g->rho == rho_plot;
@@ -395,7 +399,8 @@ static void WritePlot(const char *png, const Config *cfg, int ncfg, const Run *r
 {
   char script[4096], cmd[8300];
   FILE *fp;
-  int c, k, ncurves = 0, nbars = 0, m, rc;
+  int c, i, k, ncurves = 0, nbars = 0, m, rc;
+  double vmax = 1.0;
 
   if (!GnuplotOnPath()) {
     printf("\nNote: gnuplot is not on PATH; no figure drawn (install gnuplot-nox).\n");
@@ -427,6 +432,19 @@ static void WritePlot(const char *png, const Config *cfg, int ncfg, const Run *r
     ncurves++;
   }
   fprintf(fp, "EOD\n");
+  /* one line style per curve: colour by method family (the SE(3) variant
+   * shares the colour of its R^3 x SO(3) counterpart), SE(3) dashed */
+  for (c = 0, i = 0; c < ncfg; c++) {
+    const Config *g = &cfg[c];
+    const MethodSpec *ms = &METHODS[g->method];
+    const int se3 = ms->formulation == HT_SE3;
+    int base = se3 ? FindMethod(ms->name + 4) : g->method;
+    if (g->constraints != LGN_CONSTR_INDEX3 || !PlotRho(g, rho_plot)) continue;
+    if (base < 0) base = g->method;
+    i++;
+    fprintf(fp, "set style line %d lc rgb '%s' dt %d lw 2 pt %d ps 1.2\n", i,
+            COLOURS[base % NCOLOURS], se3 ? 2 : 1, se3 ? 2 * (base % 6) + 4 : 2 * (base % 6) + 5);
+  }
   fprintf(fp, "names = \"");
   for (c = 0; c < ncfg; c++)
     if (cfg[c].constraints == LGN_CONSTR_INDEX3 && PlotRho(&cfg[c], rho_plot))
@@ -448,6 +466,7 @@ static void WritePlot(const char *png, const Config *cfg, int ncfg, const Run *r
           n++;
         }
       v[g->constraints == LGN_CONSTR_INDEX3 ? 0 : 1] = n ? s / n : NAN;
+      if (n && s / n > vmax) vmax = s / n;
       found = 1;
     }
     if (!found) continue;
@@ -472,13 +491,16 @@ static void WritePlot(const char *png, const Config *cfg, int ncfg, const Run *r
           "set xlabel 'h [s]'\n"
           "set ylabel 'error of the centre of mass at t = 1 s [m]'\n"
           "set title 'Error vs step size, index 3 (failed runs omitted)'\n"
-          "set key top left font ',9'\n"
+          "set key top left font ',9' spacing 1.1\n"
+          "set xrange [1.5e-5:3e-3]\n"
+          "set yrange [*<1e-6:10]\n"
           "set grid\n"
-          "plot for [i=0:%d] $err index i using 1:2 with linespoints lw 2 pt (i%%7)+4 "
+          "plot for [i=0:%d] $err index i using 1:2 with linespoints ls i+1 "
           "title word(names, i+1)\n",
           png, rho_plot, ncurves - 1);
   fprintf(fp,
           "unset logscale\n"
+          "set xrange [*:*]\n"
           "set format x '%%g'\n"
           "set format y '%%g'\n"
           "set title 'Average Newton iterations per step (ok runs)'\n"
@@ -488,11 +510,11 @@ static void WritePlot(const char *png, const Config *cfg, int ncfg, const Run *r
           "set style histogram clustered gap 1\n"
           "set style fill solid 0.8 border -1\n"
           "set boxwidth 0.9\n"
-          "set xtics rotate by -30 nomirror\n"
-          "set yrange [0:*]\n"
+          "set xtics rotate by 40 right nomirror font ',9'\n"
+          "set yrange [0:%.3g]\n"
           "set key top right\n"
           "plot $newton using 2:xtic(1) title 'index 3', '' using 3 title 'index 2'\n"
-          "unset multiplot\n");
+          "unset multiplot\n", 1.2 * vmax);
   (void)nbars;
   if (fclose(fp) != 0) {
     perror(script);
