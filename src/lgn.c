@@ -193,9 +193,10 @@ int lgnAllocWork(LGNMem mem)
  * Initialisation
  * ===========================================================================*/
 
-/* Check a vector argument: not NULL, with an array of the expected length. */
-static int CheckVector(LGNMem mem, N_Vector x, sunindextype len,
-                       const char *name, const char *func)
+/* Check a vector argument of a public function: not NULL, with a data
+ * array (serial N_Vector) of the expected length. */
+int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
+                   const char *func)
 {
   if (x == NULL) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
@@ -210,7 +211,7 @@ static int CheckVector(LGNMem mem, N_Vector x, sunindextype len,
   }
   if (N_VGetLength(x) != len) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "%s has length %lld but the Lie group needs %lld.", name,
+                    "%s has length %lld, but %lld is needed.", name,
                     (long long)N_VGetLength(x), (long long)len);
     return LGN_ILL_INPUT;
   }
@@ -225,9 +226,10 @@ static void ResetCounters(LGNMem mem)
   mem->last_lin_flag = 0;
 }
 
-/* Copy the initial state; shared by LGNInit and LGNReInit. */
-static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
-                           N_Vector v0, const char *func)
+/* The arguments of LGNInit and LGNReInit: a group set, q0 and v0 of its
+ * sizes, a finite t0. */
+static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
+                             N_Vector v0, const char *func)
 {
   int flag;
   if (mem->G == NULL) {
@@ -235,14 +237,21 @@ static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
                     MSG_NO_GROUP);
     return LGN_ILL_INPUT;
   }
-  flag = CheckVector(mem, q0, mem->G->nq, "q0", func);
-  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v0, mem->G->nv, "v0", func);
+  flag = lgnCheckVector(mem, q0, mem->G->nq, "q0", func);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v0, mem->G->nv, "v0", func);
   if (flag != LGN_SUCCESS) return flag;
   if (!isfinite(t0)) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "t0 is not finite.");
     return LGN_ILL_INPUT;
   }
+  return LGN_SUCCESS;
+}
+
+/* Copy the (checked) initial state; shared by LGNInit and LGNReInit. */
+static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
+                           N_Vector v0, const char *func)
+{
   N_VScale(SUN_RCONST(1.0), q0, mem->q);
   N_VScale(SUN_RCONST(1.0), v0, mem->v);
   if (LGNGroup_Normalize(mem->G, lgnData(mem->q)) != 0) {
@@ -264,12 +273,7 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->G == NULL) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, MSG_NO_GROUP);
-    return LGN_ILL_INPUT;
-  }
-  flag = CheckVector(mem, q0, mem->G->nq, "q0", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v0, mem->G->nv, "v0", __func__);
+  flag = CheckInitialState(mem, t0, q0, v0, __func__);
   if (flag != LGN_SUCCESS) return flag;
 
   lgnFreeWork(mem);
@@ -312,6 +316,8 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
               "The Lie group changed size since LGNInit: call LGNInit.");
     return LGN_ILL_INPUT;
   }
+  flag = CheckInitialState(mem, t0, q0, v0, __func__);
+  if (flag != LGN_SUCCESS) return flag;
   return SetInitialState(mem, t0, q0, v0, __func__);
 }
 
@@ -396,8 +402,8 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     LGN_ERROR(mem, LGN_ILL_INPUT, "tret = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  flag = CheckVector(mem, q, mem->nq, "q", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVector(mem, v, mem->nv, "v", __func__);
+  flag = lgnCheckVector(mem, q, mem->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v, mem->nv, "v", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (itask != LGN_NORMAL && itask != LGN_ONE_STEP) {
     LGN_ERROR(mem, LGN_ILL_INPUT,

@@ -24,27 +24,12 @@
 /* r(q) = M(q) vdot1 + g(q, v1, t) + B(q)^T lambda1 at q = dq_q, into dq_r. */
 static int DynamicResidualAt(LGNMem mem, sunrealtype t)
 {
-  sunindextype i, nv = mem->nv;
-  sunrealtype *r = lgnData(mem->dq_r);
-  const sunrealtype *g = lgnData(mem->dq_g);
-  int ret;
-
+  int flag;
   mem->ndq++;
-  SUNMatZero(mem->Mdq);
-  ret = mem->mass(t, mem->dq_q, mem->Mdq, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
-  N_VConst(SUN_RCONST(0.0), mem->dq_g);
-  ret = mem->force(t, mem->dq_q, mem->v1, mem->dq_g, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
-  lgnDenseMatvec(mem->Mdq, lgnData(mem->vdot1), r, SUNFALSE);
-  for (i = 0; i < nv; i++) r[i] += g[i];
-  if (mem->m > 0) {
-    SUNMatZero(mem->Bdq);
-    ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-    lgnDenseMatTvec(mem->Bdq, lgnData(mem->lambda1), r, SUNTRUE);
-  }
-  return LGN_SUCCESS;
+  flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, mem->Mdq, mem->dq_g, mem->Bdq);
+  if (flag == LGN_SUCCESS)
+    lgnDynamicResidual(mem, mem->Mdq, mem->dq_g, mem->Bdq, lgnData(mem->dq_r));
+  return flag;
 }
 
 int lgnStiffnessDQ(LGNMem mem, sunrealtype t)
@@ -93,31 +78,28 @@ int lgnDampingDQ(LGNMem mem, sunrealtype t)
   return LGN_SUCCESS;
 }
 
-/* B(q o exp(s v)) v into z (length m), using dq_q and Bdq. */
-static int ConstraintVelocityAlong(LGNMem mem, sunrealtype t, N_Vector q,
-                                   N_Vector v, sunrealtype s, sunrealtype *z)
+/* z = B(q o exp(w)) v (length m), using dq_q and Bdq: one constraint
+ * Jacobian evaluation at a point displaced along the group. */
+static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
+                                const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
-  sunindextype i, nv = mem->nv;
-  sunrealtype *w = mem->work_nv;
-  const sunrealtype *vd = lgnData(v);
-  int ret;
-  for (i = 0; i < nv; i++) w[i] = s * vd[i];
-  ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
+  int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
   mem->ndq++;
   SUNMatZero(mem->Bdq);
   ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-  lgnDenseMatvec(mem->Bdq, vd, z, SUNFALSE);
+  lgnDenseMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);
   return LGN_SUCCESS;
 }
 
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    N_Vector z)
 {
-  sunindextype i, m = mem->m;
+  sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype vmax = N_VMaxNorm(v), eps;
-  sunrealtype *zd = lgnData(z), *zm = lgnData(mem->dq_z);
+  sunrealtype *zd = lgnData(z), *zm = lgnData(mem->dq_z), *w = mem->work_nv;
+  const sunrealtype *vd = lgnData(v);
   int flag;
 
   if (vmax == SUN_RCONST(0.0)) {
@@ -125,10 +107,11 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
     return LGN_SUCCESS;
   }
   /* central difference: step of size cbrt(uround) in the group */
-  eps  = cbrt(SUN_UNIT_ROUNDOFF) / vmax;
-  flag = ConstraintVelocityAlong(mem, t, q, v, eps, zd);
-  if (flag == LGN_SUCCESS)
-    flag = ConstraintVelocityAlong(mem, t, q, v, -eps, zm);
+  eps = cbrt(SUN_UNIT_ROUNDOFF) / vmax;
+  for (i = 0; i < nv; i++) w[i] = eps * vd[i];
+  flag = ConstraintVelocityAt(mem, t, q, w, v, zd);
+  for (i = 0; i < nv; i++) w[i] = -eps * vd[i];
+  if (flag == LGN_SUCCESS) flag = ConstraintVelocityAt(mem, t, q, w, v, zm);
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < m; i++) zd[i] = (zd[i] - zm[i]) / (SUN_RCONST(2.0) * eps);
   return LGN_SUCCESS;
@@ -142,21 +125,17 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
   sunindextype i, j, nv = mem->nv, m = mem->m;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
   sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq_z), eps;
-  int ret;
+  int flag;
 
   lgnDenseMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
   for (j = 0; j < nv; j++) {
+    sunrealtype *col = mem->Bvq + j * m;
     eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(mem->sigma[j]));
     memset(w, 0, (size_t)nv * sizeof(sunrealtype));
     w[j] = eps;
-    ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w, lgnData(mem->dq_q));
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
-    mem->ndq++;
-    SUNMatZero(mem->Bdq);
-    ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-    lgnDenseMatvec(mem->Bdq, lgnData(mem->v1), mem->Bvq + j * m, SUNFALSE);
-    for (i = 0; i < m; i++) mem->Bvq[i + j * m] = (mem->Bvq[i + j * m] - z0[i]) / eps;
+    flag = ConstraintVelocityAt(mem, t, mem->q1, w, mem->v1, col);
+    if (flag != LGN_SUCCESS) return flag;
+    for (i = 0; i < m; i++) col[i] = (col[i] - z0[i]) / eps;
   }
   return LGN_SUCCESS;
 }

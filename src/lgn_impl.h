@@ -177,12 +177,18 @@ int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
 int lgnAllocWork(LGNMem mem);
 void lgnFreeWork(LGNMem mem);
 int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
+int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
+                   const char *func);
 
 /* lgn_step.c */
 int lgnStep(LGNMem mem, sunrealtype h);
 
 /* lgn_residual.c */
+int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                   SUNMatrix M, N_Vector g, SUNMatrix B);
 int lgnEvalModel(LGNMem mem, sunrealtype t);
+void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
+                        sunrealtype *r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
                       sunrealtype cv);
 void lgnDenseMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,

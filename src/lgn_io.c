@@ -293,32 +293,14 @@ int LGNSetMaxNumSteps(void *lgn_mem, long int mxsteps)
   return LGN_SUCCESS;
 }
 
-/* Check an N_Vector argument of a Set/Get function against its length. */
-static int CheckVec(LGNMem mem, N_Vector x, sunindextype len, const char *name,
-                    const char *func)
-{
-  if (x == NULL) {
-    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "%s = NULL illegal.", name);
-    return LGN_ILL_INPUT;
-  }
-  if (N_VGetLength(x) != len || (len > 0 && N_VGetArrayPointer(x) == NULL)) {
-    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "%s must be a serial N_Vector of length %lld (it has %lld).",
-                    name, (long long)len, (long long)N_VGetLength(x));
-    return LGN_ILL_INPUT;
-  }
-  return LGN_SUCCESS;
-}
-
 int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
 {
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = CheckVec(mem, vdot0, mem->nv, "vdot0", __func__);
+  flag = lgnCheckVector(mem, vdot0, mem->nv, "vdot0", __func__);
   if (flag == LGN_SUCCESS && mem->m > 0)
-    flag = CheckVec(mem, lambda0, mem->m, "lambda0", __func__);
+    flag = lgnCheckVector(mem, lambda0, mem->m, "lambda0", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
       (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m))) {
@@ -341,7 +323,7 @@ int LGNSetInitialAux(void *lgn_mem, N_Vector a0)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = CheckVec(mem, a0, mem->nv, "a0", __func__);
+  flag = lgnCheckVector(mem, a0, mem->nv, "a0", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (!lgnAllFinite(N_VGetArrayPointer(a0), mem->nv)) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "a0 has a NaN or Inf entry.");
@@ -383,7 +365,7 @@ int LGNGetAcceleration(void *lgn_mem, N_Vector vdot)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = CheckVec(mem, vdot, mem->nv, "vdot", __func__);
+  flag = lgnCheckVector(mem, vdot, mem->nv, "vdot", __func__);
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
   return LGN_SUCCESS;
@@ -394,7 +376,7 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = CheckVec(mem, lambda, mem->m, "lambda", __func__);
+  flag = lgnCheckVector(mem, lambda, mem->m, "lambda", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (mem->m > 0) {
     if (mem->lambda == NULL) {
@@ -412,7 +394,7 @@ int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = CheckVec(mem, a, mem->nv, "a", __func__);
+  flag = lgnCheckVector(mem, a, mem->nv, "a", __func__);
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), mem->a, a);
   return LGN_SUCCESS;

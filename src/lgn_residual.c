@@ -54,23 +54,41 @@ void lgnDenseMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
   }
 }
 
-/* M(q1), g(q1, v1, t) and, when m > 0, B(q1): one "residual evaluation". */
-int lgnEvalModel(LGNMem mem, sunrealtype t)
+/* M(q), g(q, v, t) and, when m > 0, B(q) into the given storage. */
+int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                   SUNMatrix M, N_Vector g, SUNMatrix B)
 {
   int ret;
-  mem->nre++;
-  SUNMatZero(mem->Mmat);
-  ret = mem->mass(t, mem->q1, mem->Mmat, mem->user_data);
+  SUNMatZero(M);
+  ret = mem->mass(t, q, M, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
-  N_VConst(SUN_RCONST(0.0), mem->g);
-  ret = mem->force(t, mem->q1, mem->v1, mem->g, mem->user_data);
+  N_VConst(SUN_RCONST(0.0), g);
+  ret = mem->force(t, q, v, g, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
   if (mem->m > 0) {
-    SUNMatZero(mem->Bmat);
-    ret = mem->constr_jac(t, mem->q1, mem->Bmat, mem->user_data);
+    SUNMatZero(B);
+    ret = mem->constr_jac(t, q, B, mem->user_data);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
   }
   return LGN_SUCCESS;
+}
+
+/* M(q1), g(q1, v1, t) and B(q1): one "residual evaluation". */
+int lgnEvalModel(LGNMem mem, sunrealtype t)
+{
+  mem->nre++;
+  return lgnEvalModelAt(mem, t, mem->q1, mem->v1, mem->Mmat, mem->g, mem->Bmat);
+}
+
+/* r = M vdot1 + g + B^T lambda1, the unscaled dynamic residual. */
+void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
+                        sunrealtype *r)
+{
+  sunindextype i, nv = mem->nv;
+  const sunrealtype *gd = lgnData(g);
+  lgnDenseMatvec(M, lgnData(mem->vdot1), r, SUNFALSE);
+  for (i = 0; i < nv; i++) r[i] += gd[i];
+  if (mem->m > 0) lgnDenseMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
 }
 
 /* The scaled residual into mem->rhs, negated (the Newton right-hand side);
@@ -80,17 +98,14 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *rdyn = lgnData(mem->rdyn), *rhs = lgnData(mem->rhs);
-  const sunrealtype *g = lgnData(mem->g);
   int ret, flag;
 
   flag = lgnEvalModel(mem, t);
   if (flag != LGN_SUCCESS) return flag;
 
-  lgnDenseMatvec(mem->Mmat, lgnData(mem->vdot1), rdyn, SUNFALSE);
-  for (i = 0; i < nv; i++) rdyn[i] += g[i];
+  lgnDynamicResidual(mem, mem->Mmat, mem->g, mem->Bmat, rdyn);
   if (m > 0) {
     sunrealtype *phi = lgnData(mem->phi);
-    lgnDenseMatTvec(mem->Bmat, lgnData(mem->lambda1), rdyn, SUNTRUE);
     if (mem->constr_index == LGN_CONSTR_INDEX3) {
       N_VConst(SUN_RCONST(0.0), mem->phi);
       ret = mem->constr(t, mem->q1, mem->phi, mem->user_data);
