@@ -53,6 +53,24 @@ static void Cross(const double a[3], const double b[3], double c[3])
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+/* T = a~ (row-major), so that T b = a x b */
+static void Tilde(const double a[3], double T[9])
+{
+  T[0] = 0.0;   T[1] = -a[2]; T[2] = a[1];
+  T[3] = a[2];  T[4] = 0.0;   T[5] = -a[0];
+  T[6] = -a[1]; T[7] = a[0];  T[8] = 0.0;
+}
+
+/* The rotational block -X~ of the joint Jacobian B = [ . , -X~] (columns 3..5). */
+static void SetMinusXTilde(SUNMatrix B)
+{
+  double Xt[9];
+  int i, j;
+  Tilde(X_BODY, Xt);
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) ELEM(B, i, 3 + j) = -Xt[3 * i + j];
+}
+
 /* y = R^T x for row-major R */
 static void MatTVec(const double R[9], const double x[3], double y[3])
 {
@@ -110,10 +128,7 @@ static int LieConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   LGNQuaternionToRotation(qq + 3, R);
   for (i = 0; i < 3; i++)
     for (j = 0; j < 3; j++) ELEM(B, i, j) = -R[3 * j + i]; /* -R^T */
-  /* -X~ */
-  ELEM(B, 0, 4) = X_BODY[2];  ELEM(B, 0, 5) = -X_BODY[1];
-  ELEM(B, 1, 3) = -X_BODY[2]; ELEM(B, 1, 5) = X_BODY[0];
-  ELEM(B, 2, 3) = X_BODY[1];  ELEM(B, 2, 4) = -X_BODY[0];
+  SetMinusXTilde(B);
   return 0;
 }
 
@@ -126,9 +141,7 @@ static int LieStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
   (void)t; (void)v; (void)vdot; (void)ud;
   LGNQuaternionToRotation(qq + 3, R);
   /* lambda~ row-major */
-  lt[0] = 0.0;   lt[1] = -l[2]; lt[2] = l[1];
-  lt[3] = l[2];  lt[4] = 0.0;   lt[5] = -l[0];
-  lt[6] = -l[1]; lt[7] = l[0];  lt[8] = 0.0;
+  Tilde(l, lt);
   for (i = 0; i < 3; i++)
     for (j = 0; j < 3; j++) {
       double s = 0.0;
@@ -195,10 +208,7 @@ static int SE3ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   int i;
   (void)t; (void)q; (void)ud;
   for (i = 0; i < 3; i++) ELEM(B, i, i) = -1.0; /* -I */
-  /* -X~ */
-  ELEM(B, 0, 4) = X_BODY[2];  ELEM(B, 0, 5) = -X_BODY[1];
-  ELEM(B, 1, 3) = -X_BODY[2]; ELEM(B, 1, 5) = X_BODY[0];
-  ELEM(B, 2, 3) = X_BODY[1];  ELEM(B, 2, 4) = -X_BODY[0];
+  SetMinusXTilde(B);
   return 0;
 }
 
@@ -333,9 +343,7 @@ static int EPConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   (void)t; (void)ud;
   EPRotation(p, R);
   Cross(pb, x, pxx);
-  xt[0] = 0.0;   xt[1] = -x[2]; xt[2] = x[1];
-  xt[3] = x[2];  xt[4] = 0.0;   xt[5] = -x[0];
-  xt[6] = -x[1]; xt[7] = x[0];  xt[8] = 0.0;
+  Tilde(x, xt);
   for (i = 0; i < 3; i++) {
     for (j = 0; j < 3; j++) ELEM(B, i, j) = -R[3 * j + i];
     ELEM(B, i, 3) = -(2.0 * p[0] * x[i] - 2.0 * pxx[i]);

@@ -21,33 +21,6 @@
 
 #define NH 4
 
-/* One method over the step sizes: prints a row per step size, returns the
- * fitted order (0 if a run failed) and the max |Phi| over all runs. */
-static double Study(HeavyTopOptions *opt, const LGNRefHeavyTop *ref, const double *h,
-                    double *err, double *max_phi)
-{
-  char name[96];
-  int j;
-  heavy_top_describe(opt, name, sizeof name);
-  *max_phi = 0.0;
-  for (j = 0; j < NH; j++) {
-    HeavyTopResult res;
-    opt->h = h[j];
-    if (heavy_top_run(opt, &res) != LGN_SUCCESS) {
-      printf("%-30s h = %.4e  failed: %s at t = %.4f\n", name, h[j],
-             LGNGetReturnFlagName(res.flag), res.t);
-      return 0.0;
-    }
-    err[j] = ComError(&res, ref);
-    *max_phi = fmax(*max_phi, res.max_phi);
-    printf("%-30s h = %.4e  err_com = %.4e  err_rot = %.4e  newton/step = %.2f"
-           "  max|Phi| = %.2e\n",
-           name, h[j], err[j], lgnref_rotation_error(ref->R, res.R),
-           (double)res.nniters / (double)res.nsteps, res.max_phi);
-  }
-  return FittedOrder(h, err, NH);
-}
-
 static void ConsistentStart(void)
 {
   /* spec §5: vdot0 = (udot0 | Omegadot0), lambda0 for Phi = X - R^T x */
@@ -136,7 +109,7 @@ int main(void)
 
   heavy_top_default_options(&opt);
   opt.formulation = HT_SE3;
-  order = Study(&opt, &ref, h, err, &max_phi);
+  order = StudyOrder(&opt, &ref, h, NH, err, &max_phi);
   printf("  fitted order %.3f, max |Phi| = %.2e\n", order, max_phi);
   CHECK(fabs(order - 2.0) <= 0.1, "SE3 LGGalpha(0.9) order %.3f = 2.0 +- 0.1", order);
   /* measured 1.29e-3: about 11x the R^3 x SO(3) error (body-frame U varies
@@ -148,7 +121,7 @@ int main(void)
   heavy_top_default_options(&opt);
   opt.formulation = HT_SE3;
   opt.kinematics = LGN_KINEMATICS_EXACT;
-  order = Study(&opt, &ref, h, err, &max_phi);
+  order = StudyOrder(&opt, &ref, h, NH, err, &max_phi);
   printf("  fitted order %.3f, max |Phi| = %.2e\n", order, max_phi);
   CHECK(fabs(order - 2.0) <= 0.1, "SE3 mod. LGGalpha(0.9) order %.3f = 2.0 +- 0.1",
         order);
@@ -159,12 +132,12 @@ int main(void)
 
   /* for comparison only: the same methods on R^3 x SO(3) */
   heavy_top_default_options(&opt);
-  order = Study(&opt, &ref, h, err, &max_phi);
+  order = StudyOrder(&opt, &ref, h, NH, err, &max_phi);
   printf("  fitted order %.3f, max |Phi| = %.2e (R^3 x SO(3), for comparison)\n", order,
          max_phi);
   heavy_top_default_options(&opt);
   opt.kinematics = LGN_KINEMATICS_EXACT;
-  order = Study(&opt, &ref, h, err, &max_phi);
+  order = StudyOrder(&opt, &ref, h, NH, err, &max_phi);
   printf("  fitted order %.3f, max |Phi| = %.2e (R^3 x SO(3), for comparison)\n", order,
          max_phi);
 

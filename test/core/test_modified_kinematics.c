@@ -13,6 +13,7 @@
 
 #include "lgn_reference.h"
 #include "models/heavy_top.h"
+#include "heavy_top_errors.h"
 #include "test_util.h"
 
 #define NH 4
@@ -76,7 +77,7 @@ int main(void)
       HeavyTopOptions opt;
       HeavyTopResult res;
       const double expected = row->expected[j];
-      int k, flag;
+      int flag;
       heavy_top_default_options(&opt);
       opt.method = row->method;
       opt.rho_inf = row->rho_inf;
@@ -88,9 +89,7 @@ int main(void)
       err[r][j] = -1.0;
       nps[r][j] = res.nsteps > 0 ? (double)res.nniters / (double)res.nsteps : 0.0;
       if (flag == LGN_SUCCESS) {
-        double e = 0.0;
-        for (k = 0; k < 3; k++) e += (res.x[k] - ref.x[k]) * (res.x[k] - ref.x[k]);
-        err[r][j] = sqrt(e);
+        err[r][j] = ComError(&res, &ref);
         printf("   %.4e (%4.2f)", err[r][j], nps[r][j]);
       } else {
         printf("   F@%.3f %-9s", res.t, LGNGetReturnFlagName(flag) + 4);
