@@ -14,8 +14,9 @@
 
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
-#include "lgn_impl.h"
+#include "lgn_sparse.h"
 
 /* =============================================================================
  * Creation and destruction
@@ -73,8 +74,23 @@ static void FreeState(LGNMem mem)
   mem->malloc_done = SUNFALSE;
 }
 
+void lgnFreeMatrices(LGNMem mem)
+{
+  DestroyMatrix(&mem->Mmat);
+  DestroyMatrix(&mem->Bmat);
+  DestroyMatrix(&mem->Kmat);
+  DestroyMatrix(&mem->Cmat);
+  DestroyMatrix(&mem->Mdq);
+  DestroyMatrix(&mem->Bdq);
+  free(mem->Bvq);
+  mem->Bvq = NULL;
+  lgnSparseWorkFree(mem);
+  mem->mat_done = SUNFALSE;
+}
+
 void lgnFreeWork(LGNMem mem)
 {
+  lgnFreeMatrices(mem);
   DestroyVector(&mem->lambda);
   DestroyVector(&mem->lambda1);
   DestroyVector(&mem->g);
@@ -85,19 +101,14 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->dq_g);
   DestroyVector(&mem->dq_r);
   DestroyVector(&mem->dq_z);
-  DestroyMatrix(&mem->Mmat);
-  DestroyMatrix(&mem->Bmat);
-  DestroyMatrix(&mem->Kmat);
-  DestroyMatrix(&mem->Cmat);
-  DestroyMatrix(&mem->Mdq);
-  DestroyMatrix(&mem->Bdq);
   free(mem->sigma);
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
-  mem->work2_nv = mem->vdot_prev = mem->lambda_prev = NULL;
+  mem->work2_nv = mem->vdot_prev = mem->lambda_prev = mem->work_m = NULL;
   mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
-  mem->Tm = mem->Tv = mem->Ta = mem->Bvq = NULL;
+  mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
+  lgnBlocksFree(mem);
   mem->work_done = SUNFALSE;
   mem->ic_done = SUNFALSE;
 }
@@ -137,36 +148,32 @@ int lgnAllocWork(LGNMem mem)
   int fail = 0;
 
   lgnFreeWork(mem);
-  mem->g    = N_VNew_Serial(nv, ctx);
-  mem->rdyn = N_VNew_Serial(nv, ctx);
-  mem->dq_g = N_VNew_Serial(nv, ctx);
-  mem->dq_r = N_VNew_Serial(nv, ctx);
-  mem->rhs  = N_VNew_Serial(nv + m, ctx);
-  mem->sol  = N_VNew_Serial(nv + m, ctx);
-  mem->Mmat = SUNDenseMatrix(nv, nv, ctx);
-  mem->Kmat = SUNDenseMatrix(nv, nv, ctx);
-  mem->Cmat = SUNDenseMatrix(nv, nv, ctx);
-  mem->Mdq  = SUNDenseMatrix(nv, nv, ctx);
-  fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
-          mem->dq_r == NULL || mem->rhs == NULL || mem->sol == NULL ||
-          mem->Mmat == NULL || mem->Kmat == NULL || mem->Cmat == NULL ||
-          mem->Mdq == NULL);
+  fail = lgnBlocksBuild(mem) != LGN_SUCCESS;
+  if (!fail) {
+    mem->g    = N_VNew_Serial(nv, ctx);
+    mem->rdyn = N_VNew_Serial(nv, ctx);
+    mem->dq_g = N_VNew_Serial(nv, ctx);
+    mem->dq_r = N_VNew_Serial(nv, ctx);
+    mem->rhs  = N_VNew_Serial(nv + m, ctx);
+    mem->sol  = N_VNew_Serial(nv + m, ctx);
+    fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
+            mem->dq_r == NULL || mem->rhs == NULL || mem->sol == NULL);
+  }
   if (m > 0 && !fail) {
     mem->lambda  = N_VNew_Serial(m, ctx);
     mem->lambda1 = N_VNew_Serial(m, ctx);
     mem->phi     = N_VNew_Serial(m, ctx);
     mem->dq_z    = N_VNew_Serial(m, ctx);
-    mem->Bmat    = SUNDenseMatrix(m, nv, ctx);
-    mem->Bdq     = SUNDenseMatrix(m, nv, ctx);
     fail = (mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
-            mem->dq_z == NULL || mem->Bmat == NULL || mem->Bdq == NULL);
+            mem->dq_z == NULL);
   }
   if (!fail) {
     /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv, work2_nv, vdot_prev
-     * (nv each) and lambda_prev (m) in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + m), sizeof(sunrealtype));
-    /* Tm, Tv, Ta (nv x nv each), one scratch column and Bvq (m x nv) */
-    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * nv * nv + nv + m * nv), sizeof(sunrealtype));
+     * (nv each), lambda_prev and work_m (m each) in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + 2 * m), sizeof(sunrealtype));
+    /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
+    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
+                                       sizeof(sunrealtype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL);
   }
   if (fail) {
@@ -174,9 +181,9 @@ int lgnAllocWork(LGNMem mem)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->Tv         = mem->Tm + nv * nv;
-  mem->Ta         = mem->Tm + 2 * nv * nv;
-  mem->Bvq        = mem->Tm + 3 * nv * nv + nv;
+  mem->Tv         = mem->Tm + mem->tlen;
+  mem->Ta         = mem->Tm + 2 * mem->tlen;
+  mem->blk_work   = mem->Tm + 3 * mem->tlen;
   mem->sigma_dot  = mem->sigma + nv;
   mem->sigma_ddot = mem->sigma + 2 * nv;
   mem->a_pred     = mem->sigma + 3 * nv;
@@ -184,8 +191,60 @@ int lgnAllocWork(LGNMem mem)
   mem->work2_nv   = mem->sigma + 5 * nv;
   mem->vdot_prev  = mem->sigma + 6 * nv;
   mem->lambda_prev = m > 0 ? mem->sigma + 7 * nv : NULL;
+  mem->work_m      = m > 0 ? mem->sigma + 7 * nv + m : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* A model matrix of the type of the iteration matrix: dense, or sparse in
+ * A's format with room for nnz entries (a callback needing more calls
+ * SUNSparseMatrix_Reallocate). */
+static SUNMatrix NewModelMatrix(LGNMem mem, sunindextype rows,
+                                sunindextype cols, sunindextype nnz)
+{
+  SUNMatrix S;
+  if (!mem->sparse) return SUNDenseMatrix(rows, cols, mem->sunctx);
+  S = SUNSparseMatrix(rows, cols, SUNMAX(SUNMIN(nnz, rows * cols), 1),
+                      mem->sparsetype, mem->sunctx);
+  if (S != NULL) SUNMatZero(S);
+  return S;
+}
+
+/* The model matrices (M, B, K, C and their difference-quotient twins) of
+ * the type of A; for the sparse path, first guesses of their sizes: a
+ * body's blocks for M, K and C, 12 entries (two bodies) per constraint row. */
+int lgnAllocMatrices(LGNMem mem)
+{
+  sunindextype nv = mem->nv, m = mem->m, nnzM = 0;
+  int b, fail;
+
+  lgnFreeMatrices(mem);
+  mem->sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  if (mem->sparse) mem->sparsetype = (int)SUNSparseMatrix_SparseType(mem->A);
+  for (b = 0; b < mem->nblk; b++) {
+    sunindextype size = mem->blk_voff[b + 1] - mem->blk_voff[b];
+    nnzM += lgnBlockIsIdentity(mem, b) ? size : size * size;
+  }
+  mem->Mmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Kmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Cmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Mdq  = NewModelMatrix(mem, nv, nv, nnzM);
+  fail = (mem->Mmat == NULL || mem->Kmat == NULL || mem->Cmat == NULL ||
+          mem->Mdq == NULL);
+  if (m > 0 && !fail) {
+    mem->Bmat = NewModelMatrix(mem, m, nv, 12 * m);
+    mem->Bdq  = NewModelMatrix(mem, m, nv, 12 * m);
+    if (!mem->sparse) mem->Bvq = (sunrealtype *)calloc((size_t)(m * nv), sizeof(sunrealtype));
+    fail = (mem->Bmat == NULL || mem->Bdq == NULL || (!mem->sparse && mem->Bvq == NULL));
+  }
+  if (!fail && mem->sparse) fail = lgnSparseWorkCreate(mem) != LGN_SUCCESS;
+  if (fail) {
+    lgnFreeMatrices(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->mat_done = SUNTRUE;
   return LGN_SUCCESS;
 }
 
@@ -371,6 +430,7 @@ static int CheckReadyToSolve(LGNMem mem)
     if (flag != LGN_SUCCESS) return flag;
   }
   flag = lgnLsCheck(mem);
+  if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   if (flag != LGN_SUCCESS) return flag;
   if (!mem->ic_done) {
     flag = lgnInitialConditions(mem);

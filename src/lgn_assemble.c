@@ -2,8 +2,8 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Assembly of the (scaled) iteration matrix into the user's dense matrix A and
- * its factorisation (spec numerics.md §2, modified-kinematics.md §2):
+ * Assembly of the (scaled) iteration matrix into the user's matrix A and its
+ * factorisation; dense here, sparse in lgn_assemble_sparse.c (spec numerics.md §2, modified-kinematics.md §2):
  *
  *   simplified:  A = [[ cM M + cC C + cK K T ,        B^T ],  [ B T_c , 0 ]]
  *   exact:       A = [[ cM M Ta + cC C Tv + cK K T,  B^T ],  [ B T_e , 0 ]]
@@ -20,7 +20,7 @@
 
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "lgn_impl.h"
+#include "lgn_sparse.h"
 
 /* K and C at the current iterate: the user's callbacks or difference quotients. */
 static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC,
@@ -51,25 +51,8 @@ static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC,
   return LGN_SUCCESS;
 }
 
-/* Y(:, j) = X T(:, j) summed over the columns of T, for an nrow x nv block
- * X with leading dimension ldx, into Y with leading dimension ldy. */
-static void MultiplyByTangent(const sunrealtype *X, sunindextype ldx,
-                              sunindextype nrow, const sunrealtype *Tm,
-                              sunindextype nv, sunrealtype *Y, sunindextype ldy)
-{
-  sunindextype i, j, k;
-  sunrealtype tkj;
-  for (j = 0; j < nv; j++) {
-    for (i = 0; i < nrow; i++) Y[i + j * ldy] = SUN_RCONST(0.0);
-    for (k = 0; k < nv; k++) {
-      tkj = Tm[k + j * nv];
-      if (tkj == SUN_RCONST(0.0)) continue;
-      for (i = 0; i < nrow; i++) Y[i + j * ldy] += X[i + k * ldx] * tkj;
-    }
-  }
-}
-
-int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
+/* A = the dense iteration matrix (header comment), T block diagonal. */
+static int AssembleDense(LGNMem mem, sunrealtype t, sunrealtype cM,
                          sunrealtype cC, sunrealtype cK,
                          sunbooleantype use_tangent)
 {
@@ -78,9 +61,11 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
   const sunrealtype *M = SUNDenseMatrix_Data(mem->Mmat);
   const sunrealtype *C = SUNDenseMatrix_Data(mem->Cmat);
   const sunrealtype *K = SUNDenseMatrix_Data(mem->Kmat);
-  const sunrealtype *Tm = mem->Tm;
   const sunbooleantype exact = use_tangent && mem->kinematics == LGN_KINEMATICS_EXACT;
-  const sunbooleantype identity_T = !use_tangent || (!exact && mem->G->kind == LGN_GROUP_RN);
+  const sunbooleantype idx2 = mem->constr_index == LGN_CONSTR_INDEX2;
+  /* NULL stands for T = I */
+  const sunrealtype *Tk = use_tangent ? mem->Tm : NULL;
+  const sunrealtype *Tb = !use_tangent ? NULL : (idx2 ? (exact ? mem->Tv : NULL) : mem->Tm);
   sunrealtype *W = SUNDenseMatrix_Data(mem->Mdq); /* nv x nv scratch */
   int flag;
 
@@ -88,36 +73,22 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
   if (flag != LGN_SUCCESS) return flag;
   mem->nje++;
 
-  memset(A, 0, (size_t)(n * n) * sizeof(sunrealtype));
-
-  /* top left */
-  if (exact) {
-    MultiplyByTangent(M, nv, nv, mem->Ta, nv, W, nv);
+  /* top left: cM M Ta + cC C Tv + cK K T */
+  lgnDenseTimesTangent(mem, M, nv, nv, exact ? mem->Ta : NULL, W, nv);
+  for (j = 0; j < nv; j++)
+    for (i = 0; i < nv; i++) A[i + j * n] = cM * W[i + j * nv];
+  if (cC != SUN_RCONST(0.0)) {
+    lgnDenseTimesTangent(mem, C, nv, nv, exact ? mem->Tv : NULL, W, nv);
     for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) A[i + j * n] = cM * W[i + j * nv];
-    if (cC != SUN_RCONST(0.0)) {
-      MultiplyByTangent(C, nv, nv, mem->Tv, nv, W, nv);
-      for (j = 0; j < nv; j++)
-        for (i = 0; i < nv; i++) A[i + j * n] += cC * W[i + j * nv];
-    }
-    if (cK != SUN_RCONST(0.0)) {
-      MultiplyByTangent(K, nv, nv, Tm, nv, W, nv);
-      for (j = 0; j < nv; j++)
-        for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
-    }
-  } else {
-    for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) {
-        A[i + j * n] = cM * M[i + j * nv];
-        if (cC != SUN_RCONST(0.0)) A[i + j * n] += cC * C[i + j * nv];
-        if (cK != SUN_RCONST(0.0) && identity_T) A[i + j * n] += cK * K[i + j * nv];
-      }
-    if (cK != SUN_RCONST(0.0) && !identity_T) {
-      MultiplyByTangent(K, nv, nv, Tm, nv, W, nv);
-      for (j = 0; j < nv; j++)
-        for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
-    }
+      for (i = 0; i < nv; i++) A[i + j * n] += cC * W[i + j * nv];
   }
+  if (cK != SUN_RCONST(0.0)) {
+    lgnDenseTimesTangent(mem, K, nv, nv, Tk, W, nv);
+    for (j = 0; j < nv; j++)
+      for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
+  }
+  for (j = nv; j < n; j++)
+    for (i = 0; i < n; i++) A[i + j * n] = SUN_RCONST(0.0);
 
   if (m > 0) {
     const sunrealtype *B = SUNDenseMatrix_Data(mem->Bmat);
@@ -125,28 +96,26 @@ int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
     for (j = 0; j < m; j++)
       for (i = 0; i < nv; i++) A[i + (nv + j) * n] = B[j + i * m];
     /* bottom left: B T_c (simplified) or B T_e (exact) */
-    if (exact && mem->constr_index == LGN_CONSTR_INDEX2) {
-      MultiplyByTangent(B, m, m, mem->Tv, nv, A + nv, n);
-    } else if (identity_T || mem->constr_index == LGN_CONSTR_INDEX2) {
-      for (j = 0; j < nv; j++)
-        for (i = 0; i < m; i++) A[nv + i + j * n] = B[i + j * m];
-    } else {
-      MultiplyByTangent(B, m, m, Tm, nv, A + nv, n);
-    }
+    lgnDenseTimesTangent(mem, B, m, m, Tb, A + nv, n);
     /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
-    if (use_tangent && mem->constr_index == LGN_CONSTR_INDEX2 && cC != SUN_RCONST(0.0)) {
+    if (use_tangent && idx2 && cC != SUN_RCONST(0.0)) {
       const sunrealtype f = cK / cC;
       flag = lgnConstraintVelocityDQ(mem, t);
       if (flag != LGN_SUCCESS) return flag;
-      if (identity_T) {
-        for (j = 0; j < nv; j++)
-          for (i = 0; i < m; i++) A[nv + i + j * n] += f * mem->Bvq[i + j * m];
-      } else {
-        MultiplyByTangent(mem->Bvq, m, m, Tm, nv, W, m);
-        for (j = 0; j < nv; j++)
-          for (i = 0; i < m; i++) A[nv + i + j * n] += f * W[i + j * m];
-      }
+      lgnDenseTimesTangent(mem, mem->Bvq, m, m, Tk, W, m);
+      for (j = 0; j < nv; j++)
+        for (i = 0; i < m; i++) A[nv + i + j * n] += f * W[i + j * m];
     }
   }
+  return LGN_SUCCESS;
+}
+
+int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
+                         sunrealtype cC, sunrealtype cK,
+                         sunbooleantype use_tangent)
+{
+  int flag = mem->sparse ? lgnAssembleSparse(mem, t, cM, cC, cK, use_tangent)
+                         : AssembleDense(mem, t, cM, cC, cK, use_tangent);
+  if (flag != LGN_SUCCESS) return flag;
   return lgnLsSetup(mem);
 }

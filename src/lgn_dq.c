@@ -22,7 +22,7 @@
 #include "lgn_impl.h"
 
 /* r(q) = M(q) vdot1 + g(q, v1, t) + B(q)^T lambda1 at q = dq_q, into dq_r. */
-static int DynamicResidualAt(LGNMem mem, sunrealtype t)
+int lgnDQResidualAt(LGNMem mem, sunrealtype t)
 {
   int flag;
   mem->ndq++;
@@ -47,7 +47,7 @@ int lgnStiffnessDQ(LGNMem mem, sunrealtype t)
     ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w,
                                    lgnData(mem->dq_q));
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
-    flag = DynamicResidualAt(mem, t);
+    flag = lgnDQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
     col = SUNDenseMatrix_Column(mem->Kmat, j);
     for (i = 0; i < nv; i++) col[i] = (r[i] - r0[i]) / eps;
@@ -80,8 +80,8 @@ int lgnDampingDQ(LGNMem mem, sunrealtype t)
 
 /* z = B(q o exp(w)) v (length m), using dq_q and Bdq: one constraint
  * Jacobian evaluation at a point displaced along the group. */
-static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
-                                const sunrealtype *w, N_Vector v, sunrealtype *z)
+int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
+                            const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
@@ -89,7 +89,7 @@ static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
   SUNMatZero(mem->Bdq);
   ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-  lgnDenseMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);
+  lgnMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);
   return LGN_SUCCESS;
 }
 
@@ -109,9 +109,9 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   /* central difference: step of size cbrt(uround) in the group */
   eps = cbrt(SUN_UNIT_ROUNDOFF) / vmax;
   for (i = 0; i < nv; i++) w[i] = eps * vd[i];
-  flag = ConstraintVelocityAt(mem, t, q, w, v, zd);
+  flag = lgnConstraintVelocityAt(mem, t, q, w, v, zd);
   for (i = 0; i < nv; i++) w[i] = -eps * vd[i];
-  if (flag == LGN_SUCCESS) flag = ConstraintVelocityAt(mem, t, q, w, v, zm);
+  if (flag == LGN_SUCCESS) flag = lgnConstraintVelocityAt(mem, t, q, w, v, zm);
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < m; i++) zd[i] = (zd[i] - zm[i]) / (SUN_RCONST(2.0) * eps);
   return LGN_SUCCESS;
@@ -127,13 +127,13 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
   sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq_z), eps;
   int flag;
 
-  lgnDenseMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  lgnMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
   for (j = 0; j < nv; j++) {
     sunrealtype *col = mem->Bvq + j * m;
     eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(mem->sigma[j]));
     memset(w, 0, (size_t)nv * sizeof(sunrealtype));
     w[j] = eps;
-    flag = ConstraintVelocityAt(mem, t, mem->q1, w, mem->v1, col);
+    flag = lgnConstraintVelocityAt(mem, t, mem->q1, w, mem->v1, col);
     if (flag != LGN_SUCCESS) return flag;
     for (i = 0; i < m; i++) col[i] = (col[i] - z0[i]) / eps;
   }

@@ -97,12 +97,14 @@ typedef struct LGNMemRec {
   sunrealtype *sigma_dot;   /* its first derivative                        */
   sunrealtype *sigma_ddot;  /* its second derivative                       */
   sunrealtype *a_pred;      /* a+ = (alpha_f vdot_n - alpha_m a_n)/(1-am)  */
-  sunrealtype *Tm;          /* T(sigma), dense nv x nv column-major        */
+  sunrealtype *Tm;          /* T(sigma), block diagonal (lgn_tangent.c)    */
   sunrealtype *Tv;          /* exact kinematics: (dv/dsigma)/gamma'        */
   sunrealtype *Ta;          /* exact kinematics: (dvdot/dsigma)/beta'      */
-  sunrealtype *Bvq;         /* index 2: D_q(B(q) v).(q w~), m x nv          */
+  sunrealtype *blk_work;    /* 3 blk_max scratch for the block routines    */
+  sunrealtype *Bvq;         /* dense index 2: D_q(B(q) v).(q w~), m x nv    */
   sunrealtype *work_nv;     /* scratch of length nv                        */
   sunrealtype *work2_nv;    /* second scratch of length nv                 */
+  sunrealtype *work_m;      /* scratch of length m                         */
   sunrealtype *vdot_prev;   /* vdot_{n-1}, for the extrapolating predictor */
   sunrealtype *lambda_prev; /* lambda_{n-1} (NULL when m = 0)              */
   sunrealtype h_prev;       /* step size that produced vdot_n (0: none)    */
@@ -116,7 +118,17 @@ typedef struct LGNMemRec {
   /* ---- difference quotient scratch ---- */
   N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
 
-  /* ---- matrices of the model (dense, Lignum-owned) ---- */
+  /* ---- diagonal blocks of T: the leaves of the group (lgn_tangent.c) ---- */
+  int nblk;
+  sunindextype *blk_voff;   /* nblk + 1 offsets in v                       */
+  sunindextype *blk_qoff;   /* nblk + 1 offsets in q                       */
+  sunindextype *blk_toff;   /* nblk + 1 offsets in the packed T storage    */
+  sunindextype *blk_of;     /* block of each velocity component            */
+  LGNGroup *blk_group;      /* the leaf group of each block                */
+  sunindextype blk_max;     /* largest block                               */
+  sunindextype tlen;        /* packed length (identity blocks store none)  */
+
+  /* ---- matrices of the model (Lignum-owned, of the type of A) ---- */
   SUNMatrix Mmat;           /* nv x nv                                      */
   SUNMatrix Bmat;           /* m x nv (NULL when m = 0)                     */
   SUNMatrix Kmat;           /* nv x nv tangent stiffness                    */
@@ -127,12 +139,16 @@ typedef struct LGNMemRec {
   /* ---- linear solver (not owned) ---- */
   SUNLinearSolver LS;
   SUNMatrix A;
+  sunbooleantype sparse;    /* A is a SUNSparseMatrix (KLU)                 */
+  int sparsetype;           /* CSC_MAT or CSR_MAT when sparse               */
+  struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
   sunbooleantype ls_initialized;
   long int last_lin_flag;
 
   /* ---- bookkeeping ---- */
   sunbooleantype malloc_done; /* LGNInit called                             */
   sunbooleantype work_done;   /* work space allocated for current nv, m     */
+  sunbooleantype mat_done;    /* model matrices allocated for the type of A */
   sunrealtype hlast;
 
   /* ---- counters ---- */
@@ -176,6 +192,8 @@ int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
 /* lgn.c */
 int lgnAllocWork(LGNMem mem);
 void lgnFreeWork(LGNMem mem);
+int lgnAllocMatrices(LGNMem mem);
+void lgnFreeMatrices(LGNMem mem);
 int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
 int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
                    const char *func);
@@ -191,11 +209,21 @@ void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
                         sunrealtype *r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
                       sunrealtype cv);
-void lgnDenseMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-                    sunbooleantype add);
-void lgnDenseMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-                     sunbooleantype add);
+void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+               sunbooleantype add);
+void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                sunbooleantype add);
 sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n);
+
+/* lgn_tangent.c */
+int lgnBlocksBuild(LGNMem mem);
+void lgnBlocksFree(LGNMem mem);
+int lgnTangentMatrices(LGNMem mem);
+int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
+                                  sunrealtype beta_p);
+void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
+                          sunindextype nrow, const sunrealtype *T,
+                          sunrealtype *Y, sunindextype ldy);
 
 /* lgn_assemble.c */
 int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
@@ -211,6 +239,9 @@ int lgnDampingDQ(LGNMem mem, sunrealtype t);
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    N_Vector z);
 int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t);
+int lgnDQResidualAt(LGNMem mem, sunrealtype t);
+int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
+                            const sunrealtype *w, N_Vector v, sunrealtype *z);
 
 /* lgn_ls.c */
 int lgnLsCheck(LGNMem mem);
@@ -218,6 +249,12 @@ int lgnLsSetup(LGNMem mem);
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
 
 /* helpers */
+/* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */
+static inline sunbooleantype lgnBlockIsIdentity(const struct LGNMemRec *mem, int b)
+{
+  return mem->blk_group[b]->kind == LGN_GROUP_RN;
+}
+
 static inline sunrealtype *lgnData(N_Vector x)
 {
   return N_VGetArrayPointer(x);

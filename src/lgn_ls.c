@@ -4,11 +4,12 @@
  * -----------------------------------------------------------------------------
  * The bridge to SUNDIALS' SUNLinearSolver: LGNSetLinearSolver, the check of
  * matrix and solver against the problem size, setup (factorisation) and solve.
- * The iteration matrix is filled by lgn_assemble.c; the linear solver only
- * sees a SUNMatrix, so another matrix type plugs in through the assembler.
+ * The iteration matrix is filled by lgn_assemble.c (dense) or
+ * lgn_assemble_sparse.c (SUNSparseMatrix, CSC or CSR, with SUNLinSol_KLU).
  * ---------------------------------------------------------------------------*/
 
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_impl.h"
 
@@ -31,28 +32,49 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
               "The linear solver is not a direct (matrix-based) solver.");
     return LGN_LS_MISMATCH;
   }
-  if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+#if defined(LGN_HAVE_KLU)
+    if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
+      LGN_ERROR(mem, LGN_LS_MISMATCH,
+                "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU).");
+      return LGN_LS_MISMATCH;
+    }
+#else
     LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "Matrix type %d not supported: use a SUNDenseMatrix.",
+              "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON.");
+    return LGN_LS_MISMATCH;
+#endif
+  } else if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "Matrix type %d not supported: use a SUNDenseMatrix, or a "
+              "SUNSparseMatrix with SUNLinSol_KLU.",
               (int)SUNMatGetID(A));
+    return LGN_LS_MISMATCH;
+  } else if (SUNLinSolGetID(LS) == SUNLINEARSOLVER_KLU) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "SUNLinSol_KLU needs a SUNSparseMatrix, not a dense one.");
     return LGN_LS_MISMATCH;
   }
   mem->LS             = LS;
   mem->A              = A;
   mem->ls_initialized = SUNFALSE;
+  lgnFreeMatrices(mem); /* reallocated for A's type at the next solve */
   return LGN_SUCCESS;
 }
 
 /* Before the first solve: the matrix must be (nv+m) x (nv+m). */
 int lgnLsCheck(LGNMem mem)
 {
-  sunindextype n = mem->nv + mem->m;
+  const sunindextype n = mem->nv + mem->m;
+  const sunbooleantype sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  const sunindextype rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
+  const sunindextype cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
   int ret;
-  if (SM_ROWS_D(mem->A) != n || SM_COLUMNS_D(mem->A) != n) {
+  if (rows != n || cols != n) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The matrix A is %lld x %lld but the problem needs %lld x %lld "
               "(nv = %lld velocities + m = %lld constraints).",
-              (long long)SM_ROWS_D(mem->A), (long long)SM_COLUMNS_D(mem->A),
+              (long long)rows, (long long)cols,
               (long long)n, (long long)n, (long long)mem->nv,
               (long long)mem->m);
     return LGN_LS_MISMATCH;

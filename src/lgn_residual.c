@@ -8,12 +8,13 @@
  *   r = [ beta h^2 (M vdot + g + B^T lambda) ;  Phi(q)          ]   (index 3)
  *       [                                    ;  B(q) v / gamma' ]   (index 2)
  *
- * (spec numerics.md §2 "Scaling"), plus small dense kernels.
+ * (spec numerics.md §2 "Scaling"), plus the matrix-vector kernels.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
 
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_impl.h"
 
@@ -25,33 +26,75 @@ sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n)
   return SUNTRUE;
 }
 
-/* y (+)= A x for a dense (column-major) matrix A. */
-void lgnDenseMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-                    sunbooleantype add)
+/* y (+)= A x and y (+)= A^T x for a dense (column-major) or sparse (CSC or
+ * CSR) matrix A. A CSC matrix is read by columns and a CSR matrix by rows,
+ * so "A x" of one is "A^T x" of the other with the roles of rows and
+ * columns swapped. */
+static void SparseCompressedMatvec(const sunindextype *ptr,
+                                   const sunindextype *ind,
+                                   const sunrealtype *val, sunindextype nptr,
+                                   const sunrealtype *x, sunrealtype *y,
+                                   sunbooleantype scatter)
 {
-  sunindextype i, j, M = SM_ROWS_D(A), N = SM_COLUMNS_D(A);
-  const sunrealtype *col;
-  if (!add)
-    for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
-  for (j = 0; j < N; j++) {
-    col = SM_COLUMN_D(A, j);
-    for (i = 0; i < M; i++) y[i] += col[i] * x[j];
+  sunindextype k, p;
+  sunrealtype s;
+  for (k = 0; k < nptr; k++) {
+    if (scatter) { /* y(ind) += val * x(k) */
+      const sunrealtype xk = x[k];
+      for (p = ptr[k]; p < ptr[k + 1]; p++) y[ind[p]] += val[p] * xk;
+    } else {       /* y(k) += val . x(ind) */
+      s = SUN_RCONST(0.0);
+      for (p = ptr[k]; p < ptr[k + 1]; p++) s += val[p] * x[ind[p]];
+      y[k] += s;
+    }
   }
 }
 
-/* y (+)= A^T x for a dense (column-major) matrix A. */
-void lgnDenseMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-                     sunbooleantype add)
+static void Matvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                   sunbooleantype add, sunbooleantype transpose)
 {
-  sunindextype i, j, M = SM_ROWS_D(A), N = SM_COLUMNS_D(A);
-  const sunrealtype *col;
-  sunrealtype s;
-  for (j = 0; j < N; j++) {
-    col = SM_COLUMN_D(A, j);
-    s   = add ? y[j] : SUN_RCONST(0.0);
-    for (i = 0; i < M; i++) s += col[i] * x[i];
-    y[j] = s;
+  sunindextype i, j, M, N;
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunbooleantype csc = SUNSparseMatrix_SparseType(A) == CSC_MAT;
+    M = transpose ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A);
+    if (!add)
+      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+    SparseCompressedMatvec(SUNSparseMatrix_IndexPointers(A),
+                           SUNSparseMatrix_IndexValues(A),
+                           SUNSparseMatrix_Data(A),
+                           csc ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A),
+                           x, y, csc != transpose);
+    return;
   }
+  M = SM_ROWS_D(A);
+  N = SM_COLUMNS_D(A);
+  if (!transpose) {
+    if (!add)
+      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+    for (j = 0; j < N; j++) {
+      const sunrealtype *col = SM_COLUMN_D(A, j), xj = x[j];
+      for (i = 0; i < M; i++) y[i] += col[i] * xj;
+    }
+  } else {
+    for (j = 0; j < N; j++) {
+      const sunrealtype *col = SM_COLUMN_D(A, j);
+      sunrealtype s = add ? y[j] : SUN_RCONST(0.0);
+      for (i = 0; i < M; i++) s += col[i] * x[i];
+      y[j] = s;
+    }
+  }
+}
+
+void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+               sunbooleantype add)
+{
+  Matvec(A, x, y, add, SUNFALSE);
+}
+
+void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                sunbooleantype add)
+{
+  Matvec(A, x, y, add, SUNTRUE);
 }
 
 /* M(q), g(q, v, t) and, when m > 0, B(q) into the given storage. */
@@ -86,9 +129,9 @@ void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
 {
   sunindextype i, nv = mem->nv;
   const sunrealtype *gd = lgnData(g);
-  lgnDenseMatvec(M, lgnData(mem->vdot1), r, SUNFALSE);
+  lgnMatvec(M, lgnData(mem->vdot1), r, SUNFALSE);
   for (i = 0; i < nv; i++) r[i] += gd[i];
-  if (mem->m > 0) lgnDenseMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
+  if (mem->m > 0) lgnMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
 }
 
 /* The scaled residual into mem->rhs, negated (the Newton right-hand side);
@@ -111,7 +154,7 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
       ret = mem->constr(t, mem->q1, mem->phi, mem->user_data);
       if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__);
     } else {
-      lgnDenseMatvec(mem->Bmat, lgnData(mem->v1), phi, SUNFALSE);
+      lgnMatvec(mem->Bmat, lgnData(mem->v1), phi, SUNFALSE);
       for (i = 0; i < m; i++) phi[i] /= cv;
     }
     for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];

@@ -126,62 +126,6 @@ static int Predict(LGNMem mem, const StepCoeffs *c)
   return LGN_SUCCESS;
 }
 
-/* Derivatives of the exact kinematics with respect to the correction delta
- * (sigma += delta, sigma_dot += gamma' delta, sigma_ddot += beta' delta):
- *   dv/ddelta    = gamma' T + P,                  P e_j = DT(sigma)[e_j] sigma_dot
- *   dvdot/ddelta = beta' T + gamma' (P + Tdot(sigma, sigma_dot)) + Q
- *   Q e_j = DT(sigma)[e_j] sigma_ddot + D_sigma[Tdot(sigma, sigma_dot) sigma_dot] e_j
- * with DT(sigma)[w] = Tdot(sigma, w). The gamma' terms are O(h |v|) relative
- * to beta' T, Q is O(h^2 |v|^2); Q's second part (a second derivative of T)
- * is a forward difference. With all of them Newton converges quadratically
- * and needs no more iterations than with the simplified kinematics.
- * Stored normalised: Tv = (dv/ddelta)/gamma', Ta = (dvdot/ddelta)/beta', so
- * the assembly forms cM M Ta + cC C Tv + cK K T. */
-static int ExactKinematicsDerivatives(LGNMem mem, const StepCoeffs *c)
-{
-  LGNGroup G = mem->G;
-  sunindextype i, j, nv = mem->nv;
-  sunrealtype *e = mem->work2_nv, *col = mem->work_nv;
-  sunrealtype *td0;
-  const sunrealtype ratio = c->gamma_p / c->beta_p;
-  const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
-  sunrealtype eps, sj;
-  int ret = 0;
-
-  td0 = mem->Ta + nv * nv; /* scratch column after Ta: see lgnAllocWork */
-  /* Tdot(sigma, sigma_dot) sigma_dot at the current sigma */
-  ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot, mem->sigma_dot, td0);
-  for (i = 0; i < nv; i++) e[i] = SUN_RCONST(0.0);
-  for (j = 0; j < nv && ret == 0; j++) {
-    e[j] = SUN_RCONST(1.0);
-    /* P e_j */
-    ret = G->ops.tangent_dot_apply(G, mem->sigma, e, mem->sigma_dot, col);
-    for (i = 0; i < nv && ret == 0; i++) {
-      mem->Tv[i + j * nv] = mem->Tm[i + j * nv] + col[i] / c->gamma_p;
-      mem->Ta[i + j * nv] = mem->Tm[i + j * nv] + ratio * col[i];
-    }
-    /* Tdot(sigma, sigma_dot) e_j */
-    if (ret == 0) ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot, e, col);
-    for (i = 0; i < nv && ret == 0; i++) mem->Ta[i + j * nv] += ratio * col[i];
-    /* Q e_j: DT(sigma)[e_j] sigma_ddot ... */
-    if (ret == 0) ret = G->ops.tangent_dot_apply(G, mem->sigma, e, mem->sigma_ddot, col);
-    for (i = 0; i < nv && ret == 0; i++) mem->Ta[i + j * nv] += col[i] / c->beta_p;
-    /* ... + forward difference of Tdot(., sigma_dot) sigma_dot along e_j */
-    e[j] = SUN_RCONST(0.0);
-    if (ret == 0) {
-      sj  = mem->sigma[j];
-      eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(sj));
-      mem->sigma[j] = sj + eps;
-      ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot, mem->sigma_dot, col);
-      mem->sigma[j] = sj;
-      for (i = 0; i < nv && ret == 0; i++)
-        mem->Ta[i + j * nv] += (col[i] - td0[i]) / eps / c->beta_p;
-    }
-  }
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
-  return LGN_SUCCESS;
-}
-
 /* The iterate (q1, v1, vdot1) from (sigma, sigma_dot, sigma_ddot) by the
  * kinematics variant (table above); Tm = T(sigma) for the iteration matrix.
  * The sigma variant carries q1 itself (corrections composed on the right). */
@@ -195,8 +139,9 @@ static int Kinematics(LGNMem mem)
 
   if (mem->kinematics != LGN_KINEMATICS_SIGMA) {
     ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
-    if (ret == 0) ret = G->ops.tangent_matrix(G, mem->sigma, mem->Tm, nv);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+    ret = lgnTangentMatrices(mem);
+    if (ret != LGN_SUCCESS) return ret;
   }
   if (mem->kinematics == LGN_KINEMATICS_EXACT) {
     /* v = T sigma_dot, vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot */
@@ -283,7 +228,7 @@ static int Newton(LGNMem mem, const StepCoeffs *c)
   for (iter = 0; iter < mem->maxcor; iter++) {
     flag = Kinematics(mem);
     if (flag == LGN_SUCCESS && mem->kinematics == LGN_KINEMATICS_EXACT)
-      flag = ExactKinematicsDerivatives(mem, c);
+      flag = lgnExactKinematicsDerivatives(mem, c->gamma_p, c->beta_p);
     if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
     if (flag == LGN_SUCCESS)
       flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,

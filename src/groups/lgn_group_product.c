@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "lgn_so3.h"
+#include "lgn_group_impl.h"
 
 typedef struct {
   int nf;             /* number of factors                  */
@@ -196,4 +197,20 @@ LGNGroup LGNGroup_Product(int nfactors, const LGNGroup *factors)
   G->ops.identity              = ProdIdentity;
   G->ops.normalize             = ProdNormalize;
   return G;
+}
+
+/* The factors of a product (internal: used to split T into diagonal blocks
+ * and by the joint helpers to locate bodies). Returns 0 when G is a
+ * product, -1 otherwise. */
+int lgnGroupProductFactors(LGNGroup G, int *nf, const LGNGroup **factors,
+                           const sunindextype **qoff, const sunindextype **voff)
+{
+  const ProductContent *c;
+  if (G == NULL || G->kind != LGN_GROUP_PRODUCT || G->content == NULL) return -1;
+  c        = PC(G);
+  *nf      = c->nf;
+  *factors = c->f;
+  *qoff    = c->qoff;
+  *voff    = c->voff;
+  return 0;
 }

@@ -1,0 +1,328 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Sparse assembly of the scaled iteration matrix (the same blocks as the
+ * dense lgn_assemble.c, spec numerics.md §2, modified-kinematics.md §2):
+ *
+ *   [[ cM M Ta + cC C Tv + cK K T ,  B^T ],  [ B T_c (+ f D_q(Bv) T) , 0 ]]
+ *
+ * T, Tv, Ta are block diagonal (lgn_tangent.c), so column j of X T combines
+ * the columns of X in j's block only. The pattern of A is the union of the
+ * block-closed patterns of M, K, C and B (every block column of a
+ * non-identity block gets the rows of all columns of its block) and B^T. It
+ * is built at the first assembly and then fixed, so KLU refactors with the
+ * symbolic analysis of the first factorisation. An entry outside the pattern
+ * (a model whose pattern grows) extends it and triggers a new analysis, as
+ * does LGNResetSparsityPattern; LGNGetNumSparsityAnalyses counts them.
+ * Assembly works in compressed columns; a CSR matrix A receives the values
+ * through a fixed permutation.
+ * ---------------------------------------------------------------------------*/
+
+#include <stdlib.h>
+#include <string.h>
+
+#include <sunmatrix/sunmatrix_sparse.h>
+#if defined(LGN_HAVE_KLU)
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
+
+#include "lgn_sparse.h"
+
+static int CompareIndex(const void *a, const void *b)
+{
+  const sunindextype x = *(const sunindextype *)a, y = *(const sunindextype *)b;
+  return (x > y) - (x < y);
+}
+
+/* The column range whose entries column j of X T collects. */
+static void ClosureRange(LGNMem mem, sunindextype j, sunindextype *k0,
+                         sunindextype *k1)
+{
+  const int b = (int)mem->blk_of[j];
+  if (lgnBlockIsIdentity(mem, b)) {
+    *k0 = j;
+    *k1 = j + 1;
+  } else {
+    *k0 = mem->blk_voff[b];
+    *k1 = mem->blk_voff[b + 1];
+  }
+}
+
+/* Views of the model matrices as evaluated at the current iterate. */
+static int RefreshViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  int flag = lgnCscView(mem->Mmat, &sp->M);
+  if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscView(mem->Bmat, &sp->B);
+  if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscTranspose(&sp->B, &sp->Bt);
+  if (flag == LGN_SUCCESS && mem->stiffness != NULL) flag = lgnCscView(mem->Kmat, &sp->K);
+  if (flag == LGN_SUCCESS && mem->damping != NULL) flag = lgnCscView(mem->Cmat, &sp->C);
+  if (flag != LGN_SUCCESS) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return flag;
+  }
+  if (!sp->have_dq_patterns && (mem->stiffness == NULL || mem->damping == NULL)) {
+    flag = lgnBuildDQPatterns(mem);
+    if (flag != LGN_SUCCESS) return flag;
+  }
+  *K = mem->stiffness != NULL ? &sp->K : &sp->Kdq;
+  *C = mem->damping != NULL ? &sp->C : &sp->Cdq;
+  return LGN_SUCCESS;
+}
+
+/* K and C at the current iterate: the user's callbacks or coloured DQs. */
+static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
+{
+  int ret;
+  if (cK != SUN_RCONST(0.0)) {
+    if (mem->stiffness != NULL) {
+      SUNMatZero(mem->Kmat);
+      ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
+                           mem->Kmat, mem->user_data);
+      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
+    } else {
+      ret = lgnStiffnessDQColored(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
+    }
+  }
+  if (cC != SUN_RCONST(0.0)) {
+    if (mem->damping != NULL) {
+      SUNMatZero(mem->Cmat);
+      ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
+      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
+    } else {
+      ret = lgnDampingDQColored(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
+    }
+  }
+  return LGN_SUCCESS;
+}
+
+/* The pattern of A (keeping the old one's entries when extending it), its
+ * CSR permutation, and A's index arrays. */
+static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nv = mem->nv, m = mem->m, n = nv + m;
+  const LGNCsc *src[3];
+  LGNCsc P;
+  sunindextype *mark = sp->mark, *list = sp->list;
+  sunindextype i, j, k, k0, k1, p, cnt, nnz = 0;
+  int s, flag;
+
+  memset(&P, 0, sizeof P);
+  src[0] = &sp->M;
+  src[1] = K;
+  src[2] = C;
+  flag = lgnCscReserve(&P, n, n, SUNMAX(sp->A.cap, 4 * (sp->M.colptr[nv] + nv)));
+  for (j = 0; j < n && flag == LGN_SUCCESS; j++) {
+    cnt = 0;
+#define ADD_ROW(r)            \
+  do {                        \
+    sunindextype r_ = (r);    \
+    if (mark[r_] != j) {      \
+      mark[r_]    = j;        \
+      list[cnt++] = r_;       \
+    }                         \
+  } while (0)
+    if (j < nv) {
+      ClosureRange(mem, j, &k0, &k1);
+      for (k = k0; k < k1; k++) {
+        for (s = 0; s < 3; s++)
+          if (src[s]->colptr != NULL && src[s]->ncols == nv)
+            for (p = src[s]->colptr[k]; p < src[s]->colptr[k + 1]; p++)
+              ADD_ROW(src[s]->rowind[p]);
+        if (m > 0)
+          for (p = sp->B.colptr[k]; p < sp->B.colptr[k + 1]; p++)
+            ADD_ROW(nv + sp->B.rowind[p]);
+      }
+    } else {
+      for (p = sp->Bt.colptr[j - nv]; p < sp->Bt.colptr[j - nv + 1]; p++)
+        ADD_ROW(sp->Bt.rowind[p]);
+    }
+    if (sp->have_pattern)
+      for (p = sp->A.colptr[j]; p < sp->A.colptr[j + 1]; p++) ADD_ROW(sp->A.rowind[p]);
+#undef ADD_ROW
+    if (nnz + cnt > P.cap) flag = lgnCscReserve(&P, n, n, 2 * (nnz + cnt));
+    if (flag != LGN_SUCCESS) break;
+    qsort(list, (size_t)cnt, sizeof *list, CompareIndex);
+    memcpy(P.rowind + nnz, list, (size_t)cnt * sizeof *list);
+    P.colptr[j]     = nnz;
+    nnz            += cnt;
+    P.colptr[j + 1] = nnz;
+  }
+  for (i = 0; i < n; i++) mark[i] = -1;
+  if (flag == LGN_SUCCESS && SUNSparseMatrix_NNZ(mem->A) < nnz)
+    flag = SUNSparseMatrix_Reallocate(mem->A, nnz) == 0 ? LGN_SUCCESS : LGN_MEM_FAIL;
+  if (flag == LGN_SUCCESS && SUNSparseMatrix_SparseType(mem->A) == CSR_MAT) {
+    sunindextype *perm = (sunindextype *)realloc(sp->csr_perm, (size_t)SUNMAX(nnz, 1) * sizeof *perm);
+    if (perm == NULL) flag = LGN_MEM_FAIL;
+    else sp->csr_perm = perm;
+  }
+  if (flag != LGN_SUCCESS) {
+    lgnCscFree(&P);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  lgnCscFree(&sp->A);
+  sp->A = P;
+
+  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
+    memcpy(SUNSparseMatrix_IndexPointers(mem->A), P.colptr, (size_t)(n + 1) * sizeof(sunindextype));
+    memcpy(SUNSparseMatrix_IndexValues(mem->A), P.rowind, (size_t)nnz * sizeof(sunindextype));
+  } else {
+    /* CSR of A = CSC of A^T: count rows, then place entries column by column */
+    sunindextype *rowptr = SUNSparseMatrix_IndexPointers(mem->A);
+    sunindextype *colind = SUNSparseMatrix_IndexValues(mem->A);
+    memset(rowptr, 0, (size_t)(n + 1) * sizeof(sunindextype));
+    for (p = 0; p < nnz; p++) rowptr[P.rowind[p] + 1]++;
+    for (i = 0; i < n; i++) rowptr[i + 1] += rowptr[i];
+    for (i = 0; i < n; i++) list[i] = rowptr[i];
+    for (j = 0; j < n; j++)
+      for (p = P.colptr[j]; p < P.colptr[j + 1]; p++) {
+        sunindextype q   = list[P.rowind[p]]++;
+        colind[q]        = j;
+        sp->csr_perm[p]  = q;
+      }
+  }
+  sp->have_pattern = SUNTRUE;
+  sp->npattern++;
+  if (sp->analysed) {
+#if defined(LGN_HAVE_KLU)
+    SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
+#endif
+    sp->analysed = SUNFALSE;
+  }
+  return LGN_SUCCESS;
+}
+
+/* Column accumulation: rows outside the pattern of the current column are
+ * reported as a miss. */
+typedef struct {
+  sunindextype col;          /* current column of A (the mark stamp) */
+  const sunindextype *mark, *pos;
+  sunrealtype *val;
+  sunbooleantype miss;
+} Column;
+
+/* y(:, j) += coef * (X Tb)(:, j) with rows shifted by `shift`; Tb NULL is I.
+ * xval overrides X's values (D_q(B v) lives on the pattern of B). */
+static void AddTimesTangent(LGNMem mem, Column *col, const LGNCsc *X,
+                            const sunrealtype *xval, sunindextype j,
+                            const sunrealtype *T, sunrealtype coef,
+                            sunindextype shift)
+{
+  const int b = (int)mem->blk_of[j];
+  const sunindextype o = mem->blk_voff[b], nb = mem->blk_voff[b + 1] - o;
+  const sunrealtype *Tb = T;
+  sunindextype k, k0 = j, k1 = j + 1, p, r;
+  sunrealtype f;
+
+  if (X->colptr == NULL || X->ncols != mem->nv) return;
+  if (xval == NULL) xval = X->val;
+  if (Tb != NULL && !lgnBlockIsIdentity(mem, b)) {
+    Tb += mem->blk_toff[b];
+    k0 = o;
+    k1 = o + nb;
+  } else {
+    Tb = NULL;
+  }
+  for (k = k0; k < k1; k++) {
+    f = coef * (Tb != NULL ? Tb[(k - o) + (j - o) * nb] : SUN_RCONST(1.0));
+    if (f == SUN_RCONST(0.0)) continue;
+    for (p = X->colptr[k]; p < X->colptr[k + 1]; p++) {
+      r = X->rowind[p] + shift;
+      if (col->mark[r] != col->col) {
+        col->miss = SUNTRUE;
+        continue;
+      }
+      col->val[col->pos[r]] += f * xval[p];
+    }
+  }
+}
+
+static sunbooleantype FillValues(LGNMem mem, const LGNCsc *K, const LGNCsc *C,
+                                 sunrealtype cM, sunrealtype cC, sunrealtype cK,
+                                 sunbooleantype use_tangent)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nv = mem->nv, m = mem->m, n = nv + m;
+  const sunbooleantype exact = use_tangent && mem->kinematics == LGN_KINEMATICS_EXACT;
+  const sunbooleantype idx2 = mem->constr_index == LGN_CONSTR_INDEX2;
+  const sunrealtype *Tk = use_tangent ? mem->Tm : NULL;
+  const sunrealtype *Tb = !use_tangent ? NULL : (idx2 ? (exact ? mem->Tv : NULL) : mem->Tm);
+  Column col;
+  sunindextype j, p;
+
+  col.mark = sp->mark;
+  col.pos  = sp->pos;
+  col.val  = sp->A.val;
+  col.miss = SUNFALSE;
+  for (j = 0; j < n; j++) {
+    col.col = j;
+    for (p = sp->A.colptr[j]; p < sp->A.colptr[j + 1]; p++) {
+      sp->mark[sp->A.rowind[p]] = j;
+      sp->pos[sp->A.rowind[p]]  = p;
+      sp->A.val[p]              = SUN_RCONST(0.0);
+    }
+    if (j >= nv) { /* B^T */
+      for (p = sp->Bt.colptr[j - nv]; p < sp->Bt.colptr[j - nv + 1]; p++) {
+        if (sp->mark[sp->Bt.rowind[p]] != j) col.miss = SUNTRUE;
+        else sp->A.val[sp->pos[sp->Bt.rowind[p]]] += sp->Bt.val[p];
+      }
+      continue;
+    }
+    AddTimesTangent(mem, &col, &sp->M, NULL, j, exact ? mem->Ta : NULL, cM, 0);
+    if (cC != SUN_RCONST(0.0)) AddTimesTangent(mem, &col, C, NULL, j, exact ? mem->Tv : NULL, cC, 0);
+    if (cK != SUN_RCONST(0.0)) AddTimesTangent(mem, &col, K, NULL, j, Tk, cK, 0);
+    if (m > 0) {
+      AddTimesTangent(mem, &col, &sp->B, NULL, j, Tb, SUN_RCONST(1.0), nv);
+      /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
+      if (use_tangent && idx2 && cC != SUN_RCONST(0.0))
+        AddTimesTangent(mem, &col, &sp->B, sp->Bvq, j, Tk, cK / cC, nv);
+    }
+  }
+  for (j = 0; j < n; j++) sp->mark[j] = -1;
+  return !col.miss;
+}
+
+int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
+                      sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const LGNCsc *K, *C;
+  sunindextype p, nnz;
+  int flag;
+
+  flag = RefreshViews(mem, &K, &C);
+  if (flag == LGN_SUCCESS) flag = EvalTangents(mem, t, cC, cK);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->stiffness != NULL && cK != SUN_RCONST(0.0)) flag = lgnCscView(mem->Kmat, &sp->K);
+  if (flag == LGN_SUCCESS && mem->damping != NULL && cC != SUN_RCONST(0.0))
+    flag = lgnCscView(mem->Cmat, &sp->C);
+  if (flag == LGN_SUCCESS && use_tangent && mem->constr_index == LGN_CONSTR_INDEX2 &&
+      mem->m > 0 && cC != SUN_RCONST(0.0))
+    flag = lgnConstraintVelocityDQColored(mem, t);
+  if (flag != LGN_SUCCESS) return flag;
+  mem->nje++;
+
+  if (!sp->have_pattern) flag = BuildPattern(mem, K, C);
+  if (flag == LGN_SUCCESS && !FillValues(mem, K, C, cM, cC, cK, use_tangent)) {
+    /* the model's pattern grew: extend A's and fill again */
+    flag = BuildPattern(mem, K, C);
+    if (flag == LGN_SUCCESS && !FillValues(mem, K, C, cM, cC, cK, use_tangent))
+      flag = LGN_LSETUP_FAIL; /* cannot happen: the new pattern holds every entry */
+  }
+  if (flag != LGN_SUCCESS) return flag;
+
+  nnz = sp->A.colptr[mem->nv + mem->m];
+  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
+    memcpy(SUNSparseMatrix_Data(mem->A), sp->A.val, (size_t)nnz * sizeof(sunrealtype));
+  } else {
+    sunrealtype *data = SUNSparseMatrix_Data(mem->A);
+    for (p = 0; p < nnz; p++) data[sp->csr_perm[p]] = sp->A.val[p];
+  }
+  sp->analysed = SUNTRUE; /* the setup below analyses if needed */
+  return LGN_SUCCESS;
+}

@@ -1,0 +1,199 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Difference-quotient tangents for the sparse path, by column colouring
+ * (Curtis, Powell and Reid 1974): columns that share no row are displaced
+ * together, so one evaluation gives a whole group of columns and the cost is
+ * (number of colours) evaluations, independent of the number of bodies.
+ *
+ * The patterns are structural, from what the model already tells Lignum:
+ *   K_t = d/dq (M vdot + g + B^T lambda):  blocks of T  u  M  u  B^T B
+ *   C_t = d/dv g:                          blocks of T  u  M
+ * (each symmetrised). The blocks of T are the factors of the group: a body's
+ * forces may depend on all of its own coordinates; M and B^T B add the
+ * couplings through inertia and joints. Forces coupling bodies that share no
+ * joint (e.g. a spring between distant bodies) are outside these patterns:
+ * such a model must give K_t and C_t itself (LGNSetStiffnessFn/DampingFn).
+ * D_q(B v) has the pattern of B and uses the colouring of K_t, which is valid
+ * for it because B^T B is part of that pattern.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lgn_sparse.h"
+
+static int CompareIndex(const void *a, const void *b)
+{
+  const sunindextype x = *(const sunindextype *)a, y = *(const sunindextype *)b;
+  return (x > y) - (x < y);
+}
+
+/* Symmetric pattern blocks u M u M^T (u B^T B) of size nv x nv into P. */
+static int BuildPattern(LGNMem mem, const LGNCsc *Mt, sunbooleantype with_BtB,
+                        LGNCsc *P)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nv = mem->nv;
+  sunindextype *mark = sp->mark, *list = sp->list;
+  sunindextype i, j, p, q, cnt, nnz = 0;
+  int b, flag;
+
+  flag = lgnCscReserve(P, nv, nv, 2 * (sp->M.colptr[nv] + nv) + mem->tlen);
+  if (flag != LGN_SUCCESS) return flag;
+  P->colptr[0] = 0;
+  for (j = 0; j < nv; j++) {
+    cnt = 0;
+#define ADD_ROW(r)            \
+  do {                        \
+    sunindextype r_ = (r);    \
+    if (mark[r_] != j) {      \
+      mark[r_]    = j;        \
+      list[cnt++] = r_;       \
+    }                         \
+  } while (0)
+    b = (int)mem->blk_of[j];
+    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) ADD_ROW(i);
+    for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) ADD_ROW(sp->M.rowind[p]);
+    for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) ADD_ROW(Mt->rowind[p]);
+    if (with_BtB && mem->m > 0)
+      for (p = sp->B.colptr[j]; p < sp->B.colptr[j + 1]; p++) {
+        const sunindextype r = sp->B.rowind[p];
+        for (q = sp->Bt.colptr[r]; q < sp->Bt.colptr[r + 1]; q++) ADD_ROW(sp->Bt.rowind[q]);
+      }
+#undef ADD_ROW
+    if (nnz + cnt > P->cap) {
+      flag = lgnCscReserve(P, nv, nv, 2 * (nnz + cnt) + nv);
+      if (flag != LGN_SUCCESS) return flag;
+    }
+    qsort(list, (size_t)cnt, sizeof *list, CompareIndex);
+    memcpy(P->rowind + nnz, list, (size_t)cnt * sizeof *list);
+    nnz += cnt;
+    P->colptr[j + 1] = nnz;
+  }
+  for (j = 0; j < nv; j++) mark[j] = -1;
+  for (p = 0; p < nnz; p++) P->val[p] = SUN_RCONST(0.0);
+  return LGN_SUCCESS;
+}
+
+/* The DQ patterns and colourings, from the current views of M and B. */
+int lgnBuildDQPatterns(LGNMem mem)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  LGNCsc Mt;
+  int flag;
+  memset(&Mt, 0, sizeof Mt);
+  flag = lgnCscTranspose(&sp->M, &Mt);
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNTRUE, &sp->Kdq);
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNFALSE, &sp->Cdq);
+  if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Kdq, sp->mark, &sp->Kcol);
+  if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Cdq, sp->mark, &sp->Ccol);
+  lgnCscFree(&Mt);
+  if (flag != LGN_SUCCESS) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return flag;
+  }
+  sp->have_dq_patterns = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* Increment of column j: the same rule as the dense quotients (lgn_dq.c). */
+static sunrealtype Increment(sunrealtype x)
+{
+  return sqrt(SUN_UNIT_ROUNDOFF) * SUNMAX(SUN_RCONST(1.0), fabs(x));
+}
+
+/* The quotients of one colour: P(:, j) = (f - f0)(rows of column j) / eps_j. */
+static void ScatterColor(const LGNCsc *P, sunrealtype *val,
+                         const LGNColoring *col, sunindextype c,
+                         const sunrealtype *f, const sunrealtype *f0,
+                         const sunrealtype *x)
+{
+  sunindextype k, p, j;
+  sunrealtype eps;
+  for (k = col->ptr[c]; k < col->ptr[c + 1]; k++) {
+    j   = col->cols[k];
+    eps = Increment(x[j]);
+    for (p = P->colptr[j]; p < P->colptr[j + 1]; p++)
+      val[p] = (f[P->rowind[p]] - f0[P->rowind[p]]) / eps;
+  }
+}
+
+/* w = eps_j e_j summed over the columns of colour c. */
+static void ColorDisplacement(LGNMem mem, const LGNColoring *col,
+                              sunindextype c, const sunrealtype *x,
+                              sunrealtype *w)
+{
+  sunindextype k;
+  memset(w, 0, (size_t)mem->nv * sizeof(sunrealtype));
+  for (k = col->ptr[c]; k < col->ptr[c + 1]; k++)
+    w[col->cols[k]] = Increment(x[col->cols[k]]);
+}
+
+int lgnStiffnessDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  sunindextype c;
+  int ret, flag;
+  for (c = 0; c < sp->Kcol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
+    ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), mem->work_nv,
+                                  lgnData(mem->dq_q));
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    flag = lgnDQResidualAt(mem, t);
+    if (flag != LGN_SUCCESS) return flag;
+    ScatterColor(&sp->Kdq, sp->Kdq.val, &sp->Kcol, c, lgnData(mem->dq_r),
+                 lgnData(mem->rdyn), mem->sigma);
+  }
+  return LGN_SUCCESS;
+}
+
+int lgnDampingDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunrealtype *v1 = lgnData(mem->v1);
+  sunrealtype *vp = lgnData(mem->dq_v), *w = mem->work_nv;
+  sunindextype c, i;
+  int ret;
+  for (c = 0; c < sp->Ccol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Ccol, c, v1, w);
+    for (i = 0; i < mem->nv; i++) vp[i] = v1[i] + w[i];
+    mem->ndq++;
+    N_VConst(SUN_RCONST(0.0), mem->dq_g);
+    ret = mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+    ScatterColor(&sp->Cdq, sp->Cdq.val, &sp->Ccol, c, lgnData(mem->dq_g),
+                 lgnData(mem->g), v1);
+  }
+  return LGN_SUCCESS;
+}
+
+/* D_q(B(q) v1) at q1 on the pattern of B (the CSC view sp->B). */
+int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nnzB = sp->B.colptr[mem->nv];
+  sunrealtype *z0 = mem->work_m, *z = lgnData(mem->dq_z);
+  sunindextype c;
+  int flag;
+
+  if (nnzB > sp->Bvq_cap) {
+    sunrealtype *p = (sunrealtype *)realloc(sp->Bvq, (size_t)nnzB * sizeof *p);
+    if (p == NULL) {
+      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    sp->Bvq     = p;
+    sp->Bvq_cap = nnzB;
+  }
+  lgnMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  for (c = 0; c < sp->Kcol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
+    flag = lgnConstraintVelocityAt(mem, t, mem->q1, mem->work_nv, mem->v1, z);
+    if (flag != LGN_SUCCESS) return flag;
+    ScatterColor(&sp->B, sp->Bvq, &sp->Kcol, c, z, z0, mem->sigma);
+  }
+  return LGN_SUCCESS;
+}

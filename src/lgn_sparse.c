@@ -1,0 +1,209 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Compressed sparse column kernels of the sparse path: views of SUNDIALS
+ * sparse matrices (a CSR matrix is read as the CSC matrix of its transpose
+ * and transposed once per evaluation), transposition, and the greedy column
+ * colouring of a symmetric pattern.
+ * ---------------------------------------------------------------------------*/
+
+#include <stdlib.h>
+#include <string.h>
+
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "lgn_sparse.h"
+
+void lgnCscFree(LGNCsc *A)
+{
+  if (A->cap > 0 || A->capcol > 0) {
+    free(A->colptr);
+    free(A->rowind);
+    free(A->val);
+  }
+  memset(A, 0, sizeof *A);
+}
+
+/* Owned storage for at least nnz entries and ncols columns. */
+int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
+                  sunindextype nnz)
+{
+  if (A->cap == 0 && A->capcol == 0) { /* a view: forget it */
+    A->colptr = NULL;
+    A->rowind = NULL;
+    A->val    = NULL;
+  }
+  if (ncols + 1 > A->capcol) {
+    sunindextype *p = (sunindextype *)realloc(A->colptr, (size_t)(ncols + 1) * sizeof *p);
+    if (p == NULL) return LGN_MEM_FAIL;
+    A->colptr = p;
+    A->capcol = ncols + 1;
+  }
+  if (nnz > A->cap || A->rowind == NULL) {
+    sunindextype cap = SUNMAX(nnz, 1);
+    sunindextype *r  = (sunindextype *)realloc(A->rowind, (size_t)cap * sizeof *r);
+    sunrealtype *v;
+    if (r == NULL) return LGN_MEM_FAIL;
+    A->rowind = r;
+    v = (sunrealtype *)realloc(A->val, (size_t)cap * sizeof *v);
+    if (v == NULL) return LGN_MEM_FAIL;
+    A->val = v;
+    A->cap = cap;
+  }
+  A->nrows = nrows;
+  A->ncols = ncols;
+  return LGN_SUCCESS;
+}
+
+/* At = A^T; row indices come out sorted in every column of At. */
+int lgnCscTranspose(const LGNCsc *A, LGNCsc *At)
+{
+  sunindextype i, j, p, nnz = A->colptr[A->ncols];
+  int flag = lgnCscReserve(At, A->ncols, A->nrows, nnz);
+  if (flag != LGN_SUCCESS) return flag;
+  memset(At->colptr, 0, (size_t)(At->ncols + 1) * sizeof(sunindextype));
+  for (p = 0; p < nnz; p++) At->colptr[A->rowind[p] + 1]++;
+  for (i = 0; i < At->ncols; i++) At->colptr[i + 1] += At->colptr[i];
+  for (j = 0; j < A->ncols; j++)
+    for (p = A->colptr[j]; p < A->colptr[j + 1]; p++) {
+      sunindextype q = At->colptr[A->rowind[p]]++;
+      At->rowind[q]  = j;
+      At->val[q]     = A->val[p];
+    }
+  for (i = At->ncols; i > 0; i--) At->colptr[i] = At->colptr[i - 1];
+  At->colptr[0] = 0;
+  return LGN_SUCCESS;
+}
+
+/* A CSC view of the sparse SUNMatrix S: its own arrays when S is CSC, a
+ * transposed copy (owned by view) when S is CSR. */
+int lgnCscView(SUNMatrix S, LGNCsc *view)
+{
+  LGNCsc raw;
+  raw.colptr = SUNSparseMatrix_IndexPointers(S);
+  raw.rowind = SUNSparseMatrix_IndexValues(S);
+  raw.val    = SUNSparseMatrix_Data(S);
+  raw.cap = raw.capcol = 0;
+  if (SUNSparseMatrix_SparseType(S) == CSC_MAT) {
+    if (view->cap > 0 || view->capcol > 0) lgnCscFree(view);
+    raw.nrows = SUNSparseMatrix_Rows(S);
+    raw.ncols = SUNSparseMatrix_Columns(S);
+    *view     = raw;
+    return LGN_SUCCESS;
+  }
+  /* CSR of S = CSC of S^T */
+  raw.nrows = SUNSparseMatrix_Columns(S);
+  raw.ncols = SUNSparseMatrix_Rows(S);
+  return lgnCscTranspose(&raw, view);
+}
+
+void lgnColoringFree(LGNColoring *c)
+{
+  free(c->ptr);
+  free(c->cols);
+  memset(c, 0, sizeof *c);
+}
+
+/* Greedy colouring of the columns of a structurally symmetric pattern: two
+ * columns get different colours when some row has entries in both, i.e.
+ * when they are within distance 2 in the graph of the pattern. */
+int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c)
+{
+  const sunindextype n = sym->ncols;
+  sunindextype i, j, k, p, q, col, *color;
+
+  lgnColoringFree(c);
+  color  = (sunindextype *)malloc((size_t)SUNMAX(n, 1) * sizeof *color);
+  c->ptr = (sunindextype *)calloc((size_t)(n + 1), sizeof *c->ptr);
+  c->cols = (sunindextype *)malloc((size_t)SUNMAX(n, 1) * sizeof *c->cols);
+  if (color == NULL || c->ptr == NULL || c->cols == NULL) {
+    free(color);
+    lgnColoringFree(c);
+    return LGN_MEM_FAIL;
+  }
+  for (j = 0; j < n; j++) {
+    color[j] = -1;
+    mark[j]  = -1;
+  }
+  c->ncolors = 0;
+  for (j = 0; j < n; j++) {
+    for (p = sym->colptr[j]; p < sym->colptr[j + 1]; p++) {
+      i = sym->rowind[p];
+      for (q = sym->colptr[i]; q < sym->colptr[i + 1]; q++) {
+        k = sym->rowind[q];
+        if (color[k] >= 0) mark[color[k]] = j; /* colour taken near j */
+      }
+    }
+    for (col = 0; mark[col] == j; col++) {}
+    color[j]   = col;
+    c->ncolors = SUNMAX(c->ncolors, col + 1);
+  }
+  for (j = 0; j < n; j++) c->ptr[color[j] + 1]++;
+  for (k = 0; k < c->ncolors; k++) c->ptr[k + 1] += c->ptr[k];
+  for (j = 0; j < n; j++) c->cols[c->ptr[color[j]]++] = j;
+  for (k = c->ncolors; k > 0; k--) c->ptr[k] = c->ptr[k - 1];
+  c->ptr[0] = 0;
+  for (j = 0; j < n; j++) mark[j] = -1;
+  free(color);
+  return LGN_SUCCESS;
+}
+
+int lgnSparseWorkCreate(LGNMem mem)
+{
+  const sunindextype n = mem->nv + mem->m;
+  sunindextype i;
+  struct LGNSparseWorkRec *sp = (struct LGNSparseWorkRec *)calloc(1, sizeof *sp);
+  if (sp == NULL) return LGN_MEM_FAIL;
+  mem->sp  = sp;
+  sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  sp->pos  = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  if (sp->mark == NULL || sp->pos == NULL || sp->list == NULL) {
+    lgnSparseWorkFree(mem);
+    return LGN_MEM_FAIL;
+  }
+  for (i = 0; i < n; i++) sp->mark[i] = -1;
+  return LGN_SUCCESS;
+}
+
+void lgnSparseWorkFree(LGNMem mem)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  if (sp == NULL) return;
+  lgnCscFree(&sp->A);
+  lgnCscFree(&sp->M);
+  lgnCscFree(&sp->B);
+  lgnCscFree(&sp->Bt);
+  lgnCscFree(&sp->K);
+  lgnCscFree(&sp->C);
+  lgnCscFree(&sp->Kdq);
+  lgnCscFree(&sp->Cdq);
+  lgnColoringFree(&sp->Kcol);
+  lgnColoringFree(&sp->Ccol);
+  free(sp->csr_perm);
+  free(sp->Bvq);
+  free(sp->mark);
+  free(sp->pos);
+  free(sp->list);
+  free(sp);
+  mem->sp = NULL;
+}
+
+/* Words (reals + indices) held by the sparse work space. */
+sunindextype lgnSparseWorkSpace(const LGNMem mem)
+{
+  const struct LGNSparseWorkRec *sp = mem->sp;
+  const LGNCsc *all[8];
+  sunindextype words = 0;
+  int k;
+  if (sp == NULL) return 0;
+  all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
+  all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
+  for (k = 0; k < 8; k++) words += 2 * all[k]->cap + all[k]->capcol;
+  words += 3 * (mem->nv + mem->m) + sp->Bvq_cap;
+  if (sp->csr_perm != NULL) words += sp->A.cap;
+  if (sp->Kcol.ptr != NULL) words += sp->Kcol.ncolors + 1 + mem->nv;
+  if (sp->Ccol.ptr != NULL) words += sp->Ccol.ncolors + 1 + mem->nv;
+  return words;
+}

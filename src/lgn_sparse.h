@@ -1,0 +1,79 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Private header of the sparse path: compressed-column views of the model
+ * matrices, the fixed pattern of the iteration matrix, and the column
+ * colouring of the difference-quotient tangents.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LGN_SPARSE_H
+#define LGN_SPARSE_H
+
+#include "lgn_impl.h"
+
+/* A compressed sparse column matrix. Either a view of a CSC SUNMatrix (cap =
+ * 0, arrays not owned) or Lignum-owned storage (cap = allocated entries). */
+typedef struct {
+  sunindextype nrows, ncols;
+  sunindextype *colptr; /* ncols + 1 */
+  sunindextype *rowind; /* colptr[ncols]        */
+  sunrealtype *val;
+  sunindextype cap;     /* allocated entries (0: a view) */
+  sunindextype capcol;  /* allocated columns             */
+} LGNCsc;
+
+/* Columns grouped so that no two columns of a group share a row: one
+ * displaced evaluation per group gives all its columns (Curtis-Powell-Reid). */
+typedef struct {
+  sunindextype ncolors;
+  sunindextype *ptr;  /* ncolors + 1 */
+  sunindextype *cols; /* nv          */
+} LGNColoring;
+
+struct LGNSparseWorkRec {
+  /* the iteration matrix in CSC (pattern fixed until a miss or a reset) */
+  LGNCsc A;
+  sunbooleantype have_pattern;
+  sunbooleantype analysed;   /* KLU has a symbolic analysis of this pattern */
+  sunindextype *csr_perm;    /* CSR A: position of CSC entry k in A's data  */
+  long int npattern;         /* patterns built (symbolic analyses)          */
+
+  /* CSC views or transposed copies of the model matrices */
+  LGNCsc M, B, Bt, K, C;
+  /* difference-quotient tangents: symmetric patterns with their colourings */
+  LGNCsc Kdq, Cdq;
+  LGNColoring Kcol, Ccol;
+  sunbooleantype have_dq_patterns;
+  sunrealtype *Bvq;          /* D_q(B v) on the pattern of B (CSC view)     */
+  sunindextype Bvq_cap;
+
+  /* scratch */
+  sunindextype *mark;        /* n: column stamp of a row                    */
+  sunindextype *pos;         /* n: position of a row in the current column  */
+  sunindextype *list;        /* n: rows of the column being built           */
+};
+
+/* lgn_sparse.c */
+void lgnCscFree(LGNCsc *A);
+int lgnCscView(SUNMatrix S, LGNCsc *view);
+int lgnCscTranspose(const LGNCsc *A, LGNCsc *At);
+int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
+                  sunindextype nnz);
+void lgnColoringFree(LGNColoring *c);
+int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c);
+int lgnSparseWorkCreate(LGNMem mem);
+void lgnSparseWorkFree(LGNMem mem);
+sunindextype lgnSparseWorkSpace(const LGNMem mem);
+
+/* lgn_dq_sparse.c */
+int lgnBuildDQPatterns(LGNMem mem);
+int lgnStiffnessDQColored(LGNMem mem, sunrealtype t);
+int lgnDampingDQColored(LGNMem mem, sunrealtype t);
+int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t);
+
+/* lgn_assemble_sparse.c */
+int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
+                      sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent);
+
+#endif
