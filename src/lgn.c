@@ -248,6 +248,47 @@ int lgnAllocMatrices(LGNMem mem)
   return LGN_SUCCESS;
 }
 
+long int lgnIterationMatrixNnz(LGNMem mem)
+{
+  const long int n = (long int)(mem->nv + mem->m);
+  if (mem->sp != NULL) return mem->sp->have_pattern ? (long int)mem->sp->A.colptr[n] : 0L;
+  return n * n;
+}
+
+/* Reals and integers of one model matrix. */
+static void MatrixSpace(SUNMatrix S, long int *rw, long int *iw)
+{
+  long int lrw = 0, liw = 0;
+  if (S != NULL && SUNMatSpace(S, &lrw, &liw) == 0) {
+    *rw += lrw;
+    *iw += liw;
+  }
+}
+
+void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
+{
+  const long int nq = (long int)mem->nq, nv = (long int)mem->nv, m = (long int)mem->m;
+  long int rw = 0, iw = 0;
+  if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
+  if (mem->work_done) {
+    rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
+    rw += 7 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
+  }
+  if (mem->mat_done) {
+    MatrixSpace(mem->Mmat, &rw, &iw);
+    MatrixSpace(mem->Kmat, &rw, &iw);
+    MatrixSpace(mem->Cmat, &rw, &iw);
+    MatrixSpace(mem->Mdq, &rw, &iw);
+    MatrixSpace(mem->Bmat, &rw, &iw);
+    MatrixSpace(mem->Bdq, &rw, &iw);
+    if (mem->Bvq != NULL) rw += m * nv;
+    lgnSparseWorkSpace(mem, &rw, &iw);
+  }
+  *lenrw = rw;
+  *leniw = iw;
+}
+
 /* =============================================================================
  * Initialisation
  * ===========================================================================*/

@@ -193,6 +193,8 @@ int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
 int lgnAllocWork(LGNMem mem);
 void lgnFreeWork(LGNMem mem);
 int lgnAllocMatrices(LGNMem mem);
+long int lgnIterationMatrixNnz(LGNMem mem);
+void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw);
 void lgnFreeMatrices(LGNMem mem);
 int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
 int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,

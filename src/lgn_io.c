@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "lgn_impl.h"
+#include "lgn_sparse.h"
 
 /* Common preamble: the memory block must exist. */
 #define ACCESS_MEM(lgn_mem, mem)                             \
@@ -426,6 +426,34 @@ SCALAR_GETTER(LGNGetNumJacEvals, long int, njevals, mem->nje)
 SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
 SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
 SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
+SCALAR_GETTER(LGNGetNumSparsityAnalyses, long int, nanalyses,
+              mem->sp != NULL ? mem->sp->npattern : 0L)
+SCALAR_GETTER(LGNGetIterationMatrixNnz, long int, nnz, lgnIterationMatrixNnz(mem))
+SCALAR_GETTER(LGNGetNumDQColors, long int, ncolors,
+              mem->sp != NULL ? (long int)mem->sp->Kcol.ncolors : (long int)mem->nv)
+
+int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (lenrw == NULL || leniw == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "An output argument is NULL.");
+    return LGN_ILL_INPUT;
+  }
+  lgnWorkSpace(mem, lenrw, leniw);
+  return LGN_SUCCESS;
+}
+
+int LGNResetSparsityPattern(void *lgn_mem)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (mem->sp != NULL) {
+    mem->sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
+    mem->sp->have_dq_patterns = SUNFALSE;
+  }
+  return LGN_SUCCESS;
+}
 
 int LGNGetMethodParams(void *lgn_mem, sunrealtype *alpha_m, sunrealtype *alpha_f,
                        sunrealtype *beta, sunrealtype *gamma)
@@ -477,6 +505,11 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Linear solver setups", mem->nlsetup);
   fprintf(outfile, fmt_l, "Linear solves", mem->nlsolve);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  if (mem->sp != NULL) {
+    fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);
+    fprintf(outfile, fmt_l, "Iteration matrix nonzeros", lgnIterationMatrixNnz(mem));
+    fprintf(outfile, fmt_l, "DQ column colours", (long int)mem->sp->Kcol.ncolors);
+  }
   return LGN_SUCCESS;
 }
 

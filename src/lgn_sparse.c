@@ -190,20 +190,22 @@ void lgnSparseWorkFree(LGNMem mem)
   mem->sp = NULL;
 }
 
-/* Words (reals + indices) held by the sparse work space. */
-sunindextype lgnSparseWorkSpace(const LGNMem mem)
+/* Reals and indices held by the sparse work space. */
+void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
 {
   const struct LGNSparseWorkRec *sp = mem->sp;
   const LGNCsc *all[8];
-  sunindextype words = 0;
   int k;
-  if (sp == NULL) return 0;
+  if (sp == NULL) return;
   all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
   all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
-  for (k = 0; k < 8; k++) words += 2 * all[k]->cap + all[k]->capcol;
-  words += 3 * (mem->nv + mem->m) + sp->Bvq_cap;
-  if (sp->csr_perm != NULL) words += sp->A.cap;
-  if (sp->Kcol.ptr != NULL) words += sp->Kcol.ncolors + 1 + mem->nv;
-  if (sp->Ccol.ptr != NULL) words += sp->Ccol.ncolors + 1 + mem->nv;
-  return words;
+  for (k = 0; k < 8; k++) {
+    *rw += (long int)all[k]->cap;
+    *iw += (long int)(all[k]->cap + all[k]->capcol);
+  }
+  *rw += (long int)sp->Bvq_cap;
+  *iw += 3L * (long int)(mem->nv + mem->m);
+  if (sp->csr_perm != NULL) *iw += (long int)sp->A.cap;
+  if (sp->Kcol.ptr != NULL) *iw += (long int)(sp->Kcol.ncolors + 1 + mem->nv);
+  if (sp->Ccol.ptr != NULL) *iw += (long int)(sp->Ccol.ncolors + 1 + mem->nv);
 }

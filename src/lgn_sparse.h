@@ -64,7 +64,7 @@ void lgnColoringFree(LGNColoring *c);
 int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c);
 int lgnSparseWorkCreate(LGNMem mem);
 void lgnSparseWorkFree(LGNMem mem);
-sunindextype lgnSparseWorkSpace(const LGNMem mem);
+void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
 
 /* lgn_dq_sparse.c */
 int lgnBuildDQPatterns(LGNMem mem);

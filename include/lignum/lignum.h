@@ -284,6 +284,14 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0);
  *  Must be called after LGNInit/LGNReInit. */
 int LGNSetInitialAux(void *lgn_mem, N_Vector a0);
 
+/** Tell Lignum that the sparsity pattern of M, B, K_t or C_t has changed:
+ *  at the next assembly the pattern of the iteration matrix and the column
+ *  colouring of the difference quotients are rebuilt, and KLU analyses the
+ *  new pattern. Without this call the pattern found at the first assembly is
+ *  kept (KLU only refactors); entries outside it extend it automatically.
+ *  A no-op for dense matrices. */
+int LGNResetSparsityPattern(void *lgn_mem);
+
 /** Replace the error handler (NULL restores the default). */
 int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun, void *eh_data);
 
@@ -335,6 +343,21 @@ int LGNGetNumResEvals(void *lgn_mem, long int *nres);
 int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
 /** Number of iteration matrix evaluations (Jacobian builds). */
 int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
+/** Number of patterns of the sparse iteration matrix built (each followed
+ *  by a symbolic analysis in KLU); 0 for dense matrices. */
+int LGNGetNumSparsityAnalyses(void *lgn_mem, long int *nanalyses);
+/** Number of stored entries of the iteration matrix: its pattern's size for
+ *  sparse matrices (0 before the first assembly), (nv + m)^2 for dense ones. */
+int LGNGetIterationMatrixNnz(void *lgn_mem, long int *nnz);
+/** Number of displaced evaluations per difference-quotient stiffness matrix:
+ *  the number of column colours (sparse) or nv (dense); 0 before the first
+ *  assembly of a sparse matrix. */
+int LGNGetNumDQColors(void *lgn_mem, long int *ncolors);
+/** Work space of the integrator, like IDAGetWorkSpace: lenrw reals and leniw
+ *  integers held by Lignum (vectors, model matrices, block storage, sparse
+ *  patterns; not the user's A and linear solver). Allocated at the first
+ *  LGNSolve, so call it afterwards. */
+int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw);
 /** Number of linear solver setups (factorisations). */
 int LGNGetNumLinSolvSetups(void *lgn_mem, long int *nlsetups);
 /** Number of linear solves. */

@@ -1,0 +1,117 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Joint constraints between rigid bodies, ready to call from the constraint
+ * callbacks: Phi(q), B(q) (dense or sparse, with its pattern), the
+ * curvature term Z(q)(v, v) of the consistent initial values, and the
+ * geometric stiffness d/dq (B(q)^T lambda) for an analytic K_t.
+ *
+ * The bodies are the leaves of the configuration group: a single R^3 x SO(3)
+ * or SE(3) factor, or a product of them (body k = factor k, products of
+ * products flattened in order). Body points and axes are given in the body
+ * frame; for LGN_GROUND they are fixed inertial vectors. B is the derivative
+ * along the group, B(q) w = d/de Phi(q o exp(e w)) at e = 0 (spec
+ * numerics.md §1): with R^3 x SO(3), dx = w_x and dR = R w_theta~; with
+ * SE(3), dx = R w_U.
+ *
+ *   spherical:  x_a + R_a s_a - x_b - R_b s_b = 0                     (3 rows)
+ *   revolute:   spherical and (R_a e_i) . (R_b c) = 0, i = 1, 2, with
+ *               e_1, e_2 perpendicular to axis_a, c = axis_b          (5 rows)
+ *   universal:  spherical and (R_a axis_a) . (R_b axis_b) = 0         (4 rows)
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LIGNUM_JOINTS_H
+#define LIGNUM_JOINTS_H
+
+#include <lignum/lignum.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Body index of the fixed inertial frame. */
+#define LGN_GROUND (-1)
+
+/** A set of joints between the bodies of one configuration group. */
+typedef struct LGNJointsRec *LGNJoints;
+
+/**
+ * Create an empty joint set for the bodies of G.
+ * @param lgn_mem integrator memory whose error handler reports bad input of
+ *                every LGNJoints function (may be NULL: flags only)
+ * @param G       R^3 x SO(3), SE(3) or a product of them; referenced, must
+ *                outlive the joint set
+ * @return the joint set, or NULL if G has another leaf group or memory ran out.
+ */
+LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G);
+
+/** Free a joint set and set *J to NULL; NULL is allowed. */
+void LGNJoints_Destroy(LGNJoints *J);
+
+/** Number of bodies (leaves of G). */
+int LGNJoints_NumBodies(LGNJoints J);
+
+/**
+ * Spherical joint: point sa of body a coincides with point sb of body b.
+ * @param a, b  body indices (0-based leaves of G) or LGN_GROUND, a != b
+ * @param sa, sb points in the body frames (inertial for LGN_GROUND)
+ * @return LGN_SUCCESS, LGN_ILL_INPUT (bad body index or NULL point) or
+ *         LGN_MEM_FAIL.
+ */
+int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3],
+                           int b, const sunrealtype sb[3]);
+
+/** Revolute joint: spherical at (sa, sb) and body axes axis_a, axis_b
+ *  (nonzero, need not be unit) kept parallel. Five constraints. */
+int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
+                          const sunrealtype axis_a[3], int b,
+                          const sunrealtype sb[3], const sunrealtype axis_b[3]);
+
+/** Universal (Cardan) joint: spherical at (sa, sb) and body axes axis_a,
+ *  axis_b kept perpendicular (they must be perpendicular in the initial
+ *  configuration for it to be satisfied). Four constraints. */
+int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
+                           const sunrealtype axis_a[3], int b,
+                           const sunrealtype sb[3], const sunrealtype axis_b[3]);
+
+/** Number of constraints m of all joints added so far (rows of Phi and B). */
+sunindextype LGNJoints_NumConstraints(LGNJoints J);
+
+/** Number of stored entries of the sparse B written by LGNJoints_Jacobian
+ *  (explicit zeros included; the pattern does not depend on q). */
+sunindextype LGNJoints_JacobianNnz(LGNJoints J);
+
+/** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
+sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
+
+/** phi = Phi(q), length m. For use in an LGNConstrFn. */
+int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
+
+/**
+ * B = B(q), m x nv. A dense B is overwritten entry by entry (entries outside
+ * the joints' columns are left alone, so zero it first: Lignum does before
+ * calling an LGNConstrJacFn). A sparse B (CSC or CSR) is overwritten with
+ * the whole pattern, reallocated if it has fewer than
+ * LGNJoints_JacobianNnz(J) entries.
+ */
+int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
+
+/** z = Z(q)(v, v) = D_q(B(q) v).(q v~) (spec numerics.md §1), length m: the
+ *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */
+int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
+
+/**
+ * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
+ * stiffness K_t (the geometric stiffness). A dense K gets the term added;
+ * a sparse K is overwritten with its pattern (6x6 blocks of the bodies and
+ * of pairs coupled by a revolute or universal joint; combine it with other
+ * terms with SUNMatScaleAdd).
+ */
+int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

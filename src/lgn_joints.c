@@ -1,0 +1,798 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Joint constraints (include/lignum/lignum_joints.h). Every joint is made of
+ * two primitives:
+ *   POINT (3 rows):  x_a + R_a s_a - x_b - R_b s_b
+ *   PERP  (1 row):   (R_a e) . (R_b c)
+ * with, along q o exp(w) (body velocity w = (w_x, w_theta)):
+ *   d x = P w_x  (P = I on R^3 x SO(3), P = R on SE(3)),  d R = R w_theta~
+ * so that
+ *   B_POINT = [ P_a, -R_a s_a~ | -P_b, R_b s_b~ ]
+ *   B_PERP  = [ 0, (e x R_a^T R_b c)^T | 0, (c x R_b^T R_a e)^T ]
+ * The curvature Z(q)(v,v) is the second time derivative of Phi along the
+ * flow with constant body velocities, and the geometric stiffness is
+ * d/dq (B^T lambda) along the group; the formulas are at each routine.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lignum/lignum_joints.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "groups/lgn_group_impl.h"
+#include "lgn_impl.h"
+
+typedef enum { PRIM_POINT = 0, PRIM_PERP = 1 } PrimKind;
+
+typedef struct {
+  PrimKind kind;
+  int a, b;             /* bodies, or LGN_GROUND                          */
+  sunrealtype u[3];     /* POINT: s_a;  PERP: e (body a)                   */
+  sunrealtype w[3];     /* POINT: s_b;  PERP: c (body b)                   */
+  sunindextype row;     /* first row in Phi                                */
+} Primitive;
+
+struct LGNJointsRec {
+  LGNMem mem;                 /* for error messages (may be NULL)          */
+  LGNGroup G;
+  int nb;                     /* bodies                                    */
+  sunindextype *qoff, *voff;  /* offsets of each body                      */
+  sunbooleantype *se3;        /* body on SE(3) (else R^3 x SO(3))          */
+  Primitive *prim;
+  int nprim, cap;
+  sunindextype m;
+  /* triplets of B in row order (columns sorted within a row) */
+  sunindextype *trow, *tcol, tcap;
+  sunrealtype *tval;
+  sunindextype *colcount;     /* nv + 1 scratch for CSC output             */
+  /* geometric stiffness: per body, the sorted list of coupled bodies */
+  int *kptr, *kbody;          /* nb + 1, kptr[nb]                          */
+  sunrealtype *kblk;          /* 36 per (body, coupled body), column-major */
+};
+
+#define JERR(J, code, ...)                                                  \
+  do {                                                                      \
+    if ((J)->mem != NULL) LGN_ERROR((J)->mem, (code), __VA_ARGS__);         \
+  } while (0)
+
+/* ---------------------------------------------------------------------------
+ * Small 3-vector kernels (R row-major, as LGNQuaternionToRotation writes it)
+ * ------------------------------------------------------------------------ */
+
+static void Cross(const sunrealtype *x, const sunrealtype *y, sunrealtype *z)
+{
+  z[0] = x[1] * y[2] - x[2] * y[1];
+  z[1] = x[2] * y[0] - x[0] * y[2];
+  z[2] = x[0] * y[1] - x[1] * y[0];
+}
+
+static void RotApply(const sunrealtype *R, const sunrealtype *x, sunrealtype *y)
+{
+  int i;
+  for (i = 0; i < 3; i++) y[i] = R[3 * i] * x[0] + R[3 * i + 1] * x[1] + R[3 * i + 2] * x[2];
+}
+
+static void RotApplyT(const sunrealtype *R, const sunrealtype *x, sunrealtype *y)
+{
+  int i;
+  for (i = 0; i < 3; i++) y[i] = R[i] * x[0] + R[3 + i] * x[1] + R[6 + i] * x[2];
+}
+
+static sunrealtype Dot(const sunrealtype *x, const sunrealtype *y)
+{
+  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+
+/* x~ as a column-major 3x3 (X[i + 3 j]). */
+static void Skew(const sunrealtype *x, sunrealtype *X)
+{
+  X[0] = 0;     X[3] = -x[2]; X[6] = x[1];
+  X[1] = x[2];  X[4] = 0;     X[7] = -x[0];
+  X[2] = -x[1]; X[5] = x[0];  X[8] = 0;
+}
+
+/* C = A B for column-major 3x3. */
+static void Mul3(const sunrealtype *A, const sunrealtype *B, sunrealtype *C)
+{
+  int i, j;
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++)
+      C[i + 3 * j] = A[i] * B[3 * j] + A[i + 3] * B[3 * j + 1] + A[i + 6] * B[3 * j + 2];
+}
+
+/* Position and rotation of a body (identity for the ground). */
+typedef struct {
+  sunrealtype x[3], R[9];
+  const sunrealtype *v;   /* body velocity (u or U, Omega), NULL: none */
+  sunbooleantype se3, ground;
+  sunindextype voff;
+} Pose;
+
+static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
+                    const sunrealtype *v, Pose *P)
+{
+  int i;
+  P->ground = (k == LGN_GROUND);
+  if (P->ground) {
+    for (i = 0; i < 9; i++) P->R[i] = (i % 4 == 0) ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
+    P->x[0] = P->x[1] = P->x[2] = SUN_RCONST(0.0);
+    P->v    = NULL;
+    P->se3  = SUNFALSE;
+    P->voff = -1;
+    return;
+  }
+  for (i = 0; i < 3; i++) P->x[i] = q[J->qoff[k] + i];
+  LGNQuaternionToRotation(q + J->qoff[k] + 3, P->R);
+  P->v    = v != NULL ? v + J->voff[k] : NULL;
+  P->se3  = J->se3[k];
+  P->voff = J->voff[k];
+}
+
+/* ---------------------------------------------------------------------------
+ * Construction
+ * ------------------------------------------------------------------------ */
+
+static int CountBodies(LGNGroup G, sunindextype qo, sunindextype vo,
+                       struct LGNJointsRec *J, int k)
+{
+  int nf, i;
+  const LGNGroup *f;
+  const sunindextype *qoff, *voff;
+  if (lgnGroupProductFactors(G, &nf, &f, &qoff, &voff) == 0) {
+    for (i = 0; i < nf && k >= 0; i++) k = CountBodies(f[i], qo + qoff[i], vo + voff[i], J, k);
+    return k;
+  }
+  if (G->kind != LGN_GROUP_R3XSO3 && G->kind != LGN_GROUP_SE3) return -1;
+  if (J->qoff != NULL) {
+    J->qoff[k] = qo;
+    J->voff[k] = vo;
+    J->se3[k]  = G->kind == LGN_GROUP_SE3;
+  }
+  return k + 1;
+}
+
+LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
+{
+  struct LGNJointsRec *J;
+  LGNMem mem = (LGNMem)lgn_mem;
+  int nb;
+  if (G == NULL) {
+    if (mem != NULL) LGN_ERROR(mem, LGN_ILL_INPUT, "G = NULL illegal.");
+    return NULL;
+  }
+  J = (struct LGNJointsRec *)calloc(1, sizeof *J);
+  if (J == NULL) return NULL;
+  J->mem = mem;
+  J->G   = G;
+  nb     = CountBodies(G, 0, 0, J, 0);
+  if (nb < 1) {
+    JERR(J, LGN_ILL_INPUT,
+         "The joint helpers need bodies on R^3 x SO(3) or SE(3) (or a "
+         "product of them).");
+    free(J);
+    return NULL;
+  }
+  J->nb   = nb;
+  J->qoff = (sunindextype *)malloc((size_t)nb * sizeof *J->qoff);
+  J->voff = (sunindextype *)malloc((size_t)nb * sizeof *J->voff);
+  J->se3  = (sunbooleantype *)malloc((size_t)nb * sizeof *J->se3);
+  J->colcount = (sunindextype *)malloc((size_t)(G->nv + 1) * sizeof *J->colcount);
+  if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->colcount == NULL) {
+    LGNJoints_Destroy(&J);
+    return NULL;
+  }
+  CountBodies(G, 0, 0, J, 0);
+  return J;
+}
+
+static void FreeStiffnessStructure(struct LGNJointsRec *J)
+{
+  free(J->kptr);
+  free(J->kbody);
+  free(J->kblk);
+  J->kptr = J->kbody = NULL;
+  J->kblk = NULL;
+}
+
+void LGNJoints_Destroy(LGNJoints *Jp)
+{
+  struct LGNJointsRec *J;
+  if (Jp == NULL || *Jp == NULL) return;
+  J = *Jp;
+  FreeStiffnessStructure(J);
+  free(J->qoff);
+  free(J->voff);
+  free(J->se3);
+  free(J->prim);
+  free(J->trow);
+  free(J->tcol);
+  free(J->tval);
+  free(J->colcount);
+  free(J);
+  *Jp = NULL;
+}
+
+int LGNJoints_NumBodies(LGNJoints J) { return J != NULL ? J->nb : 0; }
+
+sunindextype LGNJoints_NumConstraints(LGNJoints J) { return J != NULL ? J->m : 0; }
+
+static int CheckBodies(struct LGNJointsRec *J, int a, int b, const void *p1,
+                       const void *p2, const char *func)
+{
+  if (a < LGN_GROUND || a >= J->nb || b < LGN_GROUND || b >= J->nb || a == b) {
+    JERR(J, LGN_ILL_INPUT,
+         "%s: bodies a = %d, b = %d illegal (0..%d or LGN_GROUND, a != b).",
+         func, a, b, J->nb - 1);
+    return LGN_ILL_INPUT;
+  }
+  if (p1 == NULL || p2 == NULL) {
+    JERR(J, LGN_ILL_INPUT, "%s: a point or axis is NULL.", func);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
+                        const sunrealtype *u, int b, const sunrealtype *w)
+{
+  Primitive *p;
+  if (J->nprim == J->cap) {
+    int cap = J->cap > 0 ? 2 * J->cap : 16;
+    Primitive *np = (Primitive *)realloc(J->prim, (size_t)cap * sizeof *np);
+    if (np == NULL) {
+      JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    J->prim = np;
+    J->cap  = cap;
+  }
+  p       = J->prim + J->nprim++;
+  p->kind = kind;
+  p->a    = a;
+  p->b    = b;
+  memcpy(p->u, u, sizeof p->u);
+  memcpy(p->w, w, sizeof p->w);
+  p->row = J->m;
+  J->m  += kind == PRIM_POINT ? 3 : 1;
+  FreeStiffnessStructure(J); /* the coupling changed */
+  return LGN_SUCCESS;
+}
+
+int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
+                           const sunrealtype sb[3])
+{
+  int flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckBodies(J, a, b, sa, sb, __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  return AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
+}
+
+static int Normalised(struct LGNJointsRec *J, const sunrealtype *x,
+                      sunrealtype *y, const char *func)
+{
+  sunrealtype n = sqrt(Dot(x, x));
+  if (!(n > SUN_RCONST(0.0)) || !isfinite(n)) {
+    JERR(J, LGN_ILL_INPUT, "%s: an axis is zero or not finite.", func);
+    return LGN_ILL_INPUT;
+  }
+  y[0] = x[0] / n;
+  y[1] = x[1] / n;
+  y[2] = x[2] / n;
+  return LGN_SUCCESS;
+}
+
+int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
+                          const sunrealtype axis_a[3], int b,
+                          const sunrealtype sb[3], const sunrealtype axis_b[3])
+{
+  sunrealtype n[3], c[3], e1[3], e2[3], t[3];
+  int flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckBodies(J, a, b, sa, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = CheckBodies(J, a, b, axis_a, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  /* e1, e2: an orthonormal pair perpendicular to axis_a */
+  t[0] = t[1] = t[2] = SUN_RCONST(0.0);
+  t[fabs(n[0]) < SUN_RCONST(0.6) ? 0 : (fabs(n[1]) < SUN_RCONST(0.6) ? 1 : 2)] = SUN_RCONST(1.0);
+  Cross(n, t, e1);
+  Normalised(J, e1, e1, __func__);
+  Cross(n, e1, e2);
+  flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c);
+  return flag;
+}
+
+int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
+                           const sunrealtype axis_a[3], int b,
+                           const sunrealtype sb[3], const sunrealtype axis_b[3])
+{
+  sunrealtype e[3], c[3];
+  int flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckBodies(J, a, b, sa, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = CheckBodies(J, a, b, axis_a, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, e, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e, b, c);
+  return flag;
+}
+
+/* ---------------------------------------------------------------------------
+ * Evaluation
+ * ------------------------------------------------------------------------ */
+
+static int CheckVec(struct LGNJointsRec *J, N_Vector x, sunindextype len,
+                    const char *name, const char *func)
+{
+  if (x == NULL || N_VGetArrayPointer(x) == NULL || N_VGetLength(x) != len) {
+    JERR(J, LGN_ILL_INPUT, "%s: %s is NULL or does not have length %lld.",
+         func, name, (long long)len);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
+{
+  const sunrealtype *qd;
+  sunrealtype *f, ya[3], yb[3];
+  Pose A, B;
+  int k, i, flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVec(J, phi, J->m, "phi", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  qd = N_VGetArrayPointer(q);
+  f  = N_VGetArrayPointer(phi);
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    GetPose(J, p->a, qd, NULL, &A);
+    GetPose(J, p->b, qd, NULL, &B);
+    RotApply(A.R, p->u, ya);
+    RotApply(B.R, p->w, yb);
+    if (p->kind == PRIM_POINT)
+      for (i = 0; i < 3; i++) f[p->row + i] = A.x[i] + ya[i] - B.x[i] - yb[i];
+    else
+      f[p->row] = Dot(ya, yb);
+  }
+  return LGN_SUCCESS;
+}
+
+/* Append one triplet. */
+#define TRIP(r, c, v)          \
+  do {                         \
+    J->trow[nt] = (r);         \
+    J->tcol[nt] = (c);         \
+    J->tval[nt] = (v);         \
+    nt++;                      \
+  } while (0)
+
+/* The entries of B in row order, columns ascending within each row. */
+static sunindextype Triplets(struct LGNJointsRec *J, const sunrealtype *qd)
+{
+  sunindextype nt = 0;
+  int k, i, j, side;
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    Pose P[2];
+    int order[2];
+    GetPose(J, p->a, qd, NULL, &P[0]);
+    GetPose(J, p->b, qd, NULL, &P[1]);
+    /* the body with the smaller column offset first */
+    order[0] = (P[1].voff >= 0 && (P[0].voff < 0 || P[1].voff < P[0].voff)) ? 1 : 0;
+    order[1] = 1 - order[0];
+    if (p->kind == PRIM_POINT) {
+      /* rows: [P_a, -R_a s_a~] and [-P_b, R_b s_b~] */
+      sunrealtype S[2][9], RS[2][9], s[9], R[9];
+      for (side = 0; side < 2; side++) {
+        const sunrealtype sign = side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0);
+        for (i = 0; i < 3; i++)
+          for (j = 0; j < 3; j++) R[i + 3 * j] = P[side].R[3 * i + j];
+        Skew(side == 0 ? p->u : p->w, s);
+        Mul3(R, s, RS[side]);
+        for (i = 0; i < 9; i++) {
+          RS[side][i] *= -sign;
+          S[side][i] = sign * (P[side].se3 ? R[i] : (i % 4 == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0)));
+        }
+      }
+      for (i = 0; i < 3; i++)
+        for (side = 0; side < 2; side++) {
+          const int o = order[side];
+          if (P[o].ground) continue;
+          for (j = 0; j < 3; j++) TRIP(p->row + i, P[o].voff + j, S[o][i + 3 * j]);
+          for (j = 0; j < 3; j++) TRIP(p->row + i, P[o].voff + 3 + j, RS[o][i + 3 * j]);
+        }
+    } else {
+      /* (e x R_a^T R_b c)^T and (c x R_b^T R_a e)^T on the rotations */
+      sunrealtype g[2][3], t1[3], t2[3];
+      RotApply(P[1].R, p->w, t1);
+      RotApplyT(P[0].R, t1, t2);
+      Cross(p->u, t2, g[0]);
+      RotApply(P[0].R, p->u, t1);
+      RotApplyT(P[1].R, t1, t2);
+      Cross(p->w, t2, g[1]);
+      for (side = 0; side < 2; side++) {
+        const int o = order[side];
+        if (P[o].ground) continue;
+        for (j = 0; j < 3; j++) TRIP(p->row, P[o].voff + 3 + j, g[o][j]);
+      }
+    }
+  }
+  return nt;
+}
+#undef TRIP
+
+sunindextype LGNJoints_JacobianNnz(LGNJoints J)
+{
+  sunindextype nnz = 0;
+  int k;
+  if (J == NULL) return 0;
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    const int nbod = (p->a != LGN_GROUND) + (p->b != LGN_GROUND);
+    nnz += p->kind == PRIM_POINT ? 18 * nbod : 3 * nbod;
+  }
+  return nnz;
+}
+
+int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
+{
+  const sunindextype nv = J != NULL ? J->G->nv : 0;
+  sunindextype nnz, nt, k;
+  int flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (B == NULL ||
+      (SUNMatGetID(B) == SUNMATRIX_DENSE &&
+       (SM_ROWS_D(B) != J->m || SM_COLUMNS_D(B) != nv)) ||
+      (SUNMatGetID(B) == SUNMATRIX_SPARSE &&
+       (SUNSparseMatrix_Rows(B) != J->m || SUNSparseMatrix_Columns(B) != nv)) ||
+      (SUNMatGetID(B) != SUNMATRIX_DENSE && SUNMatGetID(B) != SUNMATRIX_SPARSE)) {
+    JERR(J, LGN_ILL_INPUT, "%s: B must be a dense or sparse %lld x %lld matrix.",
+         __func__, (long long)J->m, (long long)nv);
+    return LGN_ILL_INPUT;
+  }
+  nnz = LGNJoints_JacobianNnz(J);
+  if (nnz > J->tcap) {
+    sunindextype *r = (sunindextype *)realloc(J->trow, (size_t)nnz * sizeof *r);
+    sunindextype *c = r != NULL ? (sunindextype *)realloc(J->tcol, (size_t)nnz * sizeof *c) : NULL;
+    sunrealtype *v  = c != NULL ? (sunrealtype *)realloc(J->tval, (size_t)nnz * sizeof *v) : NULL;
+    if (r != NULL) J->trow = r;
+    if (c != NULL) J->tcol = c;
+    if (v != NULL) J->tval = v;
+    if (v == NULL) {
+      JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    J->tcap = nnz;
+  }
+  nt = Triplets(J, N_VGetArrayPointer(q));
+
+  if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
+    for (k = 0; k < nt; k++) SM_ELEMENT_D(B, J->trow[k], J->tcol[k]) = J->tval[k];
+    return LGN_SUCCESS;
+  }
+  if (SUNSparseMatrix_NNZ(B) < nt && SUNSparseMatrix_Reallocate(B, nt) != 0) {
+    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  {
+    sunindextype *ptr = SUNSparseMatrix_IndexPointers(B);
+    sunindextype *ind = SUNSparseMatrix_IndexValues(B);
+    sunrealtype *val  = SUNSparseMatrix_Data(B);
+    if (SUNSparseMatrix_SparseType(B) == CSR_MAT) {
+      /* triplets are in row order already */
+      memset(ptr, 0, (size_t)(J->m + 1) * sizeof *ptr);
+      for (k = 0; k < nt; k++) {
+        ptr[J->trow[k] + 1]++;
+        ind[k] = J->tcol[k];
+        val[k] = J->tval[k];
+      }
+      for (k = 0; k < J->m; k++) ptr[k + 1] += ptr[k];
+    } else {
+      /* stable counting sort by column keeps rows ascending */
+      sunindextype *next = J->colcount;
+      memset(ptr, 0, (size_t)(nv + 1) * sizeof *ptr);
+      for (k = 0; k < nt; k++) ptr[J->tcol[k] + 1]++;
+      for (k = 0; k < nv; k++) ptr[k + 1] += ptr[k];
+      memcpy(next, ptr, (size_t)nv * sizeof *next);
+      for (k = 0; k < nt; k++) {
+        sunindextype d = next[J->tcol[k]]++;
+        ind[d] = J->trow[k];
+        val[d] = J->tval[k];
+      }
+    }
+  }
+  return LGN_SUCCESS;
+}
+
+/* Second time derivative of R y along constant body velocities:
+ * d/dt (R y) = R (Omega x y), d2/dt2 = R (Omega x (Omega x y)). */
+static void Accel(const Pose *P, const sunrealtype *y, sunrealtype *out)
+{
+  sunrealtype t1[3], t2[3];
+  if (P->ground) {
+    out[0] = out[1] = out[2] = SUN_RCONST(0.0);
+    return;
+  }
+  Cross(P->v + 3, y, t1);
+  Cross(P->v + 3, t1, t2);
+  RotApply(P->R, t2, out);
+}
+
+int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
+{
+  const sunrealtype *qd, *vd;
+  sunrealtype *zd, aa[3], ab[3], t1[3], t2[3], ra[3], rb[3], da[3], db[3];
+  Pose A, B;
+  int k, i, flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVec(J, v, J->G->nv, "v", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVec(J, z, J->m, "z", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  qd = N_VGetArrayPointer(q);
+  vd = N_VGetArrayPointer(v);
+  zd = N_VGetArrayPointer(z);
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    GetPose(J, p->a, qd, vd, &A);
+    GetPose(J, p->b, qd, vd, &B);
+    Accel(&A, p->u, aa);
+    Accel(&B, p->w, ab);
+    if (p->kind == PRIM_POINT) {
+      /* SE(3): xdot = R U, so x'' = R (Omega x U) at constant (U, Omega) */
+      if (A.se3) {
+        Cross(A.v + 3, A.v, t1);
+        RotApply(A.R, t1, t2);
+        for (i = 0; i < 3; i++) aa[i] += t2[i];
+      }
+      if (B.se3) {
+        Cross(B.v + 3, B.v, t1);
+        RotApply(B.R, t1, t2);
+        for (i = 0; i < 3; i++) ab[i] += t2[i];
+      }
+      for (i = 0; i < 3; i++) zd[p->row + i] = aa[i] - ab[i];
+    } else {
+      /* (ra . rb)'' = ra'' . rb + 2 ra' . rb' + ra . rb'' */
+      RotApply(A.R, p->u, ra);
+      RotApply(B.R, p->w, rb);
+      da[0] = da[1] = da[2] = db[0] = db[1] = db[2] = SUN_RCONST(0.0);
+      if (!A.ground) {
+        Cross(A.v + 3, p->u, t1);
+        RotApply(A.R, t1, da);
+      }
+      if (!B.ground) {
+        Cross(B.v + 3, p->w, t1);
+        RotApply(B.R, t1, db);
+      }
+      zd[p->row] = Dot(aa, rb) + SUN_RCONST(2.0) * Dot(da, db) + Dot(ra, ab);
+    }
+  }
+  return LGN_SUCCESS;
+}
+
+/* ---------------------------------------------------------------------------
+ * Geometric stiffness d/dq (B^T lambda)
+ * ------------------------------------------------------------------------ */
+
+static int CompareInt(const void *x, const void *y)
+{
+  return *(const int *)x - *(const int *)y;
+}
+
+/* Per body, the sorted bodies it is coupled with (itself included). */
+static int BuildStiffnessStructure(struct LGNJointsRec *J)
+{
+  int k, b, n, *cnt = (int *)calloc((size_t)J->nb + 1, sizeof(int));
+  if (cnt == NULL) return LGN_MEM_FAIL;
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    if (p->kind == PRIM_PERP && p->a != LGN_GROUND && p->b != LGN_GROUND) {
+      cnt[p->a]++;
+      cnt[p->b]++;
+    }
+  }
+  J->kptr = (int *)malloc((size_t)(J->nb + 1) * sizeof(int));
+  if (J->kptr == NULL) {
+    free(cnt);
+    return LGN_MEM_FAIL;
+  }
+  J->kptr[0] = 0;
+  for (b = 0; b < J->nb; b++) J->kptr[b + 1] = J->kptr[b] + cnt[b] + 1;
+  J->kbody = (int *)malloc((size_t)J->kptr[J->nb] * sizeof(int));
+  J->kblk  = (sunrealtype *)malloc((size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
+  if (J->kbody == NULL || J->kblk == NULL) {
+    free(cnt);
+    FreeStiffnessStructure(J);
+    return LGN_MEM_FAIL;
+  }
+  for (b = 0; b < J->nb; b++) {
+    J->kbody[J->kptr[b]] = b;
+    cnt[b] = 1;
+  }
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    if (p->kind == PRIM_PERP && p->a != LGN_GROUND && p->b != LGN_GROUND) {
+      J->kbody[J->kptr[p->a] + cnt[p->a]++] = p->b;
+      J->kbody[J->kptr[p->b] + cnt[p->b]++] = p->a;
+    }
+  }
+  /* sort and drop duplicates (a revolute couples the same pair twice) */
+  for (b = 0; b < J->nb; b++) {
+    int *list = J->kbody + J->kptr[b], len = J->kptr[b + 1] - J->kptr[b], u = 0, i;
+    qsort(list, (size_t)len, sizeof(int), CompareInt);
+    for (i = 0; i < len; i++)
+      if (u == 0 || list[i] != list[u - 1]) list[u++] = list[i];
+    for (i = u; i < len; i++) list[i] = -2; /* unused slots */
+  }
+  free(cnt);
+  (void)n;
+  return LGN_SUCCESS;
+}
+
+/* The 6x6 block (row body r, column body c), column-major. */
+static sunrealtype *Block(struct LGNJointsRec *J, int r, int c)
+{
+  int i;
+  for (i = J->kptr[c]; i < J->kptr[c + 1]; i++)
+    if (J->kbody[i] == r) return J->kblk + 36 * (size_t)i;
+  return NULL;
+}
+
+/* Add the 3x3 X (column-major) times f at (row offset ro, col offset co) of
+ * the 6x6 block. */
+static void AddSub(sunrealtype *blk, int ro, int co, const sunrealtype *X,
+                   sunrealtype f)
+{
+  int i, j;
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++) blk[(ro + i) + 6 * (co + j)] += f * X[i + 3 * j];
+}
+
+/* Geometric stiffness of one primitive into the blocks. With mu = R^T l:
+ *   POINT, body a: K_{th,th} += s_a~ mu_a~ (SE(3): K_{x,th} += mu_a~), body
+ *          b with the opposite sign;
+ *   PERP:  K_{a,a} += l e~ w~ (w = R_a^T R_b c), K_{a,b} -= l e~ R_ab c~,
+ *          K_{b,b} += l c~ y~ (y = R_b^T R_a e), K_{b,a} -= l c~ R_ba e~. */
+static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
+                               const sunrealtype *qd, const sunrealtype *l)
+{
+  Pose P[2];
+  sunrealtype X[9], Y[9], Z[9], mu[3], t[3], Rab[9];
+  int side, i, j;
+  GetPose(J, p->a, qd, NULL, &P[0]);
+  GetPose(J, p->b, qd, NULL, &P[1]);
+  if (p->kind == PRIM_POINT) {
+    for (side = 0; side < 2; side++) {
+      const int body = side == 0 ? p->a : p->b;
+      const sunrealtype sign = side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0);
+      sunrealtype *blk;
+      if (body == LGN_GROUND) continue;
+      blk = Block(J, body, body);
+      RotApplyT(P[side].R, l, mu);
+      Skew(side == 0 ? p->u : p->w, X);
+      Skew(mu, Y);
+      Mul3(X, Y, Z);
+      AddSub(blk, 3, 3, Z, sign);
+      if (P[side].se3) AddSub(blk, 0, 3, Y, sign);
+    }
+    return;
+  }
+  for (side = 0; side < 2; side++) {
+    const int me = side == 0 ? p->a : p->b, other = side == 0 ? p->b : p->a;
+    const sunrealtype *e = side == 0 ? p->u : p->w, *c = side == 0 ? p->w : p->u;
+    const Pose *Pm = &P[side], *Po = &P[1 - side];
+    if (me == LGN_GROUND) continue;
+    /* w = R_me^T R_other c */
+    RotApply(Po->R, c, t);
+    RotApplyT(Pm->R, t, mu);
+    Skew(e, X);
+    Skew(mu, Y);
+    Mul3(X, Y, Z);
+    AddSub(Block(J, me, me), 3, 3, Z, l[0]);
+    if (other == LGN_GROUND) continue;
+    /* R_me^T R_other (column-major) times c~ */
+    for (j = 0; j < 3; j++)
+      for (i = 0; i < 3; i++)
+        Rab[i + 3 * j] = Pm->R[i] * Po->R[j] + Pm->R[3 + i] * Po->R[3 + j] +
+                         Pm->R[6 + i] * Po->R[6 + j];
+    Skew(c, Y);
+    Mul3(Rab, Y, Z);
+    Mul3(X, Z, Y);
+    AddSub(Block(J, me, other), 3, 3, Y, -l[0]);
+  }
+}
+
+sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
+{
+  if (J == NULL) return 0;
+  if (J->kptr == NULL && BuildStiffnessStructure(J) != LGN_SUCCESS) return 0;
+  {
+    sunindextype n = 0;
+    int i;
+    for (i = 0; i < J->kptr[J->nb]; i++) n += J->kbody[i] >= 0 ? 36 : 0;
+    return n;
+  }
+}
+
+int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
+{
+  const sunrealtype *qd, *ld;
+  sunindextype nv, nnz, pos = 0;
+  int k, b, i, r, c;
+  if (J == NULL) return LGN_ILL_INPUT;
+  nv = J->G->nv;
+  if (CheckVec(J, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
+      (J->m > 0 && CheckVec(J, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
+    return LGN_ILL_INPUT;
+  if (K == NULL ||
+      (SUNMatGetID(K) == SUNMATRIX_DENSE && (SM_ROWS_D(K) != nv || SM_COLUMNS_D(K) != nv)) ||
+      (SUNMatGetID(K) == SUNMATRIX_SPARSE &&
+       (SUNSparseMatrix_Rows(K) != nv || SUNSparseMatrix_Columns(K) != nv)) ||
+      (SUNMatGetID(K) != SUNMATRIX_DENSE && SUNMatGetID(K) != SUNMATRIX_SPARSE)) {
+    JERR(J, LGN_ILL_INPUT, "%s: K must be a dense or sparse %lld x %lld matrix.",
+         __func__, (long long)nv, (long long)nv);
+    return LGN_ILL_INPUT;
+  }
+  if (J->kptr == NULL && BuildStiffnessStructure(J) != LGN_SUCCESS) {
+    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  if (J->m == 0) return LGN_SUCCESS;
+  qd = N_VGetArrayPointer(q);
+  ld = N_VGetArrayPointer(lambda);
+  memset(J->kblk, 0, (size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
+  for (k = 0; k < J->nprim; k++) PrimitiveStiffness(J, J->prim + k, qd, ld + J->prim[k].row);
+
+  if (SUNMatGetID(K) == SUNMATRIX_DENSE) {
+    for (b = 0; b < J->nb; b++)
+      for (i = J->kptr[b]; i < J->kptr[b + 1] && J->kbody[i] >= 0; i++)
+        for (c = 0; c < 6; c++)
+          for (r = 0; r < 6; r++)
+            SM_ELEMENT_D(K, J->voff[J->kbody[i]] + r, J->voff[b] + c) +=
+                J->kblk[36 * (size_t)i + r + 6 * c];
+    return LGN_SUCCESS;
+  }
+  nnz = LGNJoints_StiffnessNnz(J);
+  if (SUNSparseMatrix_NNZ(K) < nnz && SUNSparseMatrix_Reallocate(K, nnz) != 0) {
+    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  {
+    /* the block structure is symmetric: CSC columns of body b list the
+     * coupled bodies' rows; CSR rows of body b list their columns, with the
+     * transposed block values. Bodies are in offset order, so sorted. */
+    const sunbooleantype csc = SUNSparseMatrix_SparseType(K) == CSC_MAT;
+    sunindextype *ptr = SUNSparseMatrix_IndexPointers(K);
+    sunindextype *ind = SUNSparseMatrix_IndexValues(K);
+    sunrealtype *val  = SUNSparseMatrix_Data(K);
+    ptr[0] = 0;
+    for (b = 0; b < J->nb; b++)
+      for (c = 0; c < 6; c++) {
+        for (i = J->kptr[b]; i < J->kptr[b + 1] && J->kbody[i] >= 0; i++) {
+          const int o = J->kbody[i];
+          const sunrealtype *blk_bo = J->kblk + 36 * (size_t)i; /* (row o, col b) */
+          const sunrealtype *blk_ob = Block(J, b, o);           /* (row b, col o) */
+          for (r = 0; r < 6; r++) {
+            ind[pos] = J->voff[o] + r;
+            val[pos] = csc ? blk_bo[r + 6 * c] : blk_ob[c + 6 * r];
+            pos++;
+          }
+        }
+        ptr[J->voff[b] + c + 1] = pos;
+      }
+  }
+  return LGN_SUCCESS;
+}
