@@ -320,7 +320,7 @@ int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
 
 static void ResetCounters(LGNMem mem)
 {
-  mem->nst = mem->nni = mem->nncf = mem->nfails = 0;
+  mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;

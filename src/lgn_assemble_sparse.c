@@ -23,11 +23,11 @@
 #include <string.h>
 
 #include <sunmatrix/sunmatrix_sparse.h>
+
+#include "lgn_sparse.h" /* first: lignum_config.h says whether KLU is there */
 #if defined(LGN_HAVE_KLU)
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
-
-#include "lgn_sparse.h"
 
 static int CompareIndex(const void *a, const void *b)
 {
@@ -77,7 +77,7 @@ static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype c
   int ret;
   if (cK != SUN_RCONST(0.0)) {
     if (mem->stiffness != NULL) {
-      SUNMatZero(mem->Kmat);
+      lgnMatClear(mem->Kmat);
       ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
                            mem->Kmat, mem->user_data);
       if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
@@ -88,7 +88,7 @@ static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype c
   }
   if (cC != SUN_RCONST(0.0)) {
     if (mem->damping != NULL) {
-      SUNMatZero(mem->Cmat);
+      lgnMatClear(mem->Cmat);
       ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
       if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
     } else {

@@ -86,7 +86,7 @@ int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
   mem->ndq++;
-  SUNMatZero(mem->Bdq);
+  lgnMatClear(mem->Bdq);
   ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
   lgnMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);

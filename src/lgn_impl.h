@@ -155,6 +155,7 @@ typedef struct LGNMemRec {
   long int nst;      /* steps                                              */
   long int nni;      /* Newton iterations                                  */
   long int nncf;     /* Newton convergence failures                        */
+  long int nstall;   /* steps accepted with multipliers at roundoff level  */
   long int nfails;   /* failed step attempts                               */
   long int nre;      /* residual evaluations in Newton                     */
   long int ndq;      /* residual-type evaluations in difference quotients  */
@@ -215,6 +216,7 @@ void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                sunbooleantype add);
 void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                 sunbooleantype add);
+void lgnMatClear(SUNMatrix A);
 sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n);
 
 /* lgn_tangent.c */

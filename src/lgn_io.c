@@ -426,6 +426,7 @@ SCALAR_GETTER(LGNGetNumJacEvals, long int, njevals, mem->nje)
 SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
 SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
 SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
+SCALAR_GETTER(LGNGetNumNewtonStalls, long int, nstalls, mem->nstall)
 SCALAR_GETTER(LGNGetNumSparsityAnalyses, long int, nanalyses,
               mem->sp != NULL ? mem->sp->npattern : 0L)
 SCALAR_GETTER(LGNGetIterationMatrixNnz, long int, nnz, lgnIterationMatrixNnz(mem))
@@ -498,6 +499,7 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_r, "Newton iterations per step",
           mem->nst > 0 ? (double)mem->nni / (double)mem->nst : 0.0);
   fprintf(outfile, fmt_l, "Newton convergence fails", mem->nncf);
+  fprintf(outfile, fmt_l, "Newton multiplier stalls", mem->nstall);
   fprintf(outfile, fmt_l, "Step fails", mem->nfails);
   fprintf(outfile, fmt_l, "Residual evals", mem->nre);
   fprintf(outfile, fmt_l, "DQ evals", mem->ndq);

@@ -12,6 +12,7 @@
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <string.h>
 
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -97,19 +98,33 @@ void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
   Matvec(A, x, y, add, SUNTRUE);
 }
 
+/* Empty a model matrix before a callback fills it: a dense one is zeroed;
+ * a sparse one gets no entries (its index pointers zeroed), since the
+ * callback writes its whole structure; zeroing all of its capacity, as
+ * SUNMatZero does, would cost more than the evaluation. */
+void lgnMatClear(SUNMatrix A)
+{
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunindextype np = SUNSparseMatrix_NP(A);
+    memset(SUNSparseMatrix_IndexPointers(A), 0, (size_t)(np + 1) * sizeof(sunindextype));
+  } else {
+    SUNMatZero(A);
+  }
+}
+
 /* M(q), g(q, v, t) and, when m > 0, B(q) into the given storage. */
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B)
 {
   int ret;
-  SUNMatZero(M);
+  lgnMatClear(M);
   ret = mem->mass(t, q, M, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
   N_VConst(SUN_RCONST(0.0), g);
   ret = mem->force(t, q, v, g, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
   if (mem->m > 0) {
-    SUNMatZero(B);
+    lgnMatClear(B);
     ret = mem->constr_jac(t, q, B, mem->user_data);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
   }

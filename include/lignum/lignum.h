@@ -343,6 +343,10 @@ int LGNGetNumResEvals(void *lgn_mem, long int *nres);
 int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
 /** Number of iteration matrix evaluations (Jacobian builds). */
 int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
+/** Number of steps whose Newton iteration was accepted with the
+ *  configuration converged and the multiplier corrections stalled at
+ *  roundoff level (no longer contracting; see doc/user-guide.md). */
+int LGNGetNumNewtonStalls(void *lgn_mem, long int *nstalls);
 /** Number of patterns of the sparse iteration matrix built (each followed
  *  by a symbolic analysis in KLU); 0 for dense matrices. */
 int LGNGetNumSparsityAnalyses(void *lgn_mem, long int *nanalyses);

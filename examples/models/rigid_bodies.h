@@ -1,0 +1,86 @@
+/* -----------------------------------------------------------------------------
+ * Lignum examples: a system of rigid bodies joined by joints, under gravity.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Every body is a leaf R^3 x SO(3) (v = (u inertial, Omega body)) or SE(3)
+ * (v = (U, Omega) body-fixed) of a product group; M is constant and
+ * diagonal (mass, principal moments along the body axes), the forces are
+ * gravity and the gyroscopic terms, and the joints come from lignum_joints.h.
+ * The model gives every callback of Lignum, analytic (K_t, C_t, Z) or not,
+ * for dense and sparse (CSC/CSR) matrices, so the examples on top of it
+ * (chain.c, four_bar.c) only describe geometry.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LGN_EXAMPLES_RIGID_BODIES_H
+#define LGN_EXAMPLES_RIGID_BODIES_H
+
+#include <stdio.h>
+
+#include <lignum/lignum.h>
+#include <lignum/lignum_joints.h>
+
+typedef enum { RB_R3XSO3 = 0, RB_SE3 = 1 } RigidFormulation;
+typedef enum { RB_DENSE = 0, RB_KLU_CSC = 1, RB_KLU_CSR = 2 } RigidSolver;
+
+typedef struct {
+  int n;                    /* bodies                                       */
+  RigidFormulation formulation;
+  double *mass;             /* n                                            */
+  double *inertia;          /* 3 n principal moments (body axes)            */
+  double gravity[3];        /* acceleration of gravity                      */
+  LGNGroup body, G;         /* the leaf and the product                     */
+  LGNJoints joints;
+  N_Vector q0, v0;          /* initial state (filled by the example)        */
+} RigidSystem;
+
+/* A system of n bodies with unit masses and inertias, no joints yet. */
+RigidSystem *rigid_create(int n, RigidFormulation formulation, SUNContext ctx);
+void rigid_free(RigidSystem **sys);
+
+/* Set body k: solid cylinder of length L, mass m, radius r, axis = body z. */
+void rigid_set_cylinder(RigidSystem *sys, int k, double L, double m, double r);
+/* Place body k: centre of mass x and rotation matrix R (row-major). */
+void rigid_place(RigidSystem *sys, int k, const double x[3], const double R[9]);
+
+/* Total energy: kinetic + gravitational potential (zero at the origin). */
+double rigid_energy(const RigidSystem *sys, N_Vector q, N_Vector v);
+
+/* Run options and results shared by the multibody examples. */
+typedef struct {
+  RigidSolver solver;
+  int method;               /* 0: Newmark, 1: generalized-alpha             */
+  double rho_inf, beta, gamma;
+  int kinematics;           /* LGN_KINEMATICS_*                             */
+  int constraints;          /* LGN_CONSTR_INDEX3 / INDEX2                   */
+  int analytic;             /* 1: K_t, C_t, Z from the model; 0: DQ         */
+  double h, t_end;
+  double rtol, atol;        /* Newton tolerances (0: defaults)              */
+  int outputs;              /* energy samples over [0, t_end] (>= 1)        */
+  FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */
+} RigidRunOptions;
+
+typedef struct {
+  int flag;
+  double t;
+  double energy0, energy, max_drift; /* E(0), E(t_end), max |E - E(0)|      */
+  double max_phi;                    /* max |Phi| over the samples           */
+  long int nsteps, nni, nre, ndq, nje, nlsetups, nanalyses, ncolors;
+  long int nnz, lenrw, leniw;
+  double cpu_seconds;                /* process CPU time in LGNSolve only    */
+  double *q, *v;                     /* final state (nq, nv), malloc'ed      */
+} RigidRunResult;
+
+void rigid_default_run_options(RigidRunOptions *opt);
+/* Integrate sys from its initial state; returns the Lignum flag. */
+int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res);
+void rigid_result_free(RigidRunResult *res);
+
+/* Parse the options common to the examples (--solver, --method, ...);
+ * returns 1 if argv[*i] was one of them (consuming its value), 0 if not,
+ * -1 on a bad value. */
+int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
+                       RigidFormulation *formulation);
+void rigid_print_usage(FILE *out);
+const char *rigid_solver_name(RigidSolver s);
+
+#endif
