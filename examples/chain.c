@@ -9,8 +9,8 @@
  * work counters and the position of the free end. With --compare it also
  * solves the same problem with the other linear solvers (dense only for
  * N <= 200) and with difference-quotient tangents, and fails unless the
- * dense and sparse solutions agree to round-off and the DQ solution agrees
- * to the Newton tolerance. The exit status is 0 only if every run succeeded
+ * dense and sparse solutions agree to round-off (1e-10; 1e-8 at index 2) and
+ * the DQ solution agrees to the Newton tolerance. The exit status is 0 only if every run succeeded
  * and its constraint violation is at round-off level.
  * ---------------------------------------------------------------------------*/
 
@@ -107,7 +107,9 @@ int main(int argc, char **argv)
   if (opt.csv != NULL) fclose(opt.csv);
   opt.csv = NULL;
   Report(sys, &opt, &res);
-  if (flag != LGN_SUCCESS || res.max_phi > 1e-9 * n) {
+  /* index 2 lets Phi drift (only B v = 0 is enforced) */
+  if (flag != LGN_SUCCESS ||
+      res.max_phi > (opt.constraints == LGN_CONSTR_INDEX3 ? 1e-9 * n : 1e-4)) {
     printf("FAILED: flag %s, max |Phi| = %.3e\n", LGNGetReturnFlagName(flag), res.max_phi);
     status = 1;
   }
@@ -116,6 +118,11 @@ int main(int argc, char **argv)
     const long int nq = 7L * n;
     const RigidSolver solvers[3] = {RB_DENSE, RB_KLU_CSC, RB_KLU_CSR};
     const RigidSolver mine = opt.solver;
+    /* the same iteration matrix gives the same iterates to round-off; at
+     * index 2, D_q(B v) is a difference quotient by columns (dense) or by
+     * column colours (sparse), and the solutions agree to the Newton
+     * tolerance */
+    const double same_tol = opt.constraints == LGN_CONSTR_INDEX3 ? 1e-10 : 1e-8;
     for (s = 0; s < 3; s++) {
       if (solvers[s] == mine || (solvers[s] == RB_DENSE && n > 200)) continue;
       opt.solver = solvers[s];
@@ -123,9 +130,9 @@ int main(int argc, char **argv)
       Report(sys, &opt, &other);
       {
         double d = MaxDiff(res.q, other.q, nq);
-        printf("         |q - q(%s)|_max = %.3e (round-off: must be < 1e-10)\n",
-               rigid_solver_name(mine), d);
-        if (flag != LGN_SUCCESS || !(d < 1e-10)) status = 1;
+        printf("         |q - q(%s)|_max = %.3e (must be < %.0e)\n",
+               rigid_solver_name(mine), d, same_tol);
+        if (flag != LGN_SUCCESS || !(d < same_tol)) status = 1;
       }
       rigid_result_free(&other);
     }
