@@ -460,6 +460,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetIterationMatrixNnz(mem, &res->nnz);
   LGNGetWorkSpace(mem, &res->lenrw, &res->leniw);
   (void)dummy;
+  if (opt->solver != RB_DENSE) res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
   res->q = (double *)malloc((size_t)nq * sizeof(double));
   res->v = (double *)malloc((size_t)nv * sizeof(double));
   if (res->q != NULL) memcpy(res->q, N_VGetArrayPointer(q), (size_t)nq * sizeof(double));

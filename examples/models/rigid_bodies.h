@@ -66,6 +66,7 @@ typedef struct {
   double max_phi;                    /* max |Phi| over the samples           */
   long int nsteps, nni, nre, ndq, nje, nlsetups, nanalyses, ncolors;
   long int nnz, lenrw, leniw;
+  double klu_peak_bytes;             /* KLU's peak memory (0 for dense)     */
   double cpu_seconds;                /* process CPU time in LGNSolve only    */
   double *q, *v;                     /* final state (nq, nv), malloc'ed      */
 } RigidRunResult;
