@@ -41,6 +41,8 @@ typedef struct {
   FILE *csv;               /* time history (NULL: none)                 */
   double *com_history;     /* if not NULL: x at t_k = k h, 3*(nsteps+1)  */
   long int history_len;    /* capacity of com_history in points          */
+  int single_solve;        /* 1: one LGNSolve call to t_end (no per-step
+                              output: csv, com_history, max_phi unused)  */
 } HeavyTopOptions;
 
 /* Result of a run: state at the time reached, in the R^3 x SO(3) variables
@@ -58,6 +60,9 @@ typedef struct {
   long int history_points; /* points written to com_history             */
   double max_phi;          /* max over the output grid of |X - R^T x|_inf,
                               evaluated on the integrator's raw q        */
+  double cpu_seconds;      /* process CPU time (clock()) of the LGNSolve
+                              calls (with single_solve: the integration
+                              only; otherwise incl. per-step output)    */
 } HeavyTopResult;
 
 /* Default options: Lie group, generalized-alpha rho_inf = 0.9, index 3,

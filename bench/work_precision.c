@@ -1,0 +1,678 @@
+/* -----------------------------------------------------------------------------
+ * Lignum benchmarks: work-precision diagram of the heavy top (spec numerics.md
+ * §5) on t in [0, 1] s, Lignum against SUNDIALS IDA, in one process.
+ *
+ *   Lignum: every row of LIGNUM[] (heavy_top_run(), analytic Jacobians,
+ *           default Newton tolerances) at h = 4e-3 * 2^-k, k = 0..7.
+ *   IDA:    the stabilised index-2 (GGL) Euler-parameter DAE of
+ *           ida_heavy_top.c with every row of IDA[] (dense LU with IDA's
+ *           difference-quotient Jacobian, dense LU with the analytic
+ *           Jacobian, KLU with the analytic Jacobian) at rtol = 1e-3..1e-10.
+ *
+ * Error: |x(1) - x_ref(1)|_2, centre of mass at t = 1 s, against the
+ * independent ARKODE reference (test/reference, Fehlberg 7(8)).  CPU time:
+ * process CPU time (clock()) of the integration only, median of --reps runs
+ * (failed runs are run once and recorded, not repeated).
+ *
+ * Output: CSV (--csv FILE, default work_precision.csv) with exactly the
+ * header below; a table on stdout (per error level 1e-2 .. 1e-5 the CPU time
+ * of the best Lignum method and of the best IDA set-up reaching it,
+ * interpolated linearly in log(cpu) over log(err) on each method's curve,
+ * and the ratio IDA / Lignum); the PASS/MISS lines of the targets of issue 6;
+ * a PNG (--png FILE, default work_precision.png) drawn with gnuplot when it
+ * is on PATH.  Benchmarks report: the exit status never depends on timing.
+ *
+ * --quick: a few settings (one repetition) and correctness checks of the IDA
+ * model (consistent start, analytic Jacobian, convergence to the reference
+ * as rtol decreases) and of Lignum; exit status 1 if a check fails (CTest).
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <lignum/lignum.h>
+
+#include "ida_heavy_top.h"
+#include "lgn_reference.h"
+#include "models/heavy_top.h"
+
+#define CSV_HEADER "solver,method,setting,err_com,cpu_s,steps,newton_iters,res_evals,jac_evals"
+#define T_END 1.0
+
+/* ---------------------------------------------------------------------------
+ * Lignum configurations.  ** Add rows here to benchmark another option **
+ * (e.g. a Newton variant: add a field, set it in LignumOptions() below).
+ * Generalized-alpha rows use rho_inf = 0.9; Newmark rows beta = 1/4,
+ * gamma = 1/2.  Exact kinematics only on the Lie group (on R^7 it is the
+ * same method as the simplified one).
+ * ------------------------------------------------------------------------- */
+typedef struct {
+  const char *name;
+  int formulation; /* HeavyTopFormulation      */
+  int method;      /* HeavyTopMethod           */
+  int kinematics;  /* LGN_KINEMATICS_*         */
+  int constraints; /* LGN_CONSTR_INDEX3 / 2    */
+  int predictor;   /* LGN_PREDICTOR_*          */
+} LignumSpec;
+
+static const LignumSpec LIGNUM[] = {
+  {"LGNM idx3 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"LGNM idx2 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+  {"mod. LGNM idx3 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"mod. LGNM idx2 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+  {"LGGalpha idx3 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"LGGalpha idx2 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+  {"mod. LGGalpha idx3 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"mod. LGGalpha idx2 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+  {"Newmark idx3 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"Newmark idx2 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+  {"gen-alpha idx3 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO},
+  {"gen-alpha idx2 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO},
+};
+#define NLIGNUM ((int)(sizeof LIGNUM / sizeof LIGNUM[0]))
+
+/* IDA set-ups (the tolerances and options are in IdaOptions()). */
+typedef struct {
+  const char *name;
+  IdaHTLinSol linsol;
+} IdaSpec;
+
+static const IdaSpec IDA[] = {
+  {"IDA GGL dense-DQ",  IDAHT_DENSE_DQ},
+  {"IDA GGL dense-Jac", IDAHT_DENSE_JAC},
+  {"IDA GGL KLU",       IDAHT_KLU},
+};
+#define NIDA ((int)(sizeof IDA / sizeof IDA[0]))
+
+#define H0      4e-3 /* h_k = H0 * 2^-k, k = 0..NH-1 */
+#define NH      8
+#define RTOL0   1e-3 /* rtol_k = RTOL0 * 10^-k       */
+#define NRTOL   8
+
+static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5};
+#define NLEVELS 4
+
+/* One run (one method at one setting). */
+typedef struct {
+  int ida;          /* 0: Lignum, 1: IDA          */
+  int spec;         /* row of LIGNUM[] or IDA[]   */
+  double setting;   /* h or rtol                  */
+  int ok;
+  int flag;
+  double t;         /* time reached               */
+  double err, cpu;  /* cpu: median over the reps  */
+  long int steps, nni, nres, njac;
+} Run;
+
+static const char *MethodName(const Run *r)
+{
+  return r->ida ? IDA[r->spec].name : LIGNUM[r->spec].name;
+}
+
+static double WallSeconds(void)
+{
+  struct timespec ts;
+  timespec_get(&ts, TIME_UTC);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int CmpDouble(const void *a, const void *b)
+{
+  const double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+static double Median(double *v, int n)
+{
+  qsort(v, (size_t)n, sizeof *v, CmpDouble);
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static double ComErr(const double x[3], const LGNRefHeavyTop *ref)
+{
+  double d0 = x[0] - ref->x[0], d1 = x[1] - ref->x[1], d2 = x[2] - ref->x[2];
+  return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+}
+
+/* ---------------------------------------------------------------------------
+ * Running
+ * ------------------------------------------------------------------------- */
+
+static void LignumOptions(const LignumSpec *s, double h, HeavyTopOptions *opt)
+{
+  heavy_top_default_options(opt);
+  opt->formulation = (HeavyTopFormulation)s->formulation;
+  opt->method = (HeavyTopMethod)s->method;
+  opt->rho_inf = 0.9;
+  opt->beta = 0.25;
+  opt->gamma = 0.5;
+  opt->kinematics = s->kinematics;
+  opt->constraints = s->constraints;
+  opt->predictor = s->predictor;
+  opt->h = h;
+  opt->t_end = T_END;
+  opt->analytic_jacobians = 1;
+  opt->single_solve = 1; /* time the integration, not per-step output */
+}
+
+/* IDA set-up of the benchmark (see bench/README.md for the reasons):
+ * atol = rtol * (1 for x and p, 5 for xdot, 75 for pdot, 1e3 for lambda and
+ * mu), initial step 1e-6, everything else IDA's defaults (max order 5). */
+static void IdaOptions(const IdaSpec *s, double rtol, IdaHTOptions *opt)
+{
+  ida_heavy_top_default_options(opt);
+  opt->linsol = s->linsol;
+  opt->rtol = rtol;
+  opt->t_end = T_END;
+  opt->scale_x = 1.0;
+  opt->scale_p = 1.0;
+  opt->scale_xd = 5.0;
+  opt->scale_pd = 75.0;
+  opt->scale_lambda = 1e3;
+  opt->scale_mu = 1e3;
+  opt->h0 = 1e-6;
+}
+
+/* One measurement; returns 1 if the run reached T_END. */
+static int RunOnce(Run *r, const LGNRefHeavyTop *ref, double *cpu)
+{
+  if (!r->ida) {
+    HeavyTopOptions opt;
+    HeavyTopResult res;
+    LignumOptions(&LIGNUM[r->spec], r->setting, &opt);
+    heavy_top_run(&opt, &res);
+    r->flag = res.flag;
+    r->t = res.t;
+    r->err = ComErr(res.x, ref);
+    r->steps = res.nsteps;
+    r->nni = res.nniters;
+    r->nres = res.nres + res.ndq;
+    r->njac = res.njevals;
+    *cpu = res.cpu_seconds;
+  } else {
+    IdaHTOptions opt;
+    IdaHTResult res;
+    IdaOptions(&IDA[r->spec], r->setting, &opt);
+    ida_heavy_top_run(&opt, &res);
+    r->flag = res.flag;
+    r->t = res.t;
+    r->err = ComErr(res.x, ref);
+    r->steps = res.nsteps;
+    r->nni = res.nniters;
+    r->nres = res.nres;
+    r->njac = res.njevals;
+    *cpu = res.cpu_seconds;
+  }
+  return r->flag == 0 && fabs(r->t - T_END) < 1e-12 && isfinite(r->err);
+}
+
+static void Measure(Run *r, const LGNRefHeavyTop *ref, int reps)
+{
+  double cpu[64], c;
+  int i;
+  if (reps > 64) reps = 64;
+  r->ok = RunOnce(r, ref, &cpu[0]);
+  if (!r->ok) {
+    r->cpu = cpu[0];
+    return;
+  }
+  for (i = 1; i < reps; i++) {
+    Run again = *r;
+    if (!RunOnce(&again, ref, &c)) break; /* cannot happen: deterministic */
+    cpu[i] = c;
+  }
+  r->cpu = Median(cpu, i);
+}
+
+/* ---------------------------------------------------------------------------
+ * Evaluation
+ * ------------------------------------------------------------------------- */
+
+typedef struct {
+  double err, cpu;
+} Point;
+
+static int CmpPoint(const void *a, const void *b)
+{
+  const Point *x = a, *y = b;
+  return (x->err > y->err) - (x->err < y->err);
+}
+
+/* CPU time of one method (runs r[0..n-1]) at error `level`: sort its ok runs
+ * by error and interpolate log(cpu) linearly in log(err) between the two
+ * neighbours that bracket the level.  Returns 0 if the curve does not reach
+ * the level (no extrapolation). */
+static int CpuAtLevel(const Run *r, int n, double level, double *cpu)
+{
+  Point p[64];
+  int i, np = 0;
+  for (i = 0; i < n && np < 64; i++)
+    if (r[i].ok && r[i].err > 0.0 && r[i].cpu > 0.0) {
+      p[np].err = r[i].err;
+      p[np].cpu = r[i].cpu;
+      np++;
+    }
+  qsort(p, (size_t)np, sizeof *p, CmpPoint);
+  for (i = 0; i + 1 < np; i++)
+    if (p[i].err <= level && level <= p[i + 1].err) {
+      const double a = log(p[i].err), b = log(p[i + 1].err);
+      const double w = b > a ? (log(level) - a) / (b - a) : 0.0;
+      *cpu = exp((1.0 - w) * log(p[i].cpu) + w * log(p[i + 1].cpu));
+      return 1;
+    }
+  if (np == 1 && p[0].err == level) {
+    *cpu = p[0].cpu;
+    return 1;
+  }
+  return 0;
+}
+
+/* Best (smallest CPU) method of one solver at a level; returns the index of
+ * the method's first run in runs[] via *first, or 0 if none reaches it. */
+typedef struct {
+  int first, n; /* runs[first .. first + n - 1] */
+  int ida, spec;
+} Curve;
+
+static int Best(const Curve *cv, int ncv, const Run *runs, int ida, double level,
+                double *cpu, int *which)
+{
+  int c, found = 0;
+  for (c = 0; c < ncv; c++) {
+    double t;
+    if (cv[c].ida != ida) continue;
+    if (CpuAtLevel(&runs[cv[c].first], cv[c].n, level, &t) && (!found || t < *cpu)) {
+      *cpu = t;
+      *which = c;
+      found = 1;
+    }
+  }
+  return found;
+}
+
+static int WriteCsv(const char *path, const Run *runs, int nruns)
+{
+  FILE *fp = fopen(path, "w");
+  int i;
+  if (fp == NULL) {
+    perror(path);
+    return -1;
+  }
+  fprintf(fp, "%s\n", CSV_HEADER);
+  for (i = 0; i < nruns; i++) {
+    const Run *r = &runs[i];
+    fprintf(fp, "%s,%s,%g,", r->ida ? "ida" : "lignum", MethodName(r), r->setting);
+    if (r->ok) fprintf(fp, "%.6e", r->err);
+    fprintf(fp, ",%.6e,%ld,%ld,%ld,%ld\n", r->cpu, r->steps, r->nni, r->nres, r->njac);
+  }
+  if (fclose(fp) != 0) {
+    perror(path);
+    return -1;
+  }
+  return 0;
+}
+
+static void PrintRuns(const Curve *cv, int ncv, const Run *runs)
+{
+  int c, k;
+  printf("\n%-24s %9s  %10s  %10s  %7s  %6s  %7s  %6s\n", "method", "setting", "err_com",
+         "cpu [ms]", "steps", "nni/st", "res", "jac");
+  for (c = 0; c < ncv; c++)
+    for (k = 0; k < cv[c].n; k++) {
+      const Run *r = &runs[cv[c].first + k];
+      char e[32];
+      if (r->ok) snprintf(e, sizeof e, "%.3e", r->err);
+      else snprintf(e, sizeof e, "F@%.3g", r->t);
+      printf("%-24s %9.3g  %10s  %10.3f  %7ld  %6.2f  %7ld  %6ld%s\n", MethodName(r),
+             r->setting, e, 1e3 * r->cpu, r->steps,
+             r->steps > 0 ? (double)r->nni / (double)r->steps : 0.0, r->nres, r->njac,
+             r->ok ? "" : (r->ida ? "  (IDA failed)" : "  (failed)"));
+    }
+}
+
+/* The table of issue 6 and the PASS/MISS lines. */
+static void PrintSummary(const Curve *cv, int ncv, const Run *runs)
+{
+  double ratio[NLEVELS];
+  int have[NLEVELS], l, all = 1;
+  printf("\nWork-precision summary: CPU time to reach |x(1) - x_ref(1)| = level\n"
+         "(interpolated on each method's log-log curve; best = fastest method)\n");
+  printf("%8s  %-24s %10s  %-20s %10s  %8s\n", "level", "best Lignum", "cpu [ms]",
+         "best IDA", "cpu [ms]", "IDA/Lig");
+  for (l = 0; l < NLEVELS; l++) {
+    double cl = 0.0, ci = 0.0;
+    int wl = -1, wi = -1;
+    const int hl = Best(cv, ncv, runs, 0, LEVELS[l], &cl, &wl);
+    const int hi = Best(cv, ncv, runs, 1, LEVELS[l], &ci, &wi);
+    char sl[32] = "not reached", si[32] = "not reached", sr[32] = "-";
+    if (hl) snprintf(sl, sizeof sl, "%.3f", 1e3 * cl);
+    if (hi) snprintf(si, sizeof si, "%.3f", 1e3 * ci);
+    have[l] = hl && hi;
+    if (have[l]) {
+      ratio[l] = ci / cl;
+      snprintf(sr, sizeof sr, "%.2f", ratio[l]);
+    }
+    printf("%8.0e  %-24s %10s  %-20s %10s  %8s\n", LEVELS[l],
+           hl ? LIGNUM[cv[wl].spec].name : "-", sl, hi ? IDA[cv[wi].spec].name : "-", si, sr);
+  }
+  printf("\nTargets of issue 6 (reported, never enforced):\n");
+  if (have[1])
+    printf("  %s  Lignum's best at least 5x faster than IDA's best at error 1e-3: factor %.2f\n",
+           ratio[1] >= 5.0 ? "PASS" : "MISS", ratio[1]);
+  else
+    printf("  MISS  Lignum's best at least 5x faster than IDA's best at error 1e-3: "
+           "level not reached by both\n");
+  for (l = 0; l < NLEVELS; l++)
+    if (!have[l] || !(ratio[l] > 1.0)) all = 0;
+  printf("  %s  Lignum faster at every level 1e-2 .. 1e-5: factors", all ? "PASS" : "MISS");
+  for (l = 0; l < NLEVELS; l++) {
+    if (have[l]) printf(" %.0e: %.2f", LEVELS[l], ratio[l]);
+    else printf(" %.0e: -", LEVELS[l]);
+    printf(l + 1 < NLEVELS ? ";" : "\n");
+  }
+}
+
+/* ---------------------------------------------------------------------------
+ * The figure (gnuplot): CPU time against error, log-log, one curve per method
+ * ------------------------------------------------------------------------- */
+
+static int GnuplotOnPath(void)
+{
+  const char *path = getenv("PATH");
+  char buf[4096];
+  const char *s = path, *e;
+  if (path == NULL) return 0;
+  while (*s) {
+    size_t n;
+    FILE *fp;
+    e = strchr(s, ':');
+    n = e ? (size_t)(e - s) : strlen(s);
+    if (n > 0 && n + 10 < sizeof buf) {
+      memcpy(buf, s, n);
+      strcpy(buf + n, "/gnuplot");
+      if ((fp = fopen(buf, "r")) != NULL) {
+        fclose(fp);
+        return 1;
+      }
+    }
+    if (!e) break;
+    s = e + 1;
+  }
+  return 0;
+}
+
+static const char *const COLOURS[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                      "#d62728", "#0072b2", "#8c564b", "#cc79a7"};
+#define NCOLOURS ((int)(sizeof COLOURS / sizeof COLOURS[0]))
+
+static void WritePlot(const char *png, const Curve *cv, int ncv, const Run *runs)
+{
+  char script[4096], cmd[8300];
+  FILE *fp;
+  int c, k, rc;
+
+  if (!GnuplotOnPath()) {
+    printf("\nNote: gnuplot is not on PATH; no figure drawn (install gnuplot-nox).\n");
+    return;
+  }
+  if (strlen(png) + 4 > sizeof script || strchr(png, '"') || strchr(png, '\'')) {
+    fprintf(stderr, "work_precision: unusable PNG path '%s'\n", png);
+    return;
+  }
+  snprintf(script, sizeof script, "%s.gp", png);
+  fp = fopen(script, "w");
+  if (fp == NULL) {
+    perror(script);
+    return;
+  }
+  fprintf(fp, "# Heavy top work-precision diagram (generated by work_precision).\n");
+  fprintf(fp, "$wp << EOD\n");
+  for (c = 0; c < ncv; c++) {
+    Point p[64];
+    int np = 0, i;
+    for (k = 0; k < cv[c].n && np < 64; k++) {
+      const Run *r = &runs[cv[c].first + k];
+      if (r->ok && r->err > 0.0 && r->cpu > 0.0) {
+        p[np].err = r->err;
+        p[np].cpu = r->cpu;
+        np++;
+      }
+    }
+    qsort(p, (size_t)np, sizeof *p, CmpPoint);
+    fprintf(fp, "# %s\n", cv[c].ida ? IDA[cv[c].spec].name : LIGNUM[cv[c].spec].name);
+    for (i = 0; i < np; i++) fprintf(fp, "%.6e %.6e\n", p[i].err, 1e3 * p[i].cpu);
+    fprintf(fp, "NaN NaN\n\n\n"); /* keeps all-failed curves as valid blocks */
+  }
+  fprintf(fp, "EOD\n");
+  for (c = 0; c < ncv; c++) {
+    if (cv[c].ida)
+      fprintf(fp, "set style line %d lc rgb '%s' dt 2 lw 3 pt %d ps 1.3\n", c + 1,
+              cv[c].spec == 0 ? "#000000" : cv[c].spec == 1 ? "#555555" : "#999999",
+              4 + 2 * cv[c].spec);
+    else
+      fprintf(fp, "set style line %d lc rgb '%s' dt %d lw 2 pt %d ps 1.0\n", c + 1,
+              COLOURS[cv[c].spec / 2 % NCOLOURS],
+              LIGNUM[cv[c].spec].constraints == LGN_CONSTR_INDEX3 ? 1 : 3,
+              LIGNUM[cv[c].spec].constraints == LGN_CONSTR_INDEX3 ? 7 : 6);
+  }
+  fprintf(fp, "array names[%d]\n", ncv);
+  for (c = 0; c < ncv; c++)
+    fprintf(fp, "names[%d] = \"%s\"\n", c + 1,
+            cv[c].ida ? IDA[cv[c].spec].name : LIGNUM[cv[c].spec].name);
+  fprintf(fp,
+          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+          "  set terminal pngcairo size 1100,800 enhanced font 'sans,10'\n"
+          "} else {\n"
+          "  set terminal png size 1100,800\n"
+          "}\n"
+          "set output '%s'\n"
+          "set title 'Heavy top on [0, 1] s: work-precision (Lignum h = 4e-3..3.1e-5, "
+          "IDA rtol = 1e-3..1e-10; median CPU time)'\n"
+          "set logscale xy\n"
+          "set format x '10^{%%L}'\n"
+          "set format y '10^{%%L}'\n"
+          "set xlabel 'error of the centre of mass at t = 1 s [m]'\n"
+          "set ylabel 'CPU time [ms]'\n"
+          "set key outside right top font ',9' spacing 1.1\n"
+          "set grid\n"
+          "plot for [i=0:%d] $wp index i using 1:2 with linespoints ls i+1 "
+          "title names[i+1]\n",
+          png, ncv - 1);
+  if (fclose(fp) != 0) {
+    perror(script);
+    return;
+  }
+  snprintf(cmd, sizeof cmd, "gnuplot '%s'", script);
+  rc = system(cmd);
+  if (rc != 0)
+    fprintf(stderr, "work_precision: gnuplot failed (status %d); script %s\n", rc, script);
+  else
+    printf("\nFigure: %s (gnuplot script %s)\n", png, script);
+}
+
+/* ---------------------------------------------------------------------------
+ * --quick: correctness checks (CTest bench_work_precision_quick)
+ * ------------------------------------------------------------------------- */
+
+static int Check(int cond, const char *what)
+{
+  printf("  %-4s %s\n", cond ? "ok" : "FAIL", what);
+  return cond ? 0 : 1;
+}
+
+static int QuickChecks(const LGNRefHeavyTop *ref)
+{
+  /* spec §5: lambda0 = (0, -319.525988166, -317.2624615385) */
+  const double lam0[3] = {0.0, -319.525988166, -317.2624615385};
+  const double rtols[4] = {1e-4, 1e-6, 1e-8, 1e-10};
+  double y0[IDAHT_N], yp0[IDAHT_N], rn, jerr, dl, prev = INFINITY, err_ida[3];
+  char msg[160];
+  int fails = 0, i, k;
+
+  printf("Quick checks\n");
+  fails += Check(ida_heavy_top_initial(y0, yp0, &rn) == 0, "IDA: consistent initial values computed");
+  snprintf(msg, sizeof msg, "IDA: max|F(0, y0, y'0)| = %.2e < 1e-10", rn);
+  fails += Check(rn < 1e-10, msg);
+  dl = 0.0;
+  for (i = 0; i < 3; i++) dl = fmax(dl, fabs(y0[IDAHT_OL + i] - lam0[i]));
+  snprintf(msg, sizeof msg, "IDA: lambda0 of the joint equals spec §5 (max diff %.2e < 1e-6)", dl);
+  fails += Check(dl < 1e-6, msg);
+  for (i = 0; i < 2; i++) {
+    const double cj = i == 0 ? 1.0 : 1e4;
+    jerr = ida_heavy_top_check_jacobian(cj);
+    snprintf(msg, sizeof msg,
+             "IDA: analytic Jacobian = central differences (c_j = %g, rel. diff %.1e < 1e-7)", cj, jerr);
+    fails += Check(jerr < 1e-7, msg);
+  }
+
+  /* IDA dense-Jac converges to the reference as rtol decreases */
+  for (k = 0; k < 4; k++) {
+    Run r;
+    double cpu;
+    memset(&r, 0, sizeof r);
+    r.ida = 1;
+    r.spec = 1; /* dense-Jac */
+    r.setting = rtols[k];
+    r.ok = RunOnce(&r, ref, &cpu);
+    snprintf(msg, sizeof msg, "IDA dense-Jac rtol %.0e: reaches t = 1, err %.3e < previous %.3e",
+             rtols[k], r.ok ? r.err : NAN, prev);
+    fails += Check(r.ok && r.err < prev, msg);
+    if (r.ok) prev = r.err;
+  }
+  snprintf(msg, sizeof msg, "IDA dense-Jac rtol 1e-10: err %.3e < 1e-6", prev);
+  fails += Check(prev < 1e-6, msg);
+
+  /* the three linear solvers agree (same method, same tolerances) */
+  for (k = 0; k < NIDA; k++) {
+    Run r;
+    double cpu;
+    memset(&r, 0, sizeof r);
+    r.ida = 1;
+    r.spec = k;
+    r.setting = 1e-7;
+    r.ok = RunOnce(&r, ref, &cpu);
+    err_ida[k] = r.ok ? r.err : NAN;
+    snprintf(msg, sizeof msg, "%s rtol 1e-7: err %.3e < 1e-3", IDA[k].name, err_ida[k]);
+    fails += Check(r.ok && r.err < 1e-3, msg);
+  }
+
+  /* Lignum: second order and within the known error levels (README table) */
+  for (k = 0; k < NLIGNUM; k++) {
+    const LignumSpec *s = &LIGNUM[k];
+    Run a, b;
+    double cpu;
+    if (!(s->method == HT_GENALPHA && s->constraints == LGN_CONSTR_INDEX3) &&
+        !(s->kinematics == LGN_KINEMATICS_EXACT && s->constraints == LGN_CONSTR_INDEX3))
+      continue;
+    memset(&a, 0, sizeof a);
+    a.spec = k;
+    a.setting = 1e-3;
+    b = a;
+    b.setting = 5e-4;
+    a.ok = RunOnce(&a, ref, &cpu);
+    b.ok = RunOnce(&b, ref, &cpu);
+    snprintf(msg, sizeof msg, "%s: err(h=1e-3) = %.3e < 1e-2, err(5e-4) = %.3e, ratio %.2f > 3",
+             s->name, a.err, b.err, a.err / b.err);
+    fails += Check(a.ok && b.ok && a.err < 1e-2 && a.err / b.err > 3.0, msg);
+  }
+  printf("%s\n", fails ? "Quick checks FAILED" : "Quick checks passed");
+  return fails;
+}
+
+/* ---------------------------------------------------------------------------
+ * main
+ * ------------------------------------------------------------------------- */
+
+static void Usage(const char *prog)
+{
+  printf("usage: %s [--quick] [--reps N] [--csv FILE] [--png FILE | --no-png]\n"
+         "  Heavy top work-precision: Lignum (h = 4e-3 * 2^-k, k = 0..7) against\n"
+         "  IDA (GGL, rtol = 1e-3 .. 1e-10); CPU time = median of N runs (default 5).\n"
+         "  --quick: correctness checks and a few settings, one run each.\n",
+         prog);
+}
+
+int main(int argc, char **argv)
+{
+  const char *csv = "work_precision.csv", *png = "work_precision.png";
+  int quick = 0, reps = 5, i, k, c, nruns = 0, ncv = 0, nh, nrt, fails = 0;
+  double t1 = T_END, t_start = WallSeconds();
+  LGNRefHeavyTop ref;
+  Run *runs;
+  Curve cv[NLIGNUM + NIDA];
+
+  for (i = 1; i < argc; i++) {
+    if (strcmp(argv[i], "--quick") == 0) quick = 1;
+    else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
+    else if (strcmp(argv[i], "--png") == 0 && i + 1 < argc) png = argv[++i];
+    else if (strcmp(argv[i], "--no-png") == 0) png = NULL;
+    else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
+    else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+      Usage(argv[0]);
+      return 0;
+    } else {
+      Usage(argv[0]);
+      return 2;
+    }
+  }
+  if (reps < 1 || reps > 64) {
+    fprintf(stderr, "work_precision: --reps must be in 1..64\n");
+    return 2;
+  }
+  if (quick) reps = 1;
+  nh = quick ? 3 : NH;     /* quick: h = 4e-3, 2e-3, 1e-3     */
+  nrt = quick ? 3 : NRTOL; /* quick: rtol = 1e-3, 1e-4, 1e-5  */
+
+  if (lgnref_heavy_top(&t1, 1, &ref, LGNREF_FEHLBERG_8) != 0) {
+    fprintf(stderr, "work_precision: reference solution failed\n");
+    return 1;
+  }
+  printf("Heavy top work-precision, t in [0, %g] s; error = |x(1) - x_ref(1)|_2 against\n"
+         "ARKODE Fehlberg 7(8) (test/reference); CPU = median of %d run(s), process CPU time\n"
+         "of the integration only.\n", T_END, reps);
+  if (quick) fails = QuickChecks(&ref);
+
+  runs = calloc((size_t)(NLIGNUM * NH + NIDA * NRTOL), sizeof *runs);
+  if (runs == NULL) {
+    fprintf(stderr, "work_precision: out of memory\n");
+    return 1;
+  }
+  for (c = 0; c < NLIGNUM; c++) {
+    cv[ncv].first = nruns;
+    cv[ncv].n = nh;
+    cv[ncv].ida = 0;
+    cv[ncv++].spec = c;
+    for (k = 0; k < nh; k++) {
+      Run *r = &runs[nruns++];
+      r->spec = c;
+      r->setting = H0 / (double)(1L << k);
+    }
+  }
+  for (c = 0; c < NIDA; c++) {
+    cv[ncv].first = nruns;
+    cv[ncv].n = nrt;
+    cv[ncv].ida = 1;
+    cv[ncv++].spec = c;
+    for (k = 0; k < nrt; k++) {
+      Run *r = &runs[nruns++];
+      r->ida = 1;
+      r->spec = c;
+      r->setting = RTOL0 * pow(10.0, -k);
+    }
+  }
+  for (i = 0; i < nruns; i++) Measure(&runs[i], &ref, reps);
+
+  if (WriteCsv(csv, runs, nruns) != 0) fails++;
+  PrintRuns(cv, ncv, runs);
+  PrintSummary(cv, ncv, runs);
+  printf("\nCSV: %s\n", csv);
+  fflush(stdout);
+  if (png != NULL && !quick) WritePlot(png, cv, ncv, runs);
+  printf("Total wall time %.1f s\n", WallSeconds() - t_start);
+  free(runs);
+  return fails ? 1 : 0;
+}
