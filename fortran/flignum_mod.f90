@@ -23,7 +23,8 @@
 !
 ! Helpers that exist only in Fortran carry the prefix FLGN:
 ! FLGNGetReturnFlagName, FLGNString, FLGNStdout/FLGNStderr, FLGNFopen,
-! FLGNFclose, FLGNFflush, FLGNPrintAllStats, FLGNGroup_Rec.
+! FLGNFclose, FLGNFflush, FLGNPrintAllStats, FLGNGroup_Rec, FLGNGroup_NQ,
+! FLGNGroup_NV.
 ! ---------------------------------------------------------------------------
 module flignum_mod
   use, intrinsic :: iso_c_binding
@@ -855,5 +856,27 @@ contains
 
     call c_f_pointer(G, rec)
   end function FLGNGroup_Rec
+
+  !> Number of reals storing one element of G (G->nq).
+  !! @param G a group (not c_null_ptr)
+  function FLGNGroup_NQ(G) result(nq)
+    type(c_ptr), intent(in) :: G
+    integer(c_int64_t) :: nq
+    type(LGNGroupRec), pointer :: rec
+
+    call c_f_pointer(G, rec)
+    nq = rec%nq
+  end function FLGNGroup_NQ
+
+  !> Dimension of the Lie algebra of G (G->nv).
+  !! @param G a group (not c_null_ptr)
+  function FLGNGroup_NV(G) result(nv)
+    type(c_ptr), intent(in) :: G
+    integer(c_int64_t) :: nv
+    type(LGNGroupRec), pointer :: rec
+
+    call c_f_pointer(G, rec)
+    nv = rec%nv
+  end function FLGNGroup_NV
 
 end module flignum_mod
