@@ -147,6 +147,8 @@ program heavy_top_f
   call N_VDestroy(tmpl)
   call LGNGroup_Destroy(G)
   call check(SUNContext_Free(ctx), "SUNContext_Free")
+  ! variables of the main program are never deallocated automatically
+  if (allocated(compare_path)) deallocate (compare_path)
 
   if (nfail > 0) error stop 1
 

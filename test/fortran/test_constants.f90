@@ -138,6 +138,7 @@ program test_constants
               == lgn_c_group_layout(7), "offset of ops.free_content")
 
   write (*, "(i0, a, i0, a)") ncheck, " constants checked against ", n, " C entries"
+  deallocate (seen)   ! a main program's variables are never deallocated automatically
   if (nfail > 0) then
     write (error_unit, "(i0, a)") nfail, " check(s) failed"
     error stop 1
