@@ -116,7 +116,7 @@ program test_constants
   call check("SUNMATRIX_CUSTOM", SUNMATRIX_CUSTOM)
   call check("CSC_MAT", CSC_MAT)
   call check("CSR_MAT", CSR_MAT)
-  ! in the C table only when built with KLU (sunlinsol_klu.h needs klu.h)
+  ! in the C table when SUNDIALS has KLU (target SUNDIALS::sunlinsolklu)
   call check("SUNKLU_REINIT_FULL", SUNKLU_REINIT_FULL, optional_in_c=.true.)
   call check("SUNKLU_REINIT_PARTIAL", SUNKLU_REINIT_PARTIAL, optional_in_c=.true.)
 
