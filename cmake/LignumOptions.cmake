@@ -6,5 +6,17 @@ option(LGN_BUILD_BENCHMARKS "Build the benchmarks in bench/" ON)
 option(LGN_WARNINGS_AS_ERRORS "Compile with -Wall -Wextra -Wpedantic -Werror" ON)
 option(LGN_ENABLE_SANITIZERS "Build with AddressSanitizer and UBSan" OFF)
 option(LGN_ENABLE_KLU "Enable the sparse path with SUNDIALS' KLU linear solver" ON)
-option(LGN_ENABLE_FORTRAN "Build the Fortran 2003 module" OFF)
+# The Fortran interface is built by default when a Fortran compiler works
+# (checked only while the option is not yet set).
+set(_lgn_fortran_default OFF)
+if(NOT DEFINED LGN_ENABLE_FORTRAN)
+  include(CheckLanguage)
+  check_language(Fortran)
+  if(CMAKE_Fortran_COMPILER)
+    set(_lgn_fortran_default ON)
+  endif()
+endif()
+option(LGN_ENABLE_FORTRAN
+  "Build the Fortran 2003 interface (modules flignum_mod, flignum_sundials_mod)"
+  ${_lgn_fortran_default})
 option(LGN_ENABLE_VALGRIND_TESTS "Run examples under valgrind when it is found" ON)

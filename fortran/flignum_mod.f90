@@ -1,0 +1,882 @@
+! -----------------------------------------------------------------------------
+! Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+! SPDX-License-Identifier: BSD-3-Clause
+! -----------------------------------------------------------------------------
+! flignum_mod: hand-written ISO_C_BINDING interface to the whole public C API
+! of Lignum (include/lignum/lignum.h and include/lignum/lignum_group.h).
+! The SUNDIALS calls a Fortran program needs are in flignum_sundials_mod.
+!
+! Names are the C names. Types (style.md §4):
+!   void *, N_Vector, SUNMatrix, SUNLinearSolver, SUNContext, LGNGroup, FILE *
+!                          -> type(c_ptr), value
+!   void **lgn_mem (LGNFree), out-arguments
+!                          -> passed by reference (type(c_ptr), real(c_double),
+!                             integer(c_long))
+!   sunrealtype            -> real(c_double)
+!   sunindextype           -> integer(c_int64_t)
+!   int, long int          -> integer(c_int), integer(c_long)
+!   const sunrealtype *    -> real(c_double) array, by reference
+!   callbacks              -> type(c_funptr), value, made with c_funloc(f) of a
+!                             bind(C) procedure f matching an abstract
+!                             interface below (LGNMassFn, ...)
+!   user_data              -> type(c_ptr): c_loc(obj) in, c_f_pointer out
+!
+! Helpers that exist only in Fortran carry the prefix FLGN:
+! FLGNGetReturnFlagName, FLGNString, FLGNStdout/FLGNStderr, FLGNFopen,
+! FLGNFclose, FLGNFflush, FLGNPrintAllStats, FLGNGroup_Rec, FLGNGroup_NQ,
+! FLGNGroup_NV.
+! ---------------------------------------------------------------------------
+module flignum_mod
+  use, intrinsic :: iso_c_binding
+  implicit none
+
+  ! Lignum version (generated from the CMake project version).
+  include "flignum_config.inc"
+
+  ! ===========================================================================
+  ! Return flags: one flat, non-overlapping space (names: LGNGetReturnFlagName)
+  ! ===========================================================================
+  integer(c_int), parameter :: LGN_SUCCESS = 0
+
+  ! solver failures -1 .. -19
+  integer(c_int), parameter :: LGN_TOO_MUCH_WORK = -1
+  integer(c_int), parameter :: LGN_CONV_FAILURE = -2
+  integer(c_int), parameter :: LGN_MASS_FAIL = -3
+  integer(c_int), parameter :: LGN_FORCE_FAIL = -4
+  integer(c_int), parameter :: LGN_CONSTR_FAIL = -5
+  integer(c_int), parameter :: LGN_CONSTR_JAC_FAIL = -6
+  integer(c_int), parameter :: LGN_TANGENT_FAIL = -7
+  integer(c_int), parameter :: LGN_GROUP_FAIL = -8
+  integer(c_int), parameter :: LGN_NONFINITE = -9
+  integer(c_int), parameter :: LGN_REPTD_CALLBACK_ERR = -10
+  integer(c_int), parameter :: LGN_IC_FAIL = -11
+
+  ! usage errors -20 .. -29
+  integer(c_int), parameter :: LGN_MEM_NULL = -20
+  integer(c_int), parameter :: LGN_MEM_FAIL = -21
+  integer(c_int), parameter :: LGN_ILL_INPUT = -22
+  integer(c_int), parameter :: LGN_NO_MALLOC = -23
+  integer(c_int), parameter :: LGN_NO_LINSOL = -24
+  integer(c_int), parameter :: LGN_MISSING_FN = -25
+  integer(c_int), parameter :: LGN_BAD_TOUT = -26
+
+  ! linear solver interface -30 .. -39
+  integer(c_int), parameter :: LGN_LINIT_FAIL = -30
+  integer(c_int), parameter :: LGN_LSETUP_FAIL = -31
+  integer(c_int), parameter :: LGN_LSOLVE_FAIL = -32
+  integer(c_int), parameter :: LGN_LS_MISMATCH = -33
+
+  integer(c_int), parameter :: LGN_UNRECOGNIZED_ERR = -99
+
+  ! ===========================================================================
+  ! Other constants
+  ! ===========================================================================
+  ! itask of LGNSolve
+  integer(c_int), parameter :: LGN_NORMAL = 1
+  integer(c_int), parameter :: LGN_ONE_STEP = 2
+  ! constraint formulation
+  integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 3
+  integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 2
+  ! kinematics
+  integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 0
+  integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 1
+  integer(c_int), parameter :: LGN_KINEMATICS_SIGMA = 2
+  ! Newton predictor
+  integer(c_int), parameter :: LGN_PREDICTOR_ZERO = 0
+  integer(c_int), parameter :: LGN_PREDICTOR_EXTRAPOLATE = 1
+
+  ! LGNGroupKind
+  enum, bind(c)
+    enumerator :: LGN_GROUP_CUSTOM = 0
+    enumerator :: LGN_GROUP_RN, LGN_GROUP_SO3, LGN_GROUP_R3XSO3
+    enumerator :: LGN_GROUP_SE3, LGN_GROUP_PRODUCT
+  end enum
+
+  ! ===========================================================================
+  ! The group object (struct LGNGroupRec, lignum_group.h). A Fortran program
+  ! reaches it with FLGNGroup_Rec(G) (or c_f_pointer), e.g. to read nq and nv
+  ! or to fill the ops of a group made with LGNGroup_NewEmpty using c_funloc
+  ! of procedures matching the LGNGroup* abstract interfaces below.
+  ! ===========================================================================
+  type, bind(c) :: LGNGroupOpsRec
+    type(c_funptr) :: compose_exp           !< LGNGroupComposeExpFn
+    type(c_funptr) :: tangent_apply         !< LGNGroupTangentApplyFn
+    type(c_funptr) :: tangent_inverse_apply !< LGNGroupTangentApplyFn
+    type(c_funptr) :: tangent_dot_apply     !< LGNGroupTangentDotApplyFn
+    type(c_funptr) :: tangent_matrix        !< LGNGroupTangentMatrixFn
+    type(c_funptr) :: identity              !< LGNGroupIdentityFn
+    type(c_funptr) :: normalize             !< LGNGroupIdentityFn (may be null)
+    type(c_funptr) :: free_content          !< LGNGroupFreeContentFn (may be null)
+  end type LGNGroupOpsRec
+
+  type, bind(c) :: LGNGroupRec
+    integer(c_int) :: kind          !< LGN_GROUP_* (enum LGNGroupKind)
+    integer(c_int64_t) :: nq        !< reals storing one group element
+    integer(c_int64_t) :: nv        !< dimension of the Lie algebra
+    type(c_ptr) :: content          !< implementation data
+    type(LGNGroupOpsRec) :: ops
+  end type LGNGroupRec
+
+  ! ===========================================================================
+  ! Callback types: write the callback as a bind(C) procedure with exactly
+  ! this signature, pass c_funloc(callback). Return 0 on success, > 0 for a
+  ! recoverable failure, < 0 for an unrecoverable one. Matrices are zeroed
+  ! before the call; N_Vector/SUNMatrix data via flignum_sundials_mod
+  ! (FN_VGetArray, FSUNDenseMatrix_Array).
+  ! ===========================================================================
+  abstract interface
+    !> Mass matrix M = M(q, t), nv x nv.
+    integer(c_int) function LGNMassFn(t, q, M, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, M, user_data
+    end function LGNMassFn
+
+    !> Forces g = g(q, v, t), so that M vdot + g + B^T lambda = 0.
+    integer(c_int) function LGNForceFn(t, q, v, g, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, g, user_data
+    end function LGNForceFn
+
+    !> Constraints phi = Phi(q, t), length m.
+    integer(c_int) function LGNConstrFn(t, q, phi, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, phi, user_data
+    end function LGNConstrFn
+
+    !> Constraint Jacobian B(q) in Lie algebra directions, m x nv.
+    integer(c_int) function LGNConstrJacFn(t, q, B, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, B, user_data
+    end function LGNConstrJacFn
+
+    !> Tangent stiffness K_t: D_q[M vdot + g + B^T lambda].(q w~) = K_t w.
+    integer(c_int) function LGNStiffnessFn(t, q, v, vdot, lambda, K, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, vdot, lambda, K, user_data
+    end function LGNStiffnessFn
+
+    !> Tangent damping C_t = dg/dv, nv x nv.
+    integer(c_int) function LGNDampingFn(t, q, v, C, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, C, user_data
+    end function LGNDampingFn
+
+    !> Constraint curvature z = Z(q)(v, v), d/dt(B v) = B vdot + Z(q)(v, v).
+    integer(c_int) function LGNCurvatureFn(t, q, v, z, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, z, user_data
+    end function LGNCurvatureFn
+
+    !> Error handler; module, function and msg are NUL-terminated C strings
+    !! (convert with FLGNString). Valid only during the call.
+    subroutine LGNErrHandlerFn(error_code, module_name, function_name, msg, eh_data) &
+        bind(c)
+      import :: c_int, c_ptr
+      integer(c_int), value :: error_code
+      type(c_ptr), value :: module_name, function_name, msg, eh_data
+    end subroutine LGNErrHandlerFn
+
+    ! --- ops of a user-supplied group (struct LGNGroupOpsRec) -----------------
+
+    !> q_out = q o exp(w). Lignum may pass q_out aliasing q: read all of q
+    !! before writing q_out.
+    integer(c_int) function LGNGroupComposeExpFn(G, q, w, q_out) bind(c)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double) :: q(*), w(*), q_out(*)
+    end function LGNGroupComposeExpFn
+
+    !> y = T(w) x (tangent_apply) or y = T(w)^{-1} x (tangent_inverse_apply).
+    integer(c_int) function LGNGroupTangentApplyFn(G, w, x, y) bind(c)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*), x(*)
+      real(c_double), intent(out) :: y(*)
+    end function LGNGroupTangentApplyFn
+
+    !> y = Tdot(w, wdot) x.
+    integer(c_int) function LGNGroupTangentDotApplyFn(G, w, wdot, x, y) bind(c)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*), wdot(*), x(*)
+      real(c_double), intent(out) :: y(*)
+    end function LGNGroupTangentDotApplyFn
+
+    !> Tm = T(w), dense nv x nv, column-major with leading dimension ld.
+    integer(c_int) function LGNGroupTangentMatrixFn(G, w, Tm, ld) bind(c)
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*)
+      real(c_double), intent(inout) :: Tm(*)
+      integer(c_int64_t), value :: ld
+    end function LGNGroupTangentMatrixFn
+
+    !> q = identity element (identity), or project q onto the group (normalize).
+    integer(c_int) function LGNGroupIdentityFn(G, q) bind(c)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(inout) :: q(*)
+    end function LGNGroupIdentityFn
+
+    !> Free the content (not the LGNGroup itself).
+    subroutine LGNGroupFreeContentFn(G) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: G
+    end subroutine LGNGroupFreeContentFn
+  end interface
+
+  ! ===========================================================================
+  ! lignum.h: lifecycle
+  ! ===========================================================================
+  interface
+    !> Create an integrator memory block (c_null_ptr on failure).
+    type(c_ptr) function LGNCreate(sunctx) bind(c, name="LGNCreate")
+      import :: c_ptr
+      type(c_ptr), value :: sunctx
+    end function LGNCreate
+
+    !> Initial state; allocates the state vectors. Group must be set.
+    integer(c_int) function LGNInit(lgn_mem, t0, q0, v0) bind(c, name="LGNInit")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem, q0, v0
+      real(c_double), value :: t0
+    end function LGNInit
+
+    !> Restart from a new initial state, keeping all settings.
+    integer(c_int) function LGNReInit(lgn_mem, t0, q0, v0) bind(c, name="LGNReInit")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem, q0, v0
+      real(c_double), value :: t0
+    end function LGNReInit
+
+    !> Advance to tout (LGN_NORMAL) or by one step (LGN_ONE_STEP).
+    integer(c_int) function LGNSolve(lgn_mem, tout, tret, q, v, itask) &
+        bind(c, name="LGNSolve")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem, q, v
+      real(c_double), value :: tout
+      real(c_double), intent(out) :: tret
+      integer(c_int), value :: itask
+    end function LGNSolve
+
+    !> Free the memory block; sets lgn_mem = c_null_ptr.
+    subroutine LGNFree(lgn_mem) bind(c, name="LGNFree")
+      import :: c_ptr
+      type(c_ptr), intent(inout) :: lgn_mem
+    end subroutine LGNFree
+
+    ! =========================================================================
+    ! lignum.h: model description
+    ! =========================================================================
+
+    !> Set the Lie group (referenced, must outlive the memory block).
+    integer(c_int) function LGNSetGroup(lgn_mem, G) bind(c, name="LGNSetGroup")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, G
+    end function LGNSetGroup
+
+    !> Set the pointer passed to every callback (e.g. c_loc(model)).
+    integer(c_int) function LGNSetUserData(lgn_mem, user_data) &
+        bind(c, name="LGNSetUserData")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, user_data
+    end function LGNSetUserData
+
+    !> Mass matrix callback (LGNMassFn), required.
+    integer(c_int) function LGNSetMassFn(lgn_mem, mass) bind(c, name="LGNSetMassFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: mass
+    end function LGNSetMassFn
+
+    !> Force callback (LGNForceFn), required.
+    integer(c_int) function LGNSetForceFn(lgn_mem, force) bind(c, name="LGNSetForceFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: force
+    end function LGNSetForceFn
+
+    !> Number of constraints m and callbacks Phi (LGNConstrFn), B (LGNConstrJacFn).
+    integer(c_int) function LGNSetConstraints(lgn_mem, m, phi, B) &
+        bind(c, name="LGNSetConstraints")
+      import :: c_int, c_int64_t, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int64_t), value :: m
+      type(c_funptr), value :: phi, B
+    end function LGNSetConstraints
+
+    !> Tangent stiffness (LGNStiffnessFn); c_null_funptr: difference quotients.
+    integer(c_int) function LGNSetStiffnessFn(lgn_mem, K) bind(c, name="LGNSetStiffnessFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: K
+    end function LGNSetStiffnessFn
+
+    !> Tangent damping (LGNDampingFn); c_null_funptr: difference quotients.
+    integer(c_int) function LGNSetDampingFn(lgn_mem, C) bind(c, name="LGNSetDampingFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: C
+    end function LGNSetDampingFn
+
+    !> Constraint curvature (LGNCurvatureFn); c_null_funptr: difference quotients.
+    integer(c_int) function LGNSetCurvatureFn(lgn_mem, Z) bind(c, name="LGNSetCurvatureFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: Z
+    end function LGNSetCurvatureFn
+
+    ! =========================================================================
+    ! lignum.h: method and solver settings
+    ! =========================================================================
+
+    !> Linear solver and iteration matrix ((nv+m) x (nv+m)); not owned.
+    integer(c_int) function LGNSetLinearSolver(lgn_mem, LS, A) &
+        bind(c, name="LGNSetLinearSolver")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, LS, A
+    end function LGNSetLinearSolver
+
+    !> Fixed step size h > 0 (required).
+    integer(c_int) function LGNSetStepSize(lgn_mem, h) bind(c, name="LGNSetStepSize")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: h
+    end function LGNSetStepSize
+
+    !> Newmark method with beta, gamma.
+    integer(c_int) function LGNSetNewmark(lgn_mem, beta, gamma) &
+        bind(c, name="LGNSetNewmark")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: beta, gamma
+    end function LGNSetNewmark
+
+    !> Generalized-alpha (Chung-Hulbert) from rho_inf in [0, 1].
+    integer(c_int) function LGNSetGenAlpha(lgn_mem, rho_inf) bind(c, name="LGNSetGenAlpha")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: rho_inf
+    end function LGNSetGenAlpha
+
+    !> Generalized-alpha with all four parameters.
+    integer(c_int) function LGNSetGenAlphaParams(lgn_mem, alpha_m, alpha_f, beta, gamma) &
+        bind(c, name="LGNSetGenAlphaParams")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: alpha_m, alpha_f, beta, gamma
+    end function LGNSetGenAlphaParams
+
+    !> LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2.
+    integer(c_int) function LGNSetConstraintIndex(lgn_mem, index) &
+        bind(c, name="LGNSetConstraintIndex")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: index
+    end function LGNSetConstraintIndex
+
+    !> LGN_KINEMATICS_SIMPLIFIED (default), _EXACT or _SIGMA.
+    integer(c_int) function LGNSetKinematics(lgn_mem, kinematics) &
+        bind(c, name="LGNSetKinematics")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: kinematics
+    end function LGNSetKinematics
+
+    !> LGN_PREDICTOR_ZERO (default) or LGN_PREDICTOR_EXTRAPOLATE.
+    integer(c_int) function LGNSetPredictor(lgn_mem, predictor) &
+        bind(c, name="LGNSetPredictor")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: predictor
+    end function LGNSetPredictor
+
+    !> Newton stop test tolerances (0 restores the defaults 1e-8).
+    integer(c_int) function LGNSStolerances(lgn_mem, rtol, atol) &
+        bind(c, name="LGNSStolerances")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: rtol, atol
+    end function LGNSStolerances
+
+    !> Maximum Newton iterations per step (0: default 20).
+    integer(c_int) function LGNSetMaxNewtonIters(lgn_mem, maxiters) &
+        bind(c, name="LGNSetMaxNewtonIters")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: maxiters
+    end function LGNSetMaxNewtonIters
+
+    !> Maximum steps per LGNSolve call (0: default, < 0: no limit).
+    integer(c_int) function LGNSetMaxNumSteps(lgn_mem, mxsteps) &
+        bind(c, name="LGNSetMaxNumSteps")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), value :: mxsteps
+    end function LGNSetMaxNumSteps
+
+    !> Consistent vdot0 and lambda0 (c_null_ptr when m = 0); after LGNInit.
+    integer(c_int) function LGNSetInitialAcceleration(lgn_mem, vdot0, lambda0) &
+        bind(c, name="LGNSetInitialAcceleration")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, vdot0, lambda0
+    end function LGNSetInitialAcceleration
+
+    !> Initial algorithmic acceleration a_0; after LGNInit.
+    integer(c_int) function LGNSetInitialAux(lgn_mem, a0) bind(c, name="LGNSetInitialAux")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, a0
+    end function LGNSetInitialAux
+
+    !> Error handler (LGNErrHandlerFn); c_null_funptr restores the default.
+    integer(c_int) function LGNSetErrHandlerFn(lgn_mem, ehfun, eh_data) &
+        bind(c, name="LGNSetErrHandlerFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: ehfun
+      type(c_ptr), value :: eh_data
+    end function LGNSetErrHandlerFn
+
+    !> Stream of the default error handler (a C FILE *: FLGNStderr(),
+    !! FLGNFopen(...)); c_null_ptr silences it.
+    integer(c_int) function LGNSetErrFile(lgn_mem, errfp) bind(c, name="LGNSetErrFile")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, errfp
+    end function LGNSetErrFile
+
+    ! =========================================================================
+    ! lignum.h: parameter maps
+    ! =========================================================================
+
+    !> Chung-Hulbert parameters from rho_inf in [0, 1].
+    integer(c_int) function LGNGenAlphaFromRhoInf(rho_inf, alpha_m, alpha_f, beta, gamma) &
+        bind(c, name="LGNGenAlphaFromRhoInf")
+      import :: c_int, c_double
+      real(c_double), value :: rho_inf
+      real(c_double), intent(out) :: alpha_m, alpha_f, beta, gamma
+    end function LGNGenAlphaFromRhoInf
+
+    ! =========================================================================
+    ! lignum.h: outputs
+    ! =========================================================================
+
+    !> Acceleration vdot at the current time (length nv).
+    integer(c_int) function LGNGetAcceleration(lgn_mem, vdot) &
+        bind(c, name="LGNGetAcceleration")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, vdot
+    end function LGNGetAcceleration
+
+    !> Multipliers lambda at the current time (length m).
+    integer(c_int) function LGNGetMultipliers(lgn_mem, lambda) &
+        bind(c, name="LGNGetMultipliers")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, lambda
+    end function LGNGetMultipliers
+
+    !> Algorithmic acceleration a at the current time (length nv).
+    integer(c_int) function LGNGetAuxAcceleration(lgn_mem, a) &
+        bind(c, name="LGNGetAuxAcceleration")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, a
+    end function LGNGetAuxAcceleration
+
+    !> Current time.
+    integer(c_int) function LGNGetCurrentTime(lgn_mem, tcur) bind(c, name="LGNGetCurrentTime")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: tcur
+    end function LGNGetCurrentTime
+
+    !> Size of the last step taken.
+    integer(c_int) function LGNGetLastStep(lgn_mem, hlast) bind(c, name="LGNGetLastStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: hlast
+    end function LGNGetLastStep
+
+    !> Method parameters in use.
+    integer(c_int) function LGNGetMethodParams(lgn_mem, alpha_m, alpha_f, beta, gamma) &
+        bind(c, name="LGNGetMethodParams")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: alpha_m, alpha_f, beta, gamma
+    end function LGNGetMethodParams
+
+    !> Number of steps taken.
+    integer(c_int) function LGNGetNumSteps(lgn_mem, nsteps) bind(c, name="LGNGetNumSteps")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nsteps
+    end function LGNGetNumSteps
+
+    !> Number of Newton iterations.
+    integer(c_int) function LGNGetNumNewtonIters(lgn_mem, nniters) &
+        bind(c, name="LGNGetNumNewtonIters")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nniters
+    end function LGNGetNumNewtonIters
+
+    !> Number of Newton convergence failures.
+    integer(c_int) function LGNGetNumNewtonConvFails(lgn_mem, nncfails) &
+        bind(c, name="LGNGetNumNewtonConvFails")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nncfails
+    end function LGNGetNumNewtonConvFails
+
+    !> Number of failed step attempts.
+    integer(c_int) function LGNGetNumStepFails(lgn_mem, nfails) &
+        bind(c, name="LGNGetNumStepFails")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nfails
+    end function LGNGetNumStepFails
+
+    !> Number of residual evaluations in Newton.
+    integer(c_int) function LGNGetNumResEvals(lgn_mem, nres) bind(c, name="LGNGetNumResEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nres
+    end function LGNGetNumResEvals
+
+    !> Number of residual-type evaluations in difference quotients.
+    integer(c_int) function LGNGetNumDQEvals(lgn_mem, ndq) bind(c, name="LGNGetNumDQEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: ndq
+    end function LGNGetNumDQEvals
+
+    !> Number of iteration matrix evaluations.
+    integer(c_int) function LGNGetNumJacEvals(lgn_mem, njevals) bind(c, name="LGNGetNumJacEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: njevals
+    end function LGNGetNumJacEvals
+
+    !> Number of linear solver setups.
+    integer(c_int) function LGNGetNumLinSolvSetups(lgn_mem, nlsetups) &
+        bind(c, name="LGNGetNumLinSolvSetups")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nlsetups
+    end function LGNGetNumLinSolvSetups
+
+    !> Number of linear solves.
+    integer(c_int) function LGNGetNumLinSolves(lgn_mem, nlsolves) &
+        bind(c, name="LGNGetNumLinSolves")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nlsolves
+    end function LGNGetNumLinSolves
+
+    !> Return flag of the last linear solver call.
+    integer(c_int) function LGNGetLastLinFlag(lgn_mem, flag) bind(c, name="LGNGetLastLinFlag")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: flag
+    end function LGNGetLastLinFlag
+
+    !> Print all counters to a C stream (FLGNStdout(), FLGNFopen(...)); fmt is
+    !! SUN_OUTPUTFORMAT_TABLE or SUN_OUTPUTFORMAT_CSV (flignum_sundials_mod).
+    !! See FLGNPrintAllStats for standard output.
+    integer(c_int) function LGNPrintAllStats(lgn_mem, outfile, fmt) &
+        bind(c, name="LGNPrintAllStats")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, outfile
+      integer(c_int), value :: fmt
+    end function LGNPrintAllStats
+
+    !> Name of a return flag as a static C string; FLGNGetReturnFlagName
+    !! returns it as a Fortran string.
+    type(c_ptr) function LGNGetReturnFlagName(flag) bind(c, name="LGNGetReturnFlagName")
+      import :: c_ptr, c_long
+      integer(c_long), value :: flag
+    end function LGNGetReturnFlagName
+
+    ! =========================================================================
+    ! lignum_group.h: constructors and destructor
+    ! =========================================================================
+
+    !> R^n as an additive Lie group (c_null_ptr if n < 1).
+    type(c_ptr) function LGNGroup_Rn(n) bind(c, name="LGNGroup_Rn")
+      import :: c_ptr, c_int64_t
+      integer(c_int64_t), value :: n
+    end function LGNGroup_Rn
+
+    !> SO(3), unit quaternion storage (w, x, y, z).
+    type(c_ptr) function LGNGroup_SO3() bind(c, name="LGNGroup_SO3")
+      import :: c_ptr
+    end function LGNGroup_SO3
+
+    !> R^3 x SO(3): q = (x, p), v = (u inertial, Omega body).
+    type(c_ptr) function LGNGroup_R3xSO3() bind(c, name="LGNGroup_R3xSO3")
+      import :: c_ptr
+    end function LGNGroup_R3xSO3
+
+    !> SE(3): q = (x, p), v = (U, Omega) both body-fixed.
+    type(c_ptr) function LGNGroup_SE3() bind(c, name="LGNGroup_SE3")
+      import :: c_ptr
+    end function LGNGroup_SE3
+
+    !> Direct product of nfactors groups (referenced, not owned).
+    type(c_ptr) function LGNGroup_Product(nfactors, factors) bind(c, name="LGNGroup_Product")
+      import :: c_ptr, c_int
+      integer(c_int), value :: nfactors
+      type(c_ptr), intent(in) :: factors(*)
+    end function LGNGroup_Product
+
+    !> A group with dimensions set and all ops null (fill via FLGNGroup_Rec).
+    type(c_ptr) function LGNGroup_NewEmpty(nq, nv) bind(c, name="LGNGroup_NewEmpty")
+      import :: c_ptr, c_int64_t
+      integer(c_int64_t), value :: nq, nv
+    end function LGNGroup_NewEmpty
+
+    !> Free a group made by any constructor; c_null_ptr is allowed.
+    subroutine LGNGroup_Destroy(G) bind(c, name="LGNGroup_Destroy")
+      import :: c_ptr
+      type(c_ptr), value :: G
+    end subroutine LGNGroup_Destroy
+
+    ! =========================================================================
+    ! lignum_group.h: dispatchers (flag of the op; -1 if the op is missing)
+    ! =========================================================================
+
+    !> q_out = q o exp(w).
+    integer(c_int) function LGNGroup_ComposeExp(G, q, w, q_out) &
+        bind(c, name="LGNGroup_ComposeExp")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: q(*), w(*)
+      real(c_double), intent(out) :: q_out(*)
+    end function LGNGroup_ComposeExp
+
+    !> y = T(w) x.
+    integer(c_int) function LGNGroup_TangentApply(G, w, x, y) &
+        bind(c, name="LGNGroup_TangentApply")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*), x(*)
+      real(c_double), intent(out) :: y(*)
+    end function LGNGroup_TangentApply
+
+    !> y = T(w)^{-1} x.
+    integer(c_int) function LGNGroup_TangentInverseApply(G, w, x, y) &
+        bind(c, name="LGNGroup_TangentInverseApply")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*), x(*)
+      real(c_double), intent(out) :: y(*)
+    end function LGNGroup_TangentInverseApply
+
+    !> y = Tdot(w, wdot) x.
+    integer(c_int) function LGNGroup_TangentDotApply(G, w, wdot, x, y) &
+        bind(c, name="LGNGroup_TangentDotApply")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*), wdot(*), x(*)
+      real(c_double), intent(out) :: y(*)
+    end function LGNGroup_TangentDotApply
+
+    !> Tm = T(w), column-major nv x nv with leading dimension ld (Tm(ld, nv)).
+    integer(c_int) function LGNGroup_TangentMatrix(G, w, Tm, ld) &
+        bind(c, name="LGNGroup_TangentMatrix")
+      import :: c_int, c_int64_t, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: w(*)
+      real(c_double), intent(inout) :: Tm(*)
+      integer(c_int64_t), value :: ld
+    end function LGNGroup_TangentMatrix
+
+    !> q = identity element.
+    integer(c_int) function LGNGroup_Identity(G, q) bind(c, name="LGNGroup_Identity")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(out) :: q(*)
+    end function LGNGroup_Identity
+
+    !> Project q onto the group.
+    integer(c_int) function LGNGroup_Normalize(G, q) bind(c, name="LGNGroup_Normalize")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(inout) :: q(*)
+    end function LGNGroup_Normalize
+
+    ! =========================================================================
+    ! lignum_group.h: rotation helpers, quaternion p = (w, x, y, z)
+    ! =========================================================================
+
+    !> R of the unit quaternion p, ROW-major: R(3*i+j+1) = R_ij (i, j from 0),
+    !! so reshape(R, [3, 3]) is the transpose R^T.
+    subroutine LGNQuaternionToRotation(p, R) bind(c, name="LGNQuaternionToRotation")
+      import :: c_double
+      real(c_double), intent(in) :: p(4)
+      real(c_double), intent(out) :: R(9)
+    end subroutine LGNQuaternionToRotation
+
+    !> Unit quaternion p = exp of the rotation vector phi.
+    subroutine LGNQuaternionFromRotationVector(phi, p) &
+        bind(c, name="LGNQuaternionFromRotationVector")
+      import :: c_double
+      real(c_double), intent(in) :: phi(3)
+      real(c_double), intent(out) :: p(4)
+    end subroutine LGNQuaternionFromRotationVector
+
+    !> Rotation vector phi = log(p), |phi| <= pi.
+    subroutine LGNRotationVectorFromQuaternion(p, phi) &
+        bind(c, name="LGNRotationVectorFromQuaternion")
+      import :: c_double
+      real(c_double), intent(in) :: p(4)
+      real(c_double), intent(out) :: phi(3)
+    end subroutine LGNRotationVectorFromQuaternion
+
+    !> r = p1 * p2 (Hamilton product); in C r may alias p1 or p2, in
+    !! Fortran pass distinct actual arguments.
+    subroutine LGNQuaternionMultiply(p1, p2, r) bind(c, name="LGNQuaternionMultiply")
+      import :: c_double
+      real(c_double), intent(in) :: p1(4), p2(4)
+      real(c_double), intent(out) :: r(4)
+    end subroutine LGNQuaternionMultiply
+
+    ! =========================================================================
+    ! C streams for LGNSetErrFile and LGNPrintAllStats (fortran/flignum_cshim.c
+    ! for stdout/stderr, the C library for the rest)
+    ! =========================================================================
+
+    !> The C stream stdout.
+    type(c_ptr) function FLGNStdout() bind(c, name="FLGNStdout")
+      import :: c_ptr
+    end function FLGNStdout
+
+    !> The C stream stderr.
+    type(c_ptr) function FLGNStderr() bind(c, name="FLGNStderr")
+      import :: c_ptr
+    end function FLGNStderr
+
+    !> fflush(fp) of the C library; c_null_ptr flushes all C streams.
+    integer(c_int) function FLGNFflush(fp) bind(c, name="fflush")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: fp
+    end function FLGNFflush
+
+    !> fclose(fp) of the C library.
+    integer(c_int) function FLGNFclose(fp) bind(c, name="fclose")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: fp
+    end function FLGNFclose
+  end interface
+
+contains
+
+  !> Copy a NUL-terminated C string into a Fortran string ("" for c_null_ptr).
+  !! @param cstr the C string (const char *)
+  !! @return     its characters, without the terminating NUL
+  function FLGNString(cstr) result(str)
+    type(c_ptr), intent(in) :: cstr
+    character(len=:), allocatable :: str
+    character(kind=c_char), pointer :: chars(:)
+    integer :: i, n
+    interface
+      integer(c_size_t) function c_strlen(s) bind(c, name="strlen")
+        import :: c_size_t, c_ptr
+        type(c_ptr), value :: s
+      end function c_strlen
+    end interface
+
+    if (.not. c_associated(cstr)) then
+      str = ""
+      return
+    end if
+    n = int(c_strlen(cstr))
+    call c_f_pointer(cstr, chars, [n])
+    allocate (character(len=n) :: str)
+    do i = 1, n
+      str(i:i) = chars(i)
+    end do
+  end function FLGNString
+
+  !> Name of a Lignum return flag, e.g. "LGN_CONV_FAILURE".
+  !! @param flag a value returned by a Lignum function
+  !! @return     the name (as LGNGetReturnFlagName)
+  function FLGNGetReturnFlagName(flag) result(name)
+    integer(c_int), intent(in) :: flag
+    character(len=:), allocatable :: name
+
+    name = FLGNString(LGNGetReturnFlagName(int(flag, c_long)))
+  end function FLGNGetReturnFlagName
+
+  !> Open a C stream (fopen) for LGNSetErrFile or LGNPrintAllStats.
+  !! @param path file name (trailing blanks are ignored)
+  !! @param mode fopen mode, e.g. "w"
+  !! @return     the FILE *, c_null_ptr on failure; close it with FLGNFclose
+  function FLGNFopen(path, mode) result(fp)
+    character(len=*), intent(in) :: path, mode
+    type(c_ptr) :: fp
+    interface
+      type(c_ptr) function c_fopen(cpath, cmode) bind(c, name="fopen")
+        import :: c_ptr, c_char
+        character(kind=c_char), intent(in) :: cpath(*), cmode(*)
+      end function c_fopen
+    end interface
+
+    fp = c_fopen(trim(path)//c_null_char, trim(mode)//c_null_char)
+  end function FLGNFopen
+
+  !> LGNPrintAllStats on standard output, in order with Fortran output:
+  !! flushes the Fortran unit output_unit first and the C stdout after.
+  !! @param lgn_mem memory block
+  !! @param fmt     SUN_OUTPUTFORMAT_TABLE or SUN_OUTPUTFORMAT_CSV
+  !! @return        the flag of LGNPrintAllStats
+  function FLGNPrintAllStats(lgn_mem, fmt) result(flag)
+    use, intrinsic :: iso_fortran_env, only: output_unit
+    type(c_ptr), intent(in) :: lgn_mem
+    integer(c_int), intent(in) :: fmt
+    integer(c_int) :: flag, ierr
+
+    flush (output_unit)
+    flag = LGNPrintAllStats(lgn_mem, FLGNStdout(), fmt)
+    ierr = FLGNFflush(FLGNStdout())
+    if (ierr /= 0 .and. flag == LGN_SUCCESS) flag = LGN_UNRECOGNIZED_ERR
+  end function FLGNPrintAllStats
+
+  !> The group record behind an LGNGroup (nq, nv, kind, content, ops).
+  !! @param G a group (not c_null_ptr)
+  !! @return  pointer to its struct LGNGroupRec
+  function FLGNGroup_Rec(G) result(rec)
+    type(c_ptr), intent(in) :: G
+    type(LGNGroupRec), pointer :: rec
+
+    call c_f_pointer(G, rec)
+  end function FLGNGroup_Rec
+
+  !> Number of reals storing one element of G (G->nq).
+  !! @param G a group (not c_null_ptr)
+  function FLGNGroup_NQ(G) result(nq)
+    type(c_ptr), intent(in) :: G
+    integer(c_int64_t) :: nq
+    type(LGNGroupRec), pointer :: rec
+
+    call c_f_pointer(G, rec)
+    nq = rec%nq
+  end function FLGNGroup_NQ
+
+  !> Dimension of the Lie algebra of G (G->nv).
+  !! @param G a group (not c_null_ptr)
+  function FLGNGroup_NV(G) result(nv)
+    type(c_ptr), intent(in) :: G
+    integer(c_int64_t) :: nv
+    type(LGNGroupRec), pointer :: rec
+
+    call c_f_pointer(G, rec)
+    nv = rec%nv
+  end function FLGNGroup_NV
+
+end module flignum_mod

@@ -1,0 +1,51 @@
+# Every public function and callback type of the Lignum headers has a
+# binding in flignum_mod.f90:
+#  - a function LGNxxx( declared in a header -> an interface with
+#    bind(c, name="LGNxxx") in the module;
+#  - a callback typedef (*LGNxxxFn)( -> an abstract interface LGNxxxFn.
+#   cmake "-DLGN_HEADERS=a.h|b.h" -DLGN_MODULE=flignum_mod.f90 -P check_api_coverage.cmake
+cmake_minimum_required(VERSION 3.25)
+
+string(REPLACE "|" ";" _headers "${LGN_HEADERS}")
+file(READ ${LGN_MODULE} _module)
+string(TOLOWER "${_module}" _module_lc)
+
+set(_nfun 0)
+set(_ntype 0)
+set(_missing "")
+foreach(_h IN LISTS _headers)
+  file(READ ${_h} _text)
+  # drop comments: /* ... */ (non-greedy via a character class) and // ...
+  string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" "" _text "${_text}")
+  # functions: a name followed by "(" at the start of a declarator
+  string(REGEX MATCHALL "[ *\n](LGN[A-Za-z0-9_]*)\\(" _calls "${_text}")
+  foreach(_c IN LISTS _calls)
+    string(REGEX REPLACE "^.(LGN[A-Za-z0-9_]*)\\($" "\\1" _name "${_c}")
+    math(EXPR _nfun "${_nfun} + 1")
+    string(FIND "${_module}" "name=\"${_name}\"" _pos)
+    if(_pos EQUAL -1)
+      list(APPEND _missing "function ${_name}")
+    endif()
+  endforeach()
+  # callback types: typedef ... (*LGNxxxFn)(
+  string(REGEX MATCHALL "\\(\\*(LGN[A-Za-z0-9_]*)\\)\\(" _types "${_text}")
+  foreach(_t IN LISTS _types)
+    string(REGEX REPLACE "^\\(\\*(LGN[A-Za-z0-9_]*)\\)\\($" "\\1" _name "${_t}")
+    math(EXPR _ntype "${_ntype} + 1")
+    string(TOLOWER "${_name}" _name_lc)
+    string(REGEX MATCH "(function|subroutine) ${_name_lc}\\(" _found "${_module_lc}")
+    if(NOT _found)
+      list(APPEND _missing "callback type ${_name}")
+    endif()
+  endforeach()
+endforeach()
+
+message(STATUS "${_nfun} functions and ${_ntype} callback types in the headers")
+if(_nfun LESS 60 OR _ntype LESS 8)
+  message(FATAL_ERROR "too few declarations found: is the header parsing broken?")
+endif()
+if(_missing)
+  string(REPLACE ";" "\n  " _list "${_missing}")
+  message(FATAL_ERROR "not bound in ${LGN_MODULE}:\n  ${_list}")
+endif()
+message(STATUS "all bound in ${LGN_MODULE}")

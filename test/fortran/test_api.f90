@@ -1,0 +1,573 @@
+! -----------------------------------------------------------------------------
+! Lignum Fortran test: the C API through flignum_mod, call by call.
+!
+!  - return flags seen from Fortran and their names (FLGNGetReturnFlagName):
+!    NULL memory -> LGN_MEM_NULL, LGNSolve before LGNInit -> LGN_NO_MALLOC,
+!    a negative step -> LGN_ILL_INPUT, tout behind -> LGN_BAD_TOUT, a failing
+!    Fortran force callback -> LGN_FORCE_FAIL; every flag's name;
+!  - a Fortran error handler (code, function name, message via FLGNString,
+!    its data via c_loc/c_f_pointer); the error file and LGNPrintAllStats
+!    on C streams opened from Fortran;
+!  - built-in groups (FLGNGroup_Rec), products, the dispatchers and the
+!    quaternion helpers; a group defined in Fortran (R^1 with bind(C) ops);
+!  - a complete integration on that group: the oscillator q'' = -q with
+!    Newmark (1/4, 1/2), exact kinematics, against cos(t); every setter and
+!    getter of lignum.h is called once.
+! SPDX-License-Identifier: BSD-3-Clause
+! ---------------------------------------------------------------------------
+
+! Callbacks (bind(C) procedures must be module procedures).
+module test_api_callbacks
+  use, intrinsic :: iso_c_binding
+  use flignum_mod
+  use flignum_sundials_mod
+  implicit none
+
+  !> What the error handler saw (its eh_data).
+  type :: error_record
+    integer :: count = 0
+    integer(c_int) :: code = 0
+    character(len=:), allocatable :: module_name, function_name, msg
+  end type error_record
+
+  !> Oscillator data (user data): stiffness, and a switch to make the force fail.
+  type :: oscillator
+    real(c_double) :: k = 1.0_c_double
+    logical :: fail_force = .false.
+  end type oscillator
+
+contains
+
+  !> LGNErrHandlerFn: record the last error.
+  subroutine record_error(error_code, module_name, function_name, msg, eh_data) bind(c)
+    integer(c_int), value :: error_code
+    type(c_ptr), value :: module_name, function_name, msg, eh_data
+    type(error_record), pointer :: rec
+
+    call c_f_pointer(eh_data, rec)
+    rec%count = rec%count + 1
+    rec%code = error_code
+    rec%module_name = FLGNString(module_name)
+    rec%function_name = FLGNString(function_name)
+    rec%msg = FLGNString(msg)
+  end subroutine record_error
+
+  ! --- R^n as a user-supplied group: exp(w) = w, T = I, Tdot = 0 ----------------
+
+  !> LGNGroupComposeExpFn: q_out = q + w.
+  integer(c_int) function rn_compose_exp(G, q, w, q_out) result(ierr) bind(c)
+    type(c_ptr), value :: G
+    real(c_double) :: q(*), w(*), q_out(*)
+    integer(c_int64_t) :: n
+
+    n = FLGNGroup_NQ(G)
+    q_out(1:n) = q(1:n) + w(1:n)
+    ierr = 0
+  end function rn_compose_exp
+
+  !> LGNGroupTangentApplyFn: y = T(w) x = x (also T^{-1}).
+  integer(c_int) function rn_tangent_apply(G, w, x, y) result(ierr) bind(c)
+    type(c_ptr), value :: G
+    real(c_double), intent(in) :: w(*), x(*)
+    real(c_double), intent(out) :: y(*)
+    integer(c_int64_t) :: n
+
+    n = FLGNGroup_NV(G)
+    y(1:n) = x(1:n)
+    ierr = 0
+  end function rn_tangent_apply
+
+  !> LGNGroupTangentDotApplyFn: y = Tdot x = 0.
+  integer(c_int) function rn_tangent_dot_apply(G, w, wdot, x, y) result(ierr) bind(c)
+    type(c_ptr), value :: G
+    real(c_double), intent(in) :: w(*), wdot(*), x(*)
+    real(c_double), intent(out) :: y(*)
+
+    y(1:FLGNGroup_NV(G)) = 0.0_c_double
+    ierr = 0
+  end function rn_tangent_dot_apply
+
+  !> LGNGroupTangentMatrixFn: Tm = I (column-major, leading dimension ld).
+  integer(c_int) function rn_tangent_matrix(G, w, Tm, ld) result(ierr) bind(c)
+    type(c_ptr), value :: G
+    real(c_double), intent(in) :: w(*)
+    real(c_double), intent(inout) :: Tm(*)
+    integer(c_int64_t), value :: ld
+    integer(c_int64_t) :: i, j, n
+
+    n = FLGNGroup_NV(G)
+    do j = 1, n
+      do i = 1, n
+        Tm(i + (j - 1) * ld) = merge(1.0_c_double, 0.0_c_double, i == j)
+      end do
+    end do
+    ierr = 0
+  end function rn_tangent_matrix
+
+  !> LGNGroupIdentityFn: q = 0.
+  integer(c_int) function rn_identity(G, q) result(ierr) bind(c)
+    type(c_ptr), value :: G
+    real(c_double), intent(inout) :: q(*)
+
+    q(1:FLGNGroup_NQ(G)) = 0.0_c_double
+    ierr = 0
+  end function rn_identity
+
+  ! --- the oscillator q'' + k q = 0 ---------------------------------------------
+
+  !> LGNMassFn: M = 1.
+  integer(c_int) function osc_mass(t, q, M, user_data) result(ierr) bind(c)
+    real(c_double), value :: t
+    type(c_ptr), value :: q, M, user_data
+    real(c_double), pointer :: a(:, :)
+
+    a => FSUNDenseMatrix_Array(M)
+    a(1, 1) = 1.0_c_double
+    ierr = 0
+  end function osc_mass
+
+  !> LGNForceFn: g = k q; fails (-1) when the user data say so.
+  integer(c_int) function osc_force(t, q, v, g, user_data) result(ierr) bind(c)
+    real(c_double), value :: t
+    type(c_ptr), value :: q, v, g, user_data
+    type(oscillator), pointer :: osc
+    real(c_double), pointer :: qq(:), gg(:)
+
+    call c_f_pointer(user_data, osc)
+    qq => FN_VGetArray(q)
+    gg => FN_VGetArray(g)
+    gg(1) = osc%k * qq(1)
+    ierr = merge(-1_c_int, 0_c_int, osc%fail_force)
+  end function osc_force
+
+end module test_api_callbacks
+
+program test_api
+  use, intrinsic :: iso_c_binding
+  use, intrinsic :: iso_fortran_env, only: error_unit
+  use flignum_mod
+  use flignum_sundials_mod
+  use test_api_callbacks
+  implicit none
+
+  integer :: nfail = 0
+
+  call test_flag_names()
+  call test_usage_errors()
+  call test_groups()
+  call test_parameter_map()
+  call test_oscillator()
+
+  if (nfail > 0) then
+    write (error_unit, "(i0, a)") nfail, " check(s) failed"
+    error stop 1
+  end if
+  write (*, "(a)") "test_api: all checks passed"
+
+contains
+
+  !> Record a failure unless ok.
+  subroutine expect(ok, what)
+    logical, intent(in) :: ok
+    character(len=*), intent(in) :: what
+
+    if (.not. ok) then
+      write (error_unit, "(a, a)") "FAILED: ", what
+      nfail = nfail + 1
+    end if
+  end subroutine expect
+
+  !> flag == expected, and its name is the expected constant's name.
+  subroutine expect_flag(flag, expected, name, what)
+    integer(c_int), intent(in) :: flag, expected
+    character(len=*), intent(in) :: name, what
+
+    call expect(flag == expected, what//" returns "//name//", got " &
+                //FLGNGetReturnFlagName(flag))
+    call expect(FLGNGetReturnFlagName(flag) == name, &
+                what//": the name of the flag is "//FLGNGetReturnFlagName(flag))
+  end subroutine expect_flag
+
+  !> |x - y| <= tol
+  subroutine expect_near(x, y, tol, what)
+    real(c_double), intent(in) :: x, y, tol
+    character(len=*), intent(in) :: what
+    character(len=80) :: buf
+
+    write (buf, "(a, es24.16, a, es24.16)") " = ", x, ", expected ", y
+    call expect(abs(x - y) <= tol, what//trim(buf))
+  end subroutine expect_near
+
+  !> Every flag's name, and the name of an unknown value.
+  subroutine test_flag_names()
+    call name_is(LGN_SUCCESS, "LGN_SUCCESS")
+    call name_is(LGN_TOO_MUCH_WORK, "LGN_TOO_MUCH_WORK")
+    call name_is(LGN_CONV_FAILURE, "LGN_CONV_FAILURE")
+    call name_is(LGN_MASS_FAIL, "LGN_MASS_FAIL")
+    call name_is(LGN_FORCE_FAIL, "LGN_FORCE_FAIL")
+    call name_is(LGN_CONSTR_FAIL, "LGN_CONSTR_FAIL")
+    call name_is(LGN_CONSTR_JAC_FAIL, "LGN_CONSTR_JAC_FAIL")
+    call name_is(LGN_TANGENT_FAIL, "LGN_TANGENT_FAIL")
+    call name_is(LGN_GROUP_FAIL, "LGN_GROUP_FAIL")
+    call name_is(LGN_NONFINITE, "LGN_NONFINITE")
+    call name_is(LGN_REPTD_CALLBACK_ERR, "LGN_REPTD_CALLBACK_ERR")
+    call name_is(LGN_IC_FAIL, "LGN_IC_FAIL")
+    call name_is(LGN_MEM_NULL, "LGN_MEM_NULL")
+    call name_is(LGN_MEM_FAIL, "LGN_MEM_FAIL")
+    call name_is(LGN_ILL_INPUT, "LGN_ILL_INPUT")
+    call name_is(LGN_NO_MALLOC, "LGN_NO_MALLOC")
+    call name_is(LGN_NO_LINSOL, "LGN_NO_LINSOL")
+    call name_is(LGN_MISSING_FN, "LGN_MISSING_FN")
+    call name_is(LGN_BAD_TOUT, "LGN_BAD_TOUT")
+    call name_is(LGN_LINIT_FAIL, "LGN_LINIT_FAIL")
+    call name_is(LGN_LSETUP_FAIL, "LGN_LSETUP_FAIL")
+    call name_is(LGN_LSOLVE_FAIL, "LGN_LSOLVE_FAIL")
+    call name_is(LGN_LS_MISMATCH, "LGN_LS_MISMATCH")
+    call name_is(LGN_UNRECOGNIZED_ERR, "LGN_UNRECOGNIZED_ERR")
+    call name_is(12345_c_int, "NONE")
+    call expect(FLGNString(LGNGetReturnFlagName(-2_c_long)) == "LGN_CONV_FAILURE", &
+                "LGNGetReturnFlagName(-2) through FLGNString")
+    call expect(FLGNString(c_null_ptr) == "", "FLGNString(c_null_ptr) is empty")
+  end subroutine test_flag_names
+
+  !> FLGNGetReturnFlagName(flag) == name
+  subroutine name_is(flag, name)
+    integer(c_int), intent(in) :: flag
+    character(len=*), intent(in) :: name
+
+    call expect(FLGNGetReturnFlagName(flag) == name, &
+                "FLGNGetReturnFlagName: "//FLGNGetReturnFlagName(flag)//" /= "//name)
+  end subroutine name_is
+
+  !> Flags of usage errors, the error handler and the error file.
+  subroutine test_usage_errors()
+    type(c_ptr) :: ctx, mem, q, v, fp
+    type(error_record), target :: rec
+    real(c_double) :: t
+    integer(c_int) :: flag
+    character(len=256) :: line
+    integer :: unit, ios
+    logical :: found
+
+    call expect(FSUNContext_Create(ctx) == 0, "SUNContext_Create")
+    q = N_VNew_Serial(7_c_int64_t, ctx)
+    v = N_VNew_Serial(6_c_int64_t, ctx)
+
+    ! NULL memory block (message on stderr, as documented)
+    call expect_flag(LGNSetStepSize(c_null_ptr, 1.0e-3_c_double), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNSetStepSize(NULL)")
+
+    mem = LGNCreate(ctx)
+    call expect(c_associated(mem), "LGNCreate")
+
+    ! a Fortran error handler with Fortran data
+    call expect_flag(LGNSetErrHandlerFn(mem, c_funloc(record_error), c_loc(rec)), &
+                     LGN_SUCCESS, "LGN_SUCCESS", "LGNSetErrHandlerFn")
+    flag = LGNSetStepSize(mem, -1.0_c_double)
+    call expect_flag(flag, LGN_ILL_INPUT, "LGN_ILL_INPUT", "LGNSetStepSize(-1)")
+    call expect(rec%count == 1 .and. rec%code == LGN_ILL_INPUT, &
+                "the error handler saw LGN_ILL_INPUT once")
+    if (rec%count > 0) then
+      call expect(rec%function_name == "LGNSetStepSize", &
+                  "the error handler got the function name, not "//rec%function_name)
+      call expect(len(rec%msg) > 0 .and. len(rec%module_name) > 0, &
+                  "the error handler got a module name and a message")
+    end if
+    flag = LGNSolve(mem, 1.0_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_NO_MALLOC, "LGN_NO_MALLOC", "LGNSolve before LGNInit")
+    call expect(rec%count == 2 .and. rec%code == LGN_NO_MALLOC, &
+                "the error handler saw LGN_NO_MALLOC")
+
+    ! the default handler on a C stream opened from Fortran
+    call expect_flag(LGNSetErrHandlerFn(mem, c_null_funptr, c_null_ptr), LGN_SUCCESS, &
+                     "LGN_SUCCESS", "LGNSetErrHandlerFn(NULL)")
+    fp = FLGNFopen("test_api_errors.txt", "w")
+    call expect(c_associated(fp), "FLGNFopen")
+    call expect_flag(LGNSetErrFile(mem, fp), LGN_SUCCESS, "LGN_SUCCESS", "LGNSetErrFile")
+    call expect_flag(LGNSetNewmark(mem, -1.0_c_double, 0.5_c_double), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNSetNewmark(-1, 0.5)")
+    call expect_flag(LGNSetErrFile(mem, c_null_ptr), LGN_SUCCESS, "LGN_SUCCESS", &
+                     "LGNSetErrFile(NULL)")
+    call expect_flag(LGNSetKinematics(mem, 99_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetKinematics(99), silenced")
+    call expect(rec%count == 2, "the replaced handler is no longer called")
+    call expect(FLGNFclose(fp) == 0, "FLGNFclose")
+    found = .false.
+    open (newunit=unit, file="test_api_errors.txt", status="old", action="read", iostat=ios)
+    call expect(ios == 0, "the error file exists")
+    do while (ios == 0)
+      read (unit, "(a)", iostat=ios) line
+      if (ios == 0) found = found .or. index(line, "LGNSetNewmark") > 0
+      call expect(index(line, "LGNSetKinematics") == 0, "a silenced error was written")
+    end do
+    if (ios > 0) call expect(.false., "reading the error file")
+    close (unit, status="delete")
+    call expect(found, "the error file names LGNSetNewmark")
+
+    call LGNFree(mem)
+    call expect(.not. c_associated(mem), "LGNFree sets mem to c_null_ptr")
+    call N_VDestroy(q)
+    call N_VDestroy(v)
+    call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
+    call expect(.not. c_associated(ctx), "SUNContext_Free sets ctx to c_null_ptr")
+  end subroutine test_usage_errors
+
+  !> Built-in and Fortran-defined groups, dispatchers, quaternion helpers.
+  subroutine test_groups()
+    type(c_ptr) :: G, S, Rn, Pg, U
+    type(c_ptr) :: factors(2)
+    type(LGNGroupRec), pointer :: rec
+    real(c_double) :: q7(7), w6(6), qo(7), x(6), y(6), Tm(6, 6)
+    real(c_double) :: pq(4), pr(4), phi(3), R9(9), q2(2), w2(2), y2(2)
+    real(c_double), parameter :: pi = acos(-1.0_c_double)
+
+    ! R^3 x SO(3)
+    G = LGNGroup_R3xSO3()
+    rec => FLGNGroup_Rec(G)
+    call expect(rec%kind == LGN_GROUP_R3XSO3 .and. rec%nq == 7 .and. rec%nv == 6, &
+                "LGNGroup_R3xSO3: kind, nq = 7, nv = 6")
+    call expect(LGNGroup_Identity(G, q7) == 0, "LGNGroup_Identity")
+    call expect(maxval(abs(q7 - [0, 0, 0, 1, 0, 0, 0])) <= 0, "identity of R^3 x SO(3)")
+    w6 = [1.0_c_double, 2.0_c_double, 3.0_c_double, 0.0_c_double, 0.0_c_double, pi / 2]
+    call expect(LGNGroup_ComposeExp(G, q7, w6, qo) == 0, "LGNGroup_ComposeExp")
+    call expect_near(qo(1) + qo(2) + qo(3), 6.0_c_double, 1.0e-15_c_double, "x + u")
+    call expect_near(qo(4), cos(pi / 4), 1.0e-15_c_double, "p0 of exp(pi/2 e_z)")
+    call expect_near(qo(7), sin(pi / 4), 1.0e-15_c_double, "p3 of exp(pi/2 e_z)")
+    call expect(LGNGroup_Normalize(G, qo) == 0, "LGNGroup_Normalize")
+    x = [1, 2, 3, 4, 5, 6]
+    call expect(LGNGroup_TangentApply(G, w6, x, y) == 0, "LGNGroup_TangentApply")
+    call expect(LGNGroup_TangentInverseApply(G, w6, y, qo) == 0, &
+                "LGNGroup_TangentInverseApply")
+    call expect(maxval(abs(qo(1:6) - x)) <= 1.0e-14_c_double, "T^{-1} T x = x")
+    call expect(LGNGroup_TangentDotApply(G, w6, w6, x, y) == 0, "LGNGroup_TangentDotApply")
+    call expect(LGNGroup_TangentMatrix(G, w6, Tm, 6_c_int64_t) == 0, "LGNGroup_TangentMatrix")
+    call expect(LGNGroup_TangentApply(G, w6, x, y) == 0, "LGNGroup_TangentApply again")
+    call expect(maxval(abs(matmul(Tm, x) - y)) <= 1.0e-14_c_double, &
+                "T(w) as a column-major Fortran matrix")
+    call expect(LGNGroup_TangentMatrix(G, w6, Tm, 5_c_int64_t) == -1, &
+                "LGNGroup_TangentMatrix with ld < nv returns -1")
+
+    ! products of built-in groups
+    S = LGNGroup_SO3()
+    Rn = LGNGroup_Rn(2_c_int64_t)
+    factors = [S, Rn]
+    Pg = LGNGroup_Product(2_c_int, factors)
+    call expect(c_associated(Pg), "LGNGroup_Product")
+    rec => FLGNGroup_Rec(Pg)
+    call expect(rec%kind == LGN_GROUP_PRODUCT .and. rec%nq == 6 .and. rec%nv == 5, &
+                "SO(3) x R^2: kind, nq = 6, nv = 5")
+    call expect(.not. c_associated(LGNGroup_Rn(0_c_int64_t)), "LGNGroup_Rn(0) is NULL")
+    call LGNGroup_Destroy(Pg)
+    call LGNGroup_Destroy(Rn)
+    call LGNGroup_Destroy(S)
+    call LGNGroup_Destroy(G)
+    G = LGNGroup_SE3()
+    rec => FLGNGroup_Rec(G)
+    call expect(rec%kind == LGN_GROUP_SE3, "LGNGroup_SE3: kind")
+    call expect(FLGNGroup_NQ(G) == 7, "LGNGroup_SE3: FLGNGroup_NQ")
+    call expect(FLGNGroup_NV(G) == 6, "LGNGroup_SE3: FLGNGroup_NV")
+    call LGNGroup_Destroy(G)
+    call LGNGroup_Destroy(c_null_ptr)
+
+    ! a group defined in Fortran: R^2 with only compose_exp and identity
+    U = LGNGroup_NewEmpty(2_c_int64_t, 2_c_int64_t)
+    rec => FLGNGroup_Rec(U)
+    call expect(rec%kind == LGN_GROUP_CUSTOM .and. rec%nq == 2 .and. rec%nv == 2, &
+                "LGNGroup_NewEmpty(2, 2)")
+    call expect(.not. c_associated(rec%ops%compose_exp), "NewEmpty: ops are NULL")
+    rec%ops%compose_exp = c_funloc(rn_compose_exp)
+    rec%ops%identity = c_funloc(rn_identity)
+    q2 = [1.0_c_double, 2.0_c_double]
+    w2 = [0.5_c_double, -1.0_c_double]
+    call expect(LGNGroup_ComposeExp(U, q2, w2, y2) == 0, "ComposeExp of a Fortran group")
+    call expect(maxval(abs(y2 - [1.5_c_double, 1.0_c_double])) <= 0, &
+                "q o exp(w) = q + w in Fortran")
+    call expect(LGNGroup_Identity(U, y2) == 0, "Identity of a Fortran group")
+    call expect(maxval(abs(y2)) <= 0, "the identity is 0 in Fortran")
+    call expect(LGNGroup_TangentApply(U, w2, q2, y2) == -1, "a missing op returns -1")
+    call expect(LGNGroup_Normalize(U, q2) == 0, "Normalize without op is a no-op")
+    call LGNGroup_Destroy(U)
+
+    ! quaternion helpers: p = exp(pi/2 e_z); R row-major
+    call LGNQuaternionFromRotationVector([0.0_c_double, 0.0_c_double, pi / 2], pq)
+    call expect_near(pq(1), cos(pi / 4), 1.0e-15_c_double, "LGNQuaternionFromRotationVector w")
+    call LGNQuaternionToRotation(pq, R9)
+    call expect(maxval(abs(R9 - [0, -1, 0, 1, 0, 0, 0, 0, 1])) <= 1.0e-15_c_double, &
+                "LGNQuaternionToRotation is row-major")
+    call LGNRotationVectorFromQuaternion(pq, phi)
+    call expect_near(phi(3), pi / 2, 1.0e-15_c_double, "LGNRotationVectorFromQuaternion")
+    call LGNQuaternionMultiply(pq, pq, pr)
+    call expect_near(pr(4), 1.0_c_double, 1.0e-15_c_double, "LGNQuaternionMultiply: p p = e_z")
+  end subroutine test_groups
+
+  !> LGNGenAlphaFromRhoInf(0.9) = (8/19, 9/19, 100/361, 21/38).
+  subroutine test_parameter_map()
+    real(c_double) :: am, af, beta, gamma
+
+    call expect(LGNGenAlphaFromRhoInf(0.9_c_double, am, af, beta, gamma) == LGN_SUCCESS, &
+                "LGNGenAlphaFromRhoInf(0.9)")
+    call expect_near(am, 8.0_c_double / 19, 1.0e-15_c_double, "alpha_m")
+    call expect_near(af, 9.0_c_double / 19, 1.0e-15_c_double, "alpha_f")
+    call expect_near(beta, 100.0_c_double / 361, 1.0e-15_c_double, "beta")
+    call expect_near(gamma, 21.0_c_double / 38, 1.0e-15_c_double, "gamma")
+    call expect_flag(LGNGenAlphaFromRhoInf(2.0_c_double, am, af, beta, gamma), &
+                     LGN_ILL_INPUT, "LGN_ILL_INPUT", "LGNGenAlphaFromRhoInf(2)")
+  end subroutine test_parameter_map
+
+  !> q'' = -q on R^1 defined in Fortran, q(0) = 1, v(0) = 0: q(1) = cos 1.
+  subroutine test_oscillator()
+    type(oscillator), target :: osc
+    type(c_ptr) :: ctx, G, q, v, vdot, a, l0, A1, tmpl, LS, mem, fp
+    type(LGNGroupRec), pointer :: rec
+    real(c_double), pointer :: qq(:), vv(:), vd(:)
+    real(c_double) :: t, am, af, beta, gamma, h
+    integer(c_long) :: nsteps, nni, nncf, nsf, nres, ndq, nje, nls, nlsolves, lflag
+    integer(c_int) :: flag
+    real(c_double), parameter :: tol = 1.0e-6_c_double
+
+    call expect(FSUNContext_Create(ctx) == 0, "SUNContext_Create")
+    G = LGNGroup_NewEmpty(1_c_int64_t, 1_c_int64_t)
+    rec => FLGNGroup_Rec(G)
+    rec%ops%compose_exp = c_funloc(rn_compose_exp)
+    rec%ops%tangent_apply = c_funloc(rn_tangent_apply)
+    rec%ops%tangent_inverse_apply = c_funloc(rn_tangent_apply)
+    rec%ops%tangent_dot_apply = c_funloc(rn_tangent_dot_apply)
+    rec%ops%tangent_matrix = c_funloc(rn_tangent_matrix)
+    rec%ops%identity = c_funloc(rn_identity)
+    q = N_VNew_Serial(1_c_int64_t, ctx)
+    v = N_VNew_Serial(1_c_int64_t, ctx)
+    vdot = N_VNew_Serial(1_c_int64_t, ctx)
+    a = N_VNew_Serial(1_c_int64_t, ctx)
+    A1 = SUNDenseMatrix(1_c_int64_t, 1_c_int64_t, ctx)
+    call expect(SUNMatGetID(A1) == SUNMATRIX_DENSE, "SUNMatGetID of a dense matrix")
+    call expect(SUNDenseMatrix_LData(A1) == 1, "SUNDenseMatrix_LData")
+    tmpl = N_VNew_Serial(1_c_int64_t, ctx)
+    LS = SUNLinSol_Dense(tmpl, A1, ctx)
+    qq => FN_VGetArray(q)
+    vv => FN_VGetArray(v)
+    qq(1) = 1.0_c_double
+    call N_VConst(0.0_c_double, v)
+    call N_VConst(-1.0_c_double, vdot)   ! consistent: vdot0 = -k q0
+
+    mem = LGNCreate(ctx)
+    call expect(LGNSetGroup(mem, G) == 0, "LGNSetGroup")
+    call expect(LGNSetUserData(mem, c_loc(osc)) == 0, "LGNSetUserData")
+    call expect(LGNSetMassFn(mem, c_funloc(osc_mass)) == 0, "LGNSetMassFn")
+    call expect(LGNSetForceFn(mem, c_funloc(osc_force)) == 0, "LGNSetForceFn")
+    call expect(LGNSetConstraints(mem, 0_c_int64_t, c_null_funptr, c_null_funptr) == 0, &
+                "LGNSetConstraints(m = 0)")
+    call expect(LGNSetStiffnessFn(mem, c_null_funptr) == 0, "LGNSetStiffnessFn(NULL)")
+    call expect(LGNSetDampingFn(mem, c_null_funptr) == 0, "LGNSetDampingFn(NULL)")
+    call expect(LGNSetCurvatureFn(mem, c_null_funptr) == 0, "LGNSetCurvatureFn(NULL)")
+    call expect(LGNInit(mem, 0.0_c_double, q, v) == 0, "LGNInit")
+    call expect(LGNSetLinearSolver(mem, LS, A1) == 0, "LGNSetLinearSolver")
+    call expect(LGNSetGenAlphaParams(mem, 0.0_c_double, 0.0_c_double, 0.3_c_double, &
+                                     0.6_c_double) == 0, "LGNSetGenAlphaParams")
+    call expect(LGNGetMethodParams(mem, am, af, beta, gamma) == 0, "LGNGetMethodParams")
+    call expect_near(beta, 0.3_c_double, 0.0_c_double, "beta after LGNSetGenAlphaParams")
+    call expect_near(gamma, 0.6_c_double, 0.0_c_double, "gamma after LGNSetGenAlphaParams")
+    call expect(LGNSetNewmark(mem, 0.25_c_double, 0.5_c_double) == 0, "LGNSetNewmark")
+    call expect(LGNSetKinematics(mem, LGN_KINEMATICS_EXACT) == 0, "LGNSetKinematics")
+    call expect(LGNSetConstraintIndex(mem, LGN_CONSTR_INDEX3) == 0, "LGNSetConstraintIndex")
+    call expect(LGNSetPredictor(mem, LGN_PREDICTOR_EXTRAPOLATE) == 0, "LGNSetPredictor")
+    call expect(LGNSStolerances(mem, 1.0e-10_c_double, 1.0e-12_c_double) == 0, &
+                "LGNSStolerances")
+    call expect(LGNSetMaxNewtonIters(mem, 10_c_int) == 0, "LGNSetMaxNewtonIters")
+    call expect(LGNSetMaxNumSteps(mem, 5000_c_long) == 0, "LGNSetMaxNumSteps")
+    call expect(LGNSetStepSize(mem, 1.0e-3_c_double) == 0, "LGNSetStepSize")
+    call expect(LGNSetInitialAcceleration(mem, vdot, c_null_ptr) == 0, &
+                "LGNSetInitialAcceleration(vdot0, NULL)")
+    call expect(LGNSetInitialAux(mem, vdot) == 0, "LGNSetInitialAux")
+
+    ! one step, then to t = 1
+    flag = LGNSolve(mem, 1.0_c_double, t, q, v, LGN_ONE_STEP)
+    call expect_flag(flag, LGN_SUCCESS, "LGN_SUCCESS", "LGNSolve(LGN_ONE_STEP)")
+    call expect_near(t, 1.0e-3_c_double, 1.0e-15_c_double, "t after one step")
+    call expect(LGNGetLastStep(mem, h) == 0, "LGNGetLastStep")
+    call expect_near(h, 1.0e-3_c_double, 1.0e-15_c_double, "last step")
+    flag = LGNSolve(mem, 1.0_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_SUCCESS, "LGN_SUCCESS", "LGNSolve(1)")
+    call expect_near(t, 1.0_c_double, 1.0e-15_c_double, "t reached")
+    call expect_near(qq(1), cos(1.0_c_double), tol, "q(1) = cos(1)")
+    call expect_near(vv(1), -sin(1.0_c_double), tol, "v(1) = -sin(1)")
+    call expect(LGNGetCurrentTime(mem, t) == 0, "LGNGetCurrentTime")
+    call expect_near(t, 1.0_c_double, 1.0e-15_c_double, "current time")
+    call expect(LGNGetAcceleration(mem, vdot) == 0, "LGNGetAcceleration")
+    vd => FN_VGetArray(vdot)
+    call expect_near(vd(1), -qq(1), 1.0e-8_c_double, "vdot = -q")
+    call expect(LGNGetAuxAcceleration(mem, a) == 0, "LGNGetAuxAcceleration")
+    l0 = N_VNew_Serial(0_c_int64_t, ctx)
+    call expect(LGNGetMultipliers(mem, l0) == 0, "LGNGetMultipliers (m = 0, length 0)")
+    call N_VDestroy(l0)
+    ! the getters first, their values after (no order within an expression)
+    call expect(LGNGetNumSteps(mem, nsteps) == 0, "LGNGetNumSteps")
+    call expect(LGNGetNumNewtonIters(mem, nni) == 0, "LGNGetNumNewtonIters")
+    call expect(LGNGetNumNewtonConvFails(mem, nncf) == 0, "LGNGetNumNewtonConvFails")
+    call expect(LGNGetNumStepFails(mem, nsf) == 0, "LGNGetNumStepFails")
+    call expect(LGNGetNumResEvals(mem, nres) == 0, "LGNGetNumResEvals")
+    call expect(LGNGetNumDQEvals(mem, ndq) == 0, "LGNGetNumDQEvals")
+    call expect(LGNGetNumJacEvals(mem, nje) == 0, "LGNGetNumJacEvals")
+    call expect(LGNGetNumLinSolvSetups(mem, nls) == 0, "LGNGetNumLinSolvSetups")
+    call expect(LGNGetNumLinSolves(mem, nlsolves) == 0, "LGNGetNumLinSolves")
+    call expect(LGNGetLastLinFlag(mem, lflag) == 0, "LGNGetLastLinFlag")
+    call expect(nsteps == 1000, "1000 steps")
+    call expect(nni >= nsteps, "at least one Newton iteration per step")
+    call expect(nncf == 0 .and. nsf == 0, "no Newton or step failures")
+    call expect(nres > 0 .and. nje > 0 .and. nls > 0, "residuals, Jacobians, setups counted")
+    call expect(ndq > 0, "no stiffness callback: difference quotients counted")
+    call expect(nlsolves >= nni, "a linear solve per Newton iteration")
+    call expect(lflag == 0, "last linear solver flag 0")
+
+    ! statistics on C streams: CSV into a file, the table on stdout
+    fp = FLGNFopen("test_api_stats.csv", "w")
+    call expect(LGNPrintAllStats(mem, fp, SUN_OUTPUTFORMAT_CSV) == 0, "LGNPrintAllStats(CSV)")
+    call expect(FLGNFclose(fp) == 0, "FLGNFclose")
+    call expect(file_has("test_api_stats.csv", "Steps,1000"), "the CSV has Steps,1000")
+    call expect(FLGNPrintAllStats(mem, SUN_OUTPUTFORMAT_TABLE) == 0, "FLGNPrintAllStats")
+    call expect(LGNSetErrFile(mem, c_null_ptr) == 0, "LGNSetErrFile(NULL)")
+    call expect_flag(LGNPrintAllStats(mem, c_null_ptr, SUN_OUTPUTFORMAT_TABLE), &
+                     LGN_ILL_INPUT, "LGN_ILL_INPUT", "LGNPrintAllStats(NULL stream)")
+
+    ! tout behind the current time
+    flag = LGNSolve(mem, 0.5_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_BAD_TOUT, "LGN_BAD_TOUT", "LGNSolve(tout behind)")
+
+    ! a failing Fortran callback, after a restart (LGNReInit)
+    qq(1) = 1.0_c_double
+    vv(1) = 0.0_c_double
+    call expect(LGNReInit(mem, 0.0_c_double, q, v) == 0, "LGNReInit")
+    osc%fail_force = .true.
+    flag = LGNSolve(mem, 0.1_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_FORCE_FAIL, "LGN_FORCE_FAIL", "a force callback returning -1")
+
+    call LGNFree(mem)
+    call expect(SUNLinSolFree(LS) == 0, "SUNLinSolFree")
+    call SUNMatDestroy(A1)
+    call N_VDestroy(q)
+    call N_VDestroy(v)
+    call N_VDestroy(vdot)
+    call N_VDestroy(a)
+    call N_VDestroy(tmpl)
+    call LGNGroup_Destroy(G)
+    call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
+  end subroutine test_oscillator
+
+  !> .true. if a line of the file contains text; deletes the file.
+  function file_has(path, text) result(found)
+    character(len=*), intent(in) :: path, text
+    logical :: found
+    character(len=256) :: line
+    integer :: unit, ios
+
+    found = .false.
+    open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    do
+      read (unit, "(a)", iostat=ios) line
+      if (ios /= 0) exit
+      found = found .or. index(line, text) > 0
+    end do
+    close (unit, status="delete")
+  end function file_has
+
+end program test_api
