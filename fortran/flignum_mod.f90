@@ -451,6 +451,53 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem, errfp
     end function LGNSetErrFile
 
+    !> The sparsity pattern of M, B, K_t or C_t changed: rebuild it.
+    integer(c_int) function LGNResetSparsityPattern(lgn_mem) &
+        bind(c, name="LGNResetSparsityPattern")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+    end function LGNResetSparsityPattern
+
+    !> Steps accepted with the multipliers stalled at roundoff level.
+    integer(c_int) function LGNGetNumNewtonStalls(lgn_mem, nstalls) &
+        bind(c, name="LGNGetNumNewtonStalls")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nstalls
+    end function LGNGetNumNewtonStalls
+
+    !> Patterns of the sparse iteration matrix built (KLU analyses).
+    integer(c_int) function LGNGetNumSparsityAnalyses(lgn_mem, nanalyses) &
+        bind(c, name="LGNGetNumSparsityAnalyses")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nanalyses
+    end function LGNGetNumSparsityAnalyses
+
+    !> Stored entries of the iteration matrix.
+    integer(c_int) function LGNGetIterationMatrixNnz(lgn_mem, nnz) &
+        bind(c, name="LGNGetIterationMatrixNnz")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nnz
+    end function LGNGetIterationMatrixNnz
+
+    !> Displaced evaluations per difference-quotient stiffness matrix.
+    integer(c_int) function LGNGetNumDQColors(lgn_mem, ncolors) &
+        bind(c, name="LGNGetNumDQColors")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: ncolors
+    end function LGNGetNumDQColors
+
+    !> Work space of the integrator: lenrw reals and leniw integers.
+    integer(c_int) function LGNGetWorkSpace(lgn_mem, lenrw, leniw) &
+        bind(c, name="LGNGetWorkSpace")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: lenrw, leniw
+    end function LGNGetWorkSpace
+
     ! =========================================================================
     ! lignum.h: parameter maps
     ! =========================================================================
