@@ -22,30 +22,31 @@
 
 #include "lgn_sparse.h"
 
-/* K and C at the current iterate: the user's callbacks or difference quotients. */
-static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC,
-                        sunrealtype cK)
+/* K and C at the current iterate: the user's callbacks, or difference
+ * quotients (column by column for dense matrices, by column colours for
+ * sparse ones). Shared by both assemblers. */
+int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
 {
-  int ret, flag;
+  int ret;
   if (cK != SUN_RCONST(0.0)) {
     if (mem->stiffness != NULL) {
-      SUNMatZero(mem->Kmat);
+      lgnMatClear(mem->Kmat);
       ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
                            mem->Kmat, mem->user_data);
       if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
     } else {
-      flag = lgnStiffnessDQ(mem, t);
-      if (flag != LGN_SUCCESS) return flag;
+      ret = mem->sparse ? lgnStiffnessDQColored(mem, t) : lgnStiffnessDQ(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
     }
   }
   if (cC != SUN_RCONST(0.0)) {
     if (mem->damping != NULL) {
-      SUNMatZero(mem->Cmat);
+      lgnMatClear(mem->Cmat);
       ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
       if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
     } else {
-      flag = lgnDampingDQ(mem, t);
-      if (flag != LGN_SUCCESS) return flag;
+      ret = mem->sparse ? lgnDampingDQColored(mem, t) : lgnDampingDQ(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
     }
   }
   return LGN_SUCCESS;
@@ -69,7 +70,7 @@ static int AssembleDense(LGNMem mem, sunrealtype t, sunrealtype cM,
   sunrealtype *W = SUNDenseMatrix_Data(mem->Mdq); /* nv x nv scratch */
   int flag;
 
-  flag = EvalTangents(mem, t, cC, cK);
+  flag = lgnEvalTangents(mem, t, cC, cK);
   if (flag != LGN_SUCCESS) return flag;
   mem->nje++;
 

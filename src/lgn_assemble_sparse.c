@@ -29,12 +29,6 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
-static int CompareIndex(const void *a, const void *b)
-{
-  const sunindextype x = *(const sunindextype *)a, y = *(const sunindextype *)b;
-  return (x > y) - (x < y);
-}
-
 /* The column range whose entries column j of X T collects. */
 static void ClosureRange(LGNMem mem, sunindextype j, sunindextype *k0,
                          sunindextype *k1)
@@ -49,53 +43,36 @@ static void ClosureRange(LGNMem mem, sunindextype j, sunindextype *k0,
   }
 }
 
-/* Views of the model matrices as evaluated at the current iterate. */
-static int RefreshViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
+/* Views of M, B and B^T as evaluated at the current iterate, and the
+ * patterns of the difference-quotient tangents (built once). */
+static int RefreshViews(LGNMem mem)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
   int flag = lgnCscView(mem->Mmat, &sp->M);
   if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscView(mem->Bmat, &sp->B);
   if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscTranspose(&sp->B, &sp->Bt);
-  if (flag == LGN_SUCCESS && mem->stiffness != NULL) flag = lgnCscView(mem->Kmat, &sp->K);
+  if (flag != LGN_SUCCESS) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return flag;
+  }
+  if (!sp->have_dq_patterns && (mem->stiffness == NULL || mem->damping == NULL))
+    return lgnBuildDQPatterns(mem);
+  return LGN_SUCCESS;
+}
+
+/* K and C as evaluated: views of the user's matrices, or the DQ storage. */
+static int TangentViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  int flag = LGN_SUCCESS;
+  if (mem->stiffness != NULL) flag = lgnCscView(mem->Kmat, &sp->K);
   if (flag == LGN_SUCCESS && mem->damping != NULL) flag = lgnCscView(mem->Cmat, &sp->C);
   if (flag != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return flag;
   }
-  if (!sp->have_dq_patterns && (mem->stiffness == NULL || mem->damping == NULL)) {
-    flag = lgnBuildDQPatterns(mem);
-    if (flag != LGN_SUCCESS) return flag;
-  }
   *K = mem->stiffness != NULL ? &sp->K : &sp->Kdq;
   *C = mem->damping != NULL ? &sp->C : &sp->Cdq;
-  return LGN_SUCCESS;
-}
-
-/* K and C at the current iterate: the user's callbacks or coloured DQs. */
-static int EvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
-{
-  int ret;
-  if (cK != SUN_RCONST(0.0)) {
-    if (mem->stiffness != NULL) {
-      lgnMatClear(mem->Kmat);
-      ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
-                           mem->Kmat, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
-    } else {
-      ret = lgnStiffnessDQColored(mem, t);
-      if (ret != LGN_SUCCESS) return ret;
-    }
-  }
-  if (cC != SUN_RCONST(0.0)) {
-    if (mem->damping != NULL) {
-      lgnMatClear(mem->Cmat);
-      ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
-    } else {
-      ret = lgnDampingDQColored(mem, t);
-      if (ret != LGN_SUCCESS) return ret;
-    }
-  }
   return LGN_SUCCESS;
 }
 
@@ -108,51 +85,42 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   const LGNCsc *src[3];
   LGNCsc P;
   sunindextype *mark = sp->mark, *list = sp->list;
-  sunindextype i, j, k, k0, k1, p, cnt, nnz = 0;
+  LGNColumnBuilder cb;
+  sunindextype i, j, k, k0, k1, p, nnz;
   int s, flag;
 
   memset(&P, 0, sizeof P);
   src[0] = &sp->M;
   src[1] = K;
   src[2] = C;
+  cb.mark = sp->mark;
+  cb.list = sp->list;
   flag = lgnCscReserve(&P, n, n, SUNMAX(sp->A.cap, 4 * (sp->M.colptr[nv] + nv)));
+  if (flag == LGN_SUCCESS) P.colptr[0] = 0;
   for (j = 0; j < n && flag == LGN_SUCCESS; j++) {
-    cnt = 0;
-#define ADD_ROW(r)            \
-  do {                        \
-    sunindextype r_ = (r);    \
-    if (mark[r_] != j) {      \
-      mark[r_]    = j;        \
-      list[cnt++] = r_;       \
-    }                         \
-  } while (0)
+    cb.col = j;
+    cb.cnt = 0;
     if (j < nv) {
       ClosureRange(mem, j, &k0, &k1);
       for (k = k0; k < k1; k++) {
         for (s = 0; s < 3; s++)
           if (src[s]->colptr != NULL && src[s]->ncols == nv)
             for (p = src[s]->colptr[k]; p < src[s]->colptr[k + 1]; p++)
-              ADD_ROW(src[s]->rowind[p]);
+              lgnColumnAddRow(&cb, src[s]->rowind[p]);
         if (m > 0)
           for (p = sp->B.colptr[k]; p < sp->B.colptr[k + 1]; p++)
-            ADD_ROW(nv + sp->B.rowind[p]);
+            lgnColumnAddRow(&cb, nv + sp->B.rowind[p]);
       }
     } else {
       for (p = sp->Bt.colptr[j - nv]; p < sp->Bt.colptr[j - nv + 1]; p++)
-        ADD_ROW(sp->Bt.rowind[p]);
+        lgnColumnAddRow(&cb, sp->Bt.rowind[p]);
     }
     if (sp->have_pattern)
-      for (p = sp->A.colptr[j]; p < sp->A.colptr[j + 1]; p++) ADD_ROW(sp->A.rowind[p]);
-#undef ADD_ROW
-    if (nnz + cnt > P.cap) flag = lgnCscReserve(&P, n, n, 2 * (nnz + cnt));
-    if (flag != LGN_SUCCESS) break;
-    qsort(list, (size_t)cnt, sizeof *list, CompareIndex);
-    memcpy(P.rowind + nnz, list, (size_t)cnt * sizeof *list);
-    P.colptr[j]     = nnz;
-    nnz            += cnt;
-    P.colptr[j + 1] = nnz;
+      for (p = sp->A.colptr[j]; p < sp->A.colptr[j + 1]; p++) lgnColumnAddRow(&cb, sp->A.rowind[p]);
+    flag = lgnCscAppendColumn(&P, &cb);
   }
   for (i = 0; i < n; i++) mark[i] = -1;
+  nnz = flag == LGN_SUCCESS ? P.colptr[n] : 0;
   if (flag == LGN_SUCCESS && SUNSparseMatrix_NNZ(mem->A) < nnz)
     flag = SUNSparseMatrix_Reallocate(mem->A, nnz) == 0 ? LGN_SUCCESS : LGN_MEM_FAIL;
   if (flag == LGN_SUCCESS && SUNSparseMatrix_SparseType(mem->A) == CSR_MAT) {
@@ -295,12 +263,9 @@ int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
   sunindextype p, nnz;
   int flag;
 
-  flag = RefreshViews(mem, &K, &C);
-  if (flag == LGN_SUCCESS) flag = EvalTangents(mem, t, cC, cK);
-  if (flag != LGN_SUCCESS) return flag;
-  if (mem->stiffness != NULL && cK != SUN_RCONST(0.0)) flag = lgnCscView(mem->Kmat, &sp->K);
-  if (flag == LGN_SUCCESS && mem->damping != NULL && cC != SUN_RCONST(0.0))
-    flag = lgnCscView(mem->Cmat, &sp->C);
+  flag = RefreshViews(mem);
+  if (flag == LGN_SUCCESS) flag = lgnEvalTangents(mem, t, cC, cK);
+  if (flag == LGN_SUCCESS) flag = TangentViews(mem, &K, &C);
   if (flag == LGN_SUCCESS && use_tangent && mem->constr_index == LGN_CONSTR_INDEX2 &&
       mem->m > 0 && cC != SUN_RCONST(0.0))
     flag = lgnConstraintVelocityDQColored(mem, t);

@@ -25,56 +25,39 @@
 
 #include "lgn_sparse.h"
 
-static int CompareIndex(const void *a, const void *b)
-{
-  const sunindextype x = *(const sunindextype *)a, y = *(const sunindextype *)b;
-  return (x > y) - (x < y);
-}
-
 /* Symmetric pattern blocks u M u M^T (u B^T B) of size nv x nv into P. */
 static int BuildPattern(LGNMem mem, const LGNCsc *Mt, sunbooleantype with_BtB,
                         LGNCsc *P)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
   const sunindextype nv = mem->nv;
-  sunindextype *mark = sp->mark, *list = sp->list;
-  sunindextype i, j, p, q, cnt, nnz = 0;
+  LGNColumnBuilder cb;
+  sunindextype i, j, p, q;
   int b, flag;
 
   flag = lgnCscReserve(P, nv, nv, 2 * (sp->M.colptr[nv] + nv) + mem->tlen);
   if (flag != LGN_SUCCESS) return flag;
   P->colptr[0] = 0;
-  for (j = 0; j < nv; j++) {
-    cnt = 0;
-#define ADD_ROW(r)            \
-  do {                        \
-    sunindextype r_ = (r);    \
-    if (mark[r_] != j) {      \
-      mark[r_]    = j;        \
-      list[cnt++] = r_;       \
-    }                         \
-  } while (0)
+  cb.mark      = sp->mark;
+  cb.list      = sp->list;
+  for (j = 0; j < nv && flag == LGN_SUCCESS; j++) {
+    cb.col = j;
+    cb.cnt = 0;
     b = (int)mem->blk_of[j];
-    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) ADD_ROW(i);
-    for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) ADD_ROW(sp->M.rowind[p]);
-    for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) ADD_ROW(Mt->rowind[p]);
+    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) lgnColumnAddRow(&cb, i);
+    for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) lgnColumnAddRow(&cb, sp->M.rowind[p]);
+    for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) lgnColumnAddRow(&cb, Mt->rowind[p]);
     if (with_BtB && mem->m > 0)
       for (p = sp->B.colptr[j]; p < sp->B.colptr[j + 1]; p++) {
         const sunindextype r = sp->B.rowind[p];
-        for (q = sp->Bt.colptr[r]; q < sp->Bt.colptr[r + 1]; q++) ADD_ROW(sp->Bt.rowind[q]);
+        for (q = sp->Bt.colptr[r]; q < sp->Bt.colptr[r + 1]; q++)
+          lgnColumnAddRow(&cb, sp->Bt.rowind[q]);
       }
-#undef ADD_ROW
-    if (nnz + cnt > P->cap) {
-      flag = lgnCscReserve(P, nv, nv, 2 * (nnz + cnt) + nv);
-      if (flag != LGN_SUCCESS) return flag;
-    }
-    qsort(list, (size_t)cnt, sizeof *list, CompareIndex);
-    memcpy(P->rowind + nnz, list, (size_t)cnt * sizeof *list);
-    nnz += cnt;
-    P->colptr[j + 1] = nnz;
+    flag = lgnCscAppendColumn(P, &cb);
   }
-  for (j = 0; j < nv; j++) mark[j] = -1;
-  for (p = 0; p < nnz; p++) P->val[p] = SUN_RCONST(0.0);
+  for (j = 0; j < nv; j++) sp->mark[j] = -1;
+  if (flag != LGN_SUCCESS) return flag;
+  for (p = 0; p < P->colptr[nv]; p++) P->val[p] = SUN_RCONST(0.0);
   return LGN_SUCCESS;
 }
 

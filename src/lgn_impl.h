@@ -230,6 +230,7 @@ void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
                           sunrealtype *Y, sunindextype ldy);
 
 /* lgn_assemble.c */
+int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK);
 int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
                          sunrealtype cC, sunrealtype cK,
                          sunbooleantype use_tangent);

@@ -595,7 +595,7 @@ static int CompareInt(const void *x, const void *y)
 /* Per body, the sorted bodies it is coupled with (itself included). */
 static int BuildStiffnessStructure(struct LGNJointsRec *J)
 {
-  int k, b, n, *cnt = (int *)calloc((size_t)J->nb + 1, sizeof(int));
+  int k, b, *cnt = (int *)calloc((size_t)J->nb + 1, sizeof(int));
   if (cnt == NULL) return LGN_MEM_FAIL;
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
@@ -638,7 +638,6 @@ static int BuildStiffnessStructure(struct LGNJointsRec *J)
     for (i = u; i < len; i++) list[i] = -2; /* unused slots */
   }
   free(cnt);
-  (void)n;
   return LGN_SUCCESS;
 }
 

@@ -56,6 +56,27 @@ int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
   return LGN_SUCCESS;
 }
 
+static int CompareIndex(const void *a, const void *b)
+{
+  const sunindextype x = *(const sunindextype *)a, y = *(const sunindextype *)b;
+  return (x > y) - (x < y);
+}
+
+/* Append the rows collected in cb, sorted, as column cb->col of P (whose
+ * colptr[cb->col] is set), growing P's storage as needed. */
+int lgnCscAppendColumn(LGNCsc *P, LGNColumnBuilder *cb)
+{
+  const sunindextype nnz = P->colptr[cb->col];
+  if (nnz + cb->cnt > P->cap) {
+    int flag = lgnCscReserve(P, P->nrows, P->ncols, 2 * (nnz + cb->cnt));
+    if (flag != LGN_SUCCESS) return flag;
+  }
+  qsort(cb->list, (size_t)cb->cnt, sizeof *cb->list, CompareIndex);
+  memcpy(P->rowind + nnz, cb->list, (size_t)cb->cnt * sizeof *cb->list);
+  P->colptr[cb->col + 1] = nnz + cb->cnt;
+  return LGN_SUCCESS;
+}
+
 /* At = A^T; row indices come out sorted in every column of At. */
 int lgnCscTranspose(const LGNCsc *A, LGNCsc *At)
 {

@@ -54,7 +54,23 @@ struct LGNSparseWorkRec {
   sunindextype *list;        /* n: rows of the column being built           */
 };
 
+/* A column of a pattern under construction: its distinct rows, found with
+ * a mark array stamped with the column index (marks reset to -1 after use). */
+typedef struct {
+  sunindextype col, cnt;
+  sunindextype *mark, *list;
+} LGNColumnBuilder;
+
+static inline void lgnColumnAddRow(LGNColumnBuilder *cb, sunindextype r)
+{
+  if (cb->mark[r] != cb->col) {
+    cb->mark[r]           = cb->col;
+    cb->list[cb->cnt++] = r;
+  }
+}
+
 /* lgn_sparse.c */
+int lgnCscAppendColumn(LGNCsc *P, LGNColumnBuilder *cb);
 void lgnCscFree(LGNCsc *A);
 int lgnCscView(SUNMatrix S, LGNCsc *view);
 int lgnCscTranspose(const LGNCsc *A, LGNCsc *At);

@@ -393,7 +393,6 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   N_Vector q, v, phi;
   sunrealtype t = 0.0;
   int flag = 0, k;
-  long int dummy;
 
   memset(res, 0, sizeof *res);
   q   = N_VClone(sys->q0);
@@ -459,7 +458,6 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetNumDQColors(mem, &res->ncolors);
   LGNGetIterationMatrixNnz(mem, &res->nnz);
   LGNGetWorkSpace(mem, &res->lenrw, &res->leniw);
-  (void)dummy;
   if (opt->solver != RB_DENSE) res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
   res->q = (double *)malloc((size_t)nq * sizeof(double));
   res->v = (double *)malloc((size_t)nv * sizeof(double));
