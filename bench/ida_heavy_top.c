@@ -36,6 +36,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "models/euler_parameters.h"
 #include "models/heavy_top.h" /* HT_MASS, HT_J*, HT_GRAVITY, HT_OMEGA0_* */
 
 #define N   IDAHT_N
@@ -50,26 +51,6 @@ static const double J_BODY[3] = {HT_J1, HT_J2, HT_J3};
 /* =============================================================================
  * Euler-parameter kinematics (row-major small matrices)
  * ===========================================================================*/
-
-/* G(p) = [-pbar, -pbar~ + p0 I], 3 x 4 (as EPMatrixG in heavy_top.c) */
-static void MatG(const double p[4], double G[12])
-{
-  G[0] = -p[1]; G[1] = p[0];  G[2] = p[3];   G[3] = -p[2];
-  G[4] = -p[2]; G[5] = -p[3]; G[6] = p[0];   G[7] = p[1];
-  G[8] = -p[3]; G[9] = p[2];  G[10] = -p[1]; G[11] = p[0];
-}
-
-/* R(p) = (p0^2 - pbar.pbar) I + 2 pbar pbar^T + 2 p0 pbar~ (as EPRotation) */
-static void MatR(const double p[4], double R[9])
-{
-  const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
-  int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) R[3 * i + j] = (i == j ? s : 0.0) + 2.0 * p[1 + i] * p[1 + j];
-  R[1] -= 2.0 * p[0] * p[3]; R[2] += 2.0 * p[0] * p[2];
-  R[3] += 2.0 * p[0] * p[3]; R[5] -= 2.0 * p[0] * p[1];
-  R[6] -= 2.0 * p[0] * p[2]; R[7] += 2.0 * p[0] * p[1];
-}
 
 /* c = G a (3-vector) */
 static void GVec(const double G[12], const double a[4], double c[3])
@@ -115,7 +96,7 @@ static void Constraints(const double *q, double phi[4])
   const double *p = q + 3;
   double R[9];
   int i;
-  MatR(p, R);
+  ep_rotation(p, R);
   for (i = 0; i < 3; i++)
     phi[i] = X_BODY[i] - (R[i] * q[0] + R[3 + i] * q[1] + R[6 + i] * q[2]);
   phi[3] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0;
@@ -128,7 +109,7 @@ static void ConstraintJac(const double *q, double B[28])
   const double px = pb[0] * x[0] + pb[1] * x[1] + pb[2] * x[2];
   double R[9], pxx[3];
   int i, j;
-  MatR(p, R);
+  ep_rotation(p, R);
   pxx[0] = pb[1] * x[2] - pb[2] * x[1];
   pxx[1] = pb[2] * x[0] - pb[0] * x[2];
   pxx[2] = pb[0] * x[1] - pb[1] * x[0];
@@ -189,8 +170,8 @@ static void RotDynamics(const double *p, const double *pd, const double *w, doub
 {
   double G[12], Gd[12], c[3], e[3];
   int i, k;
-  MatG(p, G);
-  MatG(pd, Gd);
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
   GVec(G, w, c);
   GVec(G, pd, e);
   for (k = 0; k < 3; k++) {
@@ -207,7 +188,7 @@ static void RotMass(const double *p, double Mp[16])
 {
   double G[12];
   memset(Mp, 0, 16 * sizeof(double));
-  MatG(p, G);
+  ep_matrix_g(p, G);
   AddGtJG(G, G, 4.0, Mp);
 }
 
@@ -269,9 +250,9 @@ static void Jacobian(double cj, const double *y, const double *yp, double *Jd)
 #define JD(r, cc) Jd[(r) * N + (cc)]
   memset(Jd, 0, N * N * sizeof(double));
   ConstraintJac(q, B);
-  MatG(p, G);
-  MatG(pd, Gd);
-  MatG(w, Gw);
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  ep_matrix_g(w, Gw);
 
   /* F_q = q' - v - B^T mu */
   HessS(q, mu, H);

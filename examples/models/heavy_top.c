@@ -29,6 +29,7 @@
  * ---------------------------------------------------------------------------*/
 
 #include "heavy_top.h"
+#include "euler_parameters.h"
 
 #include <math.h>
 #include <string.h>
@@ -262,26 +263,6 @@ static int SE3Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void 
  * Euler-parameter callbacks (q = (x, p0, pbar) in R^7)
  * ===========================================================================*/
 
-/* G(p) = [-pbar, -pbar~ + p0 I], 3 x 4 row-major */
-static void EPMatrixG(const double p[4], double G[12])
-{
-  G[0] = -p[1]; G[1] = p[0];  G[2] = p[3];   G[3] = -p[2];
-  G[4] = -p[2]; G[5] = -p[3]; G[6] = p[0];   G[7] = p[1];
-  G[8] = -p[3]; G[9] = p[2];  G[10] = -p[1]; G[11] = p[0];
-}
-
-/* R(p) = (p0^2 - pbar.pbar) I + 2 pbar pbar^T + 2 p0 pbar~ (row-major),
- * the quadratic form used in Phi (spec §3). */
-static void EPRotation(const double p[4], double R[9])
-{
-  const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];
-  int i, j;
-  for (i = 0; i < 3; i++)
-    for (j = 0; j < 3; j++) R[3 * i + j] = (i == j ? s : 0.0) + 2.0 * p[1 + i] * p[1 + j];
-  R[1] -= 2.0 * p[0] * p[3]; R[2] += 2.0 * p[0] * p[2];
-  R[3] += 2.0 * p[0] * p[3]; R[5] -= 2.0 * p[0] * p[1];
-  R[6] -= 2.0 * p[0] * p[2]; R[7] += 2.0 * p[0] * p[1];
-}
 
 static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
 {
@@ -289,7 +270,7 @@ static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
   double G[12];
   int i, j, k;
   (void)t; (void)ud;
-  EPMatrixG(p, G);
+  ep_matrix_g(p, G);
   for (i = 0; i < 3; i++) ELEM(M, i, i) = HT_MASS;
   for (i = 0; i < 4; i++)
     for (j = 0; j < 4; j++) {
@@ -306,8 +287,8 @@ static int EPForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
   double *gg = N_VGetArrayPointer(g), G[12], Gd[12], JGpd[3];
   int i, k;
   (void)t; (void)ud;
-  EPMatrixG(p, G);
-  EPMatrixG(pd, Gd); /* Gdot = G(pdot) */
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd); /* Gdot = G(pdot) */
   gg[0] = 0.0;
   gg[1] = 0.0;
   gg[2] = -HT_MASS * HT_GRAVITY;
@@ -325,7 +306,7 @@ static int EPConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
   double *ph = N_VGetArrayPointer(phi), R[9], Rtx[3];
   int i;
   (void)t; (void)ud;
-  EPRotation(p, R);
+  ep_rotation(p, R);
   MatTVec(R, qq, Rtx);
   for (i = 0; i < 3; i++) ph[i] = X_BODY[i] - Rtx[i];
   ph[3] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0;
@@ -342,7 +323,7 @@ static int EPConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   double xt[9];
   int i, j;
   (void)t; (void)ud;
-  EPRotation(p, R);
+  ep_rotation(p, R);
   Cross(pb, x, pxx);
   Tilde(x, xt);
   for (i = 0; i < 3; i++) {
@@ -420,7 +401,7 @@ static void ExtractState(const HeavyTopOptions *opt, const double *q,
     /* Omega = 2 G(p) pdot; Omegadot = 2 G(p) pddot since Gdot pdot = 0 */
     double G[12];
     int k;
-    EPMatrixG(q + 3, G);
+    ep_matrix_g(q + 3, G);
     for (k = 0; k < 3; k++) {
       res->Omega[k] = res->vdot[3 + k] = res->a[3 + k] = 0.0;
       for (i = 0; i < 4; i++) {
@@ -456,7 +437,7 @@ static double JointViolation(const HeavyTopOptions *opt, const double *q)
   double R[9], Rtx[3], mx = 0.0;
   int i;
   if (opt->formulation == HT_EULER_PARAMETERS)
-    EPRotation(q + 3, R);
+    ep_rotation(q + 3, R);
   else
     LGNQuaternionToRotation(q + 3, R);
   MatTVec(R, q, Rtx);
