@@ -5,13 +5,15 @@
  *             [--beta B --gamma G] [--constraints index3|index2]
  *             [--kinematics simplified|exact|sigma] [--jacobian analytic|dq]
  *             [--h H] [--t-end T] [--a0 consistent|zero]
- *             [--predictor zero|extrapolate] [--csv FILE]
+ *             [--predictor zero|extrapolate] [--newton full|modified] [--msbp N]
+ *             [--csv FILE]
  *
  * Prints the final state, one line "com_final <x> <y> <z>" with 17
  * significant digits, and the integrator statistics. Exit status 0 on success.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,6 +28,8 @@ static void Usage(const char *prog)
           "          [--kinematics simplified|exact|sigma]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T]\n"
           "          [--a0 consistent|zero] [--predictor zero|extrapolate]\n"
+          "          [--newton full|modified] [--msbp N] (modified Newton:\n"
+          "          max steps between matrix setups)\n"
           "          [--rtol R] [--atol A] (Newton tolerances)\n"
           "          [--csv FILE]\n", prog);
 }
@@ -68,6 +72,14 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
       if (!strcmp(val, "analytic")) opt->analytic_jacobians = 1;
       else if (!strcmp(val, "dq")) opt->analytic_jacobians = 0;
       else bad = 1;
+    } else if (!strcmp(key, "--newton")) {
+      if (!strcmp(val, "full")) opt->newton = LGN_NEWTON_FULL;
+      else if (!strcmp(val, "modified")) opt->newton = LGN_NEWTON_MODIFIED;
+      else bad = 1;
+    } else if (!strcmp(key, "--msbp")) {
+      double msbp;
+      bad = ParseReal(val, &msbp) || msbp != floor(msbp);
+      opt->msbp = (long int)msbp;
     } else if (!strcmp(key, "--predictor")) {
       if (!strcmp(val, "zero")) opt->predictor = LGN_PREDICTOR_ZERO;
       else if (!strcmp(val, "extrapolate")) opt->predictor = LGN_PREDICTOR_EXTRAPOLATE;
@@ -140,5 +152,6 @@ int main(int argc, char **argv)
   printf("dq_evals              %ld\n", res.ndq);
   printf("jacobian_evals        %ld\n", res.njevals);
   printf("linear_solves         %ld\n", res.nlsolves);
+  printf("linear_setups         %ld\n", res.nlsetups);
   return flag == LGN_SUCCESS ? 0 : 1;
 }

@@ -85,6 +85,10 @@ module flignum_mod
   integer(c_int), parameter :: LGN_PREDICTOR_ZERO = 0
   integer(c_int), parameter :: LGN_PREDICTOR_EXTRAPOLATE = 1
 
+  ! Newton variants
+  integer(c_int), parameter :: LGN_NEWTON_FULL     = 0
+  integer(c_int), parameter :: LGN_NEWTON_MODIFIED = 1
+
   ! LGNGroupKind
   enum, bind(c)
     enumerator :: LGN_GROUP_CUSTOM = 0
@@ -414,6 +418,23 @@ module flignum_mod
       integer(c_int), value :: maxiters
     end function LGNSetMaxNewtonIters
 
+    !> LGN_NEWTON_FULL (default) or LGN_NEWTON_MODIFIED (reuse the factorised
+    !> iteration matrix while the iteration contracts fast).
+    integer(c_int) function LGNSetNewtonMode(lgn_mem, mode) &
+        bind(c, name="LGNSetNewtonMode")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: mode
+    end function LGNSetNewtonMode
+
+    !> Modified Newton: max steps between matrix setups (0: default 10, < 0: no limit).
+    integer(c_int) function LGNSetLSetupFrequency(lgn_mem, msbp) &
+        bind(c, name="LGNSetLSetupFrequency")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), value :: msbp
+    end function LGNSetLSetupFrequency
+
     !> Maximum steps per LGNSolve call (0: default, < 0: no limit).
     integer(c_int) function LGNSetMaxNumSteps(lgn_mem, mxsteps) &
         bind(c, name="LGNSetMaxNumSteps")
@@ -624,6 +645,22 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_long), intent(out) :: nlsolves
     end function LGNGetNumLinSolves
+
+    !> Newton iterations solved with a reused iteration matrix.
+    integer(c_int) function LGNGetNumMatrixReuses(lgn_mem, nreuses) &
+        bind(c, name="LGNGetNumMatrixReuses")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nreuses
+    end function LGNGetNumMatrixReuses
+
+    !> Steps whose modified Newton iteration restarted with a fresh matrix.
+    integer(c_int) function LGNGetNumNewtonRestarts(lgn_mem, nrestarts) &
+        bind(c, name="LGNGetNumNewtonRestarts")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nrestarts
+    end function LGNGetNumNewtonRestarts
 
     !> Return flag of the last linear solver call.
     integer(c_int) function LGNGetLastLinFlag(lgn_mem, flag) bind(c, name="LGNGetLastLinFlag")

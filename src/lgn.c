@@ -42,6 +42,8 @@ void *LGNCreate(SUNContext sunctx)
   mem->rtol         = LGN_RTOL_DEFAULT;
   mem->atol         = LGN_ATOL_DEFAULT;
   mem->maxcor       = LGN_MAXCOR_DEFAULT;
+  mem->newton_mode  = LGN_NEWTON_FULL;
+  mem->msbp         = LGN_MSBP_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
   mem->errfp        = stderr;
@@ -322,6 +324,7 @@ static void ResetCounters(LGNMem mem)
 {
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
+  mem->nreuse = mem->nrestart = 0;
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;
 }
@@ -364,6 +367,7 @@ static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
   mem->ic_done    = SUNFALSE;
   mem->user_vdot0 = SUNFALSE;
   mem->user_a0    = SUNFALSE;
+  lgnInvalidateMatrix(mem);
   ResetCounters(mem);
   return LGN_SUCCESS;
 }

@@ -48,6 +48,7 @@ static int SolveIndex1System(LGNMem mem)
     return LGN_NONFINITE;
   }
 
+  lgnInvalidateMatrix(mem); /* A now holds the saddle-point matrix */
   flag = lgnAssembleAndFactor(mem, mem->tn, SUN_RCONST(1.0), SUN_RCONST(0.0),
                               SUN_RCONST(0.0), SUNFALSE);
   if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);

@@ -21,6 +21,7 @@
 #define LGN_RTOL_DEFAULT      SUN_RCONST(1.0e-8)
 #define LGN_ATOL_DEFAULT      SUN_RCONST(1.0e-8)
 #define LGN_MAXCOR_DEFAULT    20
+#define LGN_MSBP_DEFAULT      10L  /* modified Newton: steps between setups */
 #define LGN_MXSTEP_DEFAULT    1000000L
 
 /* =============================================================================
@@ -80,6 +81,8 @@ typedef struct LGNMemRec {
   sunrealtype h;            /* fixed step size (0 = not set)               */
   sunrealtype rtol, atol;   /* Newton stop test                            */
   int maxcor;               /* max Newton iterations per step              */
+  int newton_mode;          /* LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED      */
+  long int msbp;            /* modified Newton: max steps between setups   */
   long int mxstep;          /* max steps per LGNSolve (< 0: no limit)       */
 
   /* ---- state at t_n ---- */
@@ -145,6 +148,12 @@ typedef struct LGNMemRec {
   sunbooleantype ls_initialized;
   long int last_lin_flag;
 
+  /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
+  sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
+  sunrealtype lu_h;         /* the step size it was built with             */
+  long int lu_nst;          /* nst when it was built                       */
+  sunrealtype newton_rate;  /* last contraction rate seen with a reused A  */
+
   /* ---- bookkeeping ---- */
   sunbooleantype malloc_done; /* LGNInit called                             */
   sunbooleantype work_done;   /* work space allocated for current nv, m     */
@@ -162,6 +171,9 @@ typedef struct LGNMemRec {
   long int nje;      /* iteration matrix evaluations                       */
   long int nlsetup;  /* linear solver setups                               */
   long int nlsolve;  /* linear solves                                      */
+  long int nreuse;   /* Newton iterations solved with a reused matrix      */
+  long int nrestart; /* steps whose Newton iteration restarted with a fresh
+                        matrix after failing with a reused one             */
 
   /* ---- error reporting ---- */
   LGNErrHandlerFn ehfun;
@@ -252,6 +264,13 @@ int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
 int lgnLsCheck(LGNMem mem);
 int lgnLsSetup(LGNMem mem);
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
+
+/* The factorised matrix in A no longer fits the model or method: the next
+ * step of a modified Newton iteration rebuilds it. */
+static inline void lgnInvalidateMatrix(struct LGNMemRec *mem)
+{
+  mem->lu_valid = SUNFALSE;
+}
 
 /* helpers */
 /* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */

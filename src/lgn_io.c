@@ -55,6 +55,7 @@ int LGNSetGroup(void *lgn_mem, LGNGroup G)
     return LGN_ILL_INPUT;
   }
   mem->G = G;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -75,6 +76,7 @@ int LGNSetMassFn(void *lgn_mem, LGNMassFn mass)
     return LGN_ILL_INPUT;
   }
   mem->mass = mass;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -87,6 +89,7 @@ int LGNSetForceFn(void *lgn_mem, LGNForceFn force)
     return LGN_ILL_INPUT;
   }
   mem->force = force;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -112,6 +115,7 @@ int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
   mem->m          = m;
   mem->constr     = phi;
   mem->constr_jac = B;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -120,6 +124,7 @@ int LGNSetStiffnessFn(void *lgn_mem, LGNStiffnessFn K)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->stiffness = K;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -128,6 +133,7 @@ int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->damping = C;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -136,6 +142,7 @@ int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->curvature = Z;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -171,6 +178,7 @@ static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
   mem->alpha_f = af;
   mem->beta    = beta;
   mem->gamma   = gamma;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -224,6 +232,7 @@ int LGNSetConstraintIndex(void *lgn_mem, int index)
     return LGN_ILL_INPUT;
   }
   mem->constr_index = index;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -239,6 +248,7 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
     return LGN_ILL_INPUT;
   }
   mem->kinematics = kinematics;
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -282,6 +292,29 @@ int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
     return LGN_ILL_INPUT;
   }
   mem->maxcor = maxiters == 0 ? LGN_MAXCOR_DEFAULT : maxiters;
+  return LGN_SUCCESS;
+}
+
+int LGNSetNewtonMode(void *lgn_mem, int mode)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (mode != LGN_NEWTON_FULL && mode != LGN_NEWTON_MODIFIED) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "mode = %d illegal: use LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED.",
+              mode);
+    return LGN_ILL_INPUT;
+  }
+  mem->newton_mode = mode;
+  lgnInvalidateMatrix(mem);
+  return LGN_SUCCESS;
+}
+
+int LGNSetLSetupFrequency(void *lgn_mem, long int msbp)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->msbp = msbp == 0 ? LGN_MSBP_DEFAULT : msbp;
   return LGN_SUCCESS;
 }
 
@@ -427,6 +460,8 @@ SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
 SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
 SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
 SCALAR_GETTER(LGNGetNumNewtonStalls, long int, nstalls, mem->nstall)
+SCALAR_GETTER(LGNGetNumMatrixReuses, long int, nreuses, mem->nreuse)
+SCALAR_GETTER(LGNGetNumNewtonRestarts, long int, nrestarts, mem->nrestart)
 SCALAR_GETTER(LGNGetNumSparsityAnalyses, long int, nanalyses,
               mem->sp != NULL ? mem->sp->npattern : 0L)
 SCALAR_GETTER(LGNGetIterationMatrixNnz, long int, nnz, lgnIterationMatrixNnz(mem))
@@ -453,6 +488,7 @@ int LGNResetSparsityPattern(void *lgn_mem)
     mem->sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
     mem->sp->have_dq_patterns = SUNFALSE;
   }
+  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -506,6 +542,8 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Jacobian evals", mem->nje);
   fprintf(outfile, fmt_l, "Linear solver setups", mem->nlsetup);
   fprintf(outfile, fmt_l, "Linear solves", mem->nlsolve);
+  fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
+  fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
   if (mem->sp != NULL) {
     fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);

@@ -58,6 +58,7 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
   mem->LS             = LS;
   mem->A              = A;
   mem->ls_initialized = SUNFALSE;
+  lgnInvalidateMatrix(mem);
   lgnFreeMatrices(mem); /* reallocated for A's type at the next solve */
   return LGN_SUCCESS;
 }

@@ -127,9 +127,10 @@ static int Predict(LGNMem mem, const StepCoeffs *c)
 }
 
 /* The iterate (q1, v1, vdot1) from (sigma, sigma_dot, sigma_ddot) by the
- * kinematics variant (table above); Tm = T(sigma) for the iteration matrix.
- * The sigma variant carries q1 itself (corrections composed on the right). */
-static int Kinematics(LGNMem mem)
+ * kinematics variant (table above); with_tangent: also Tm = T(sigma) for the
+ * iteration matrix. The sigma variant carries q1 itself (corrections
+ * composed on the right). */
+static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
 {
   LGNGroup G = mem->G;
   sunindextype nv = mem->nv;
@@ -140,8 +141,10 @@ static int Kinematics(LGNMem mem)
   if (mem->kinematics != LGN_KINEMATICS_SIGMA) {
     ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
-    ret = lgnTangentMatrices(mem);
-    if (ret != LGN_SUCCESS) return ret;
+    if (with_tangent) {
+      ret = lgnTangentMatrices(mem);
+      if (ret != LGN_SUCCESS) return ret;
+    }
   }
   if (mem->kinematics == LGN_KINEMATICS_EXACT) {
     /* v = T sigma_dot, vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot */
@@ -176,10 +179,14 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
-  const sunrealtype qscale = SUNMAX(SUN_RCONST(1.0), N_VMaxNorm(mem->q1));
-  const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
-  const sunrealtype floor_sigma = roundoff / h, floor_lambda = roundoff / (mem->beta * h);
+  const sunrealtype *q1 = lgnData(mem->q1);
+  sunrealtype qscale = SUN_RCONST(1.0), roundoff, floor_sigma, floor_lambda;
   sunrealtype sum = SUN_RCONST(0.0), w;
+
+  for (i = 0; i < mem->nq; i++) qscale = SUNMAX(qscale, fabs(q1[i]));
+  roundoff     = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
+  floor_sigma  = roundoff / h;
+  floor_lambda = roundoff / (mem->beta * h);
 
   for (i = 0; i < nv; i++) {
     w = (delta[i] / h) / (atol + rtol * fabs(mem->sigma[i] / h) + floor_sigma);
@@ -217,55 +224,119 @@ static int ApplyCorrection(LGNMem mem, const StepCoeffs *c,
   return LGN_SUCCESS;
 }
 
-/* Newton iteration on (sigma, lambda) with the scaled iteration matrix
- * (spec §2; modified-kinematics.md §2 for the exact variant). */
-static int Newton(LGNMem mem, const StepCoeffs *c)
+/* Modified Newton (LGN_NEWTON_MODIFIED), after IDA's idaNls. */
+#define NEWTON_RATE_MAX  SUN_RCONST(0.9) /* slower contraction: rebuild A    */
+#define NEWTON_RATE_FAST SUN_RCONST(0.5) /* faster: a correction <= 1 stops  */
+#define REUSE_H_TOL      SUN_RCONST(0.1) /* reuse A while |h - h_A| <= 0.1 h_A */
+
+/* Can the step start with the factorised matrix already in A? */
+static sunbooleantype MatrixReusable(LGNMem mem, const StepCoeffs *c)
 {
+  return mem->lu_valid && fabs(c->h - mem->lu_h) <= REUSE_H_TOL * mem->lu_h &&
+         (mem->msbp < 0 || mem->nst - mem->lu_nst < mem->msbp);
+}
+
+/* Can a linear contraction at this rate bring the correction below 1 in the
+ * iterations left (|d| rate^k <= 1)? */
+static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
+                                   sunrealtype rate)
+{
+  const int left = mem->maxcor - iter - 1;
+  if (norm <= SUN_RCONST(1.0)) return SUNTRUE;
+  if (rate <= SUN_RCONST(0.0)) return SUNTRUE;
+  if (rate >= SUN_RCONST(1.0)) return SUNFALSE;
+  return (sunrealtype)left * log(SUN_RCONST(1.0) / rate) >= log(norm);
+}
+
+/* Newton iteration on (sigma, lambda) with the scaled iteration matrix
+ * (spec §2; modified-kinematics.md §2 for the exact variant).
+ *
+ * A correction computed with a matrix evaluated at the current iterate (a
+ * "fresh" one: every iteration of full Newton) is a Newton step: the
+ * iteration stops when it is <= 1 in the norm of CorrectionNorm, since the
+ * error left is then of the order of its square. Modified Newton solves with
+ * the matrix of an earlier iterate or step while it contracts fast: with the
+ * contraction rate r = |d_k|/|d_{k-1}| (at the first iterate of a step the
+ * last rate seen), the error left after d_k is at most r/(1-r) |d_k|, so it
+ * stops when |d_k| <= 1 and, if r > 1/2, r/(1-r) |d_k| <= 1. When r exceeds
+ * 0.9, or is too slow to converge in the iterations left, the matrix is
+ * rebuilt at the current iterate (a correction that grew is dropped first). *used_old tells whether a matrix of an earlier step was
+ * used: the caller may then retry a failure with a fresh one.
+ * Returns LGN_CONV_FAILURE without a message (the caller reports it). */
+static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
+                  sunbooleantype *used_old)
+{
+  const sunbooleantype modified = mem->newton_mode == LGN_NEWTON_MODIFIED;
+  const sunbooleantype use_tangent = mem->kinematics != LGN_KINEMATICS_SIGMA;
   sunindextype nv = mem->nv;
-  sunrealtype *sol, norm, norm_sigma, norm_prev = SUN_RCONST(0.0);
-  sunbooleantype stalled;
+  sunrealtype *sol, norm, norm_sigma, rate, norm_prev = SUN_RCONST(0.0);
+  sunbooleantype setup = !modified || force_setup || !MatrixReusable(mem, c);
+  sunbooleantype fresh = SUNFALSE, fresh_prev, stalled, converged;
   int iter, flag;
   /* index 2: the row B v is scaled by 1/gamma' so that its block is B T */
   const sunrealtype cv = c->gamma_p;
 
+  *used_old = !setup;
   for (iter = 0; iter < mem->maxcor; iter++) {
-    flag = Kinematics(mem);
-    if (flag == LGN_SUCCESS && mem->kinematics == LGN_KINEMATICS_EXACT)
+    flag = Kinematics(mem, setup && use_tangent);
+    if (flag == LGN_SUCCESS && setup && mem->kinematics == LGN_KINEMATICS_EXACT)
       flag = lgnExactKinematicsDerivatives(mem, c->gamma_p, c->beta_p);
     if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
-    if (flag == LGN_SUCCESS)
+    if (flag == LGN_SUCCESS && setup) {
+      mem->lu_valid = SUNFALSE;
       flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,
-                                  c->scale * c->gamma_p, c->scale,
-                                  mem->kinematics != LGN_KINEMATICS_SIGMA);
+                                  c->scale * c->gamma_p, c->scale, use_tangent);
+      if (flag == LGN_SUCCESS) {
+        mem->lu_valid = SUNTRUE;
+        mem->lu_h     = c->h;
+        mem->lu_nst   = mem->nst;
+      }
+    }
     if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
     if (flag != LGN_SUCCESS) return flag;
     mem->nni++;
+    fresh_prev = fresh;
+    fresh      = setup;
+    if (!fresh) mem->nreuse++;
+    setup = !modified;
 
     sol  = lgnData(mem->sol); /* (delta, dmu) */
     norm = CorrectionNorm(mem, c, sol, sol + nv, &norm_sigma);
     if (!isfinite(norm)) break;
-    /* stalled multipliers: the configuration has converged but the
-     * multiplier corrections have stopped contracting. At index 3 the
-     * multipliers of a long chain are determined only to about
-     * cond(A) eps |q| / (beta h^2), with cond(A) growing like the square of
-     * the number of links, so they may sit above the tolerance at roundoff
-     * level; further iterations would only stir the noise. */
-    stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
-              norm > SUN_RCONST(0.5) * norm_prev;
-    /* divergence: from the third iteration on, a correction larger than the
-     * previous one means Newton is not contracting (IDA's rate test) */
-    if (!stalled && iter >= 2 && norm > 10 * norm_prev && norm > SUN_RCONST(1.0)) break;
+    stalled = SUNFALSE;
+    if (fresh) {
+      /* stalled multipliers: the configuration has converged but the
+       * multiplier corrections have stopped contracting. At index 3 the
+       * multipliers of a long chain are determined only to about
+       * cond(A) eps |q| / (beta h^2), with cond(A) growing like the square
+       * of the number of links, so they may sit above the tolerance at
+       * roundoff level; further iterations would only stir the noise. */
+      stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
+                norm > SUN_RCONST(0.5) * norm_prev;
+      /* divergence: from the third iteration on, a Newton correction ten
+       * times larger than the previous one means Newton is not contracting */
+      if (!stalled && iter >= 2 && fresh_prev && norm > 10 * norm_prev &&
+          norm > SUN_RCONST(1.0))
+        break;
+      converged = norm <= SUN_RCONST(1.0) || stalled;
+    } else {
+      rate = iter > 0 ? norm / norm_prev : mem->newton_rate;
+      if (iter > 0) mem->newton_rate = rate;
+      if (iter > 0 && (rate > NEWTON_RATE_MAX || !WithinBudget(mem, iter, norm, rate))) {
+        setup = SUNTRUE;
+        if (norm > norm_prev) continue; /* drop it, rebuild at this iterate */
+      }
+      converged = norm <= SUN_RCONST(1.0) &&
+                  (rate <= NEWTON_RATE_FAST ||
+                   rate / (SUN_RCONST(1.0) - rate) * norm <= SUN_RCONST(1.0));
+    }
     norm_prev = norm;
     flag = ApplyCorrection(mem, c, sol, sol + nv);
     if (flag != LGN_SUCCESS) return flag;
     if (stalled) mem->nstall++;
-    if (norm <= SUN_RCONST(1.0) || stalled) return Kinematics(mem);
+    if (converged) return Kinematics(mem, SUNFALSE);
   }
   mem->nncf++;
-  LGN_ERROR(mem, LGN_CONV_FAILURE,
-            MSG_TIME "the Newton iteration failed to converge (diverged or "
-            "more than %d iterations) with h = %g (the state at t is kept).",
-            (double)mem->tn, mem->maxcor, (double)c->h);
   return LGN_CONV_FAILURE;
 }
 
@@ -302,10 +373,22 @@ static void Complete(LGNMem mem, const StepCoeffs *c)
 int lgnStep(LGNMem mem, sunrealtype h)
 {
   StepCoeffs c = SetCoeffs(mem, h);
+  sunbooleantype used_old = SUNFALSE;
   int flag;
 
   flag = Predict(mem, &c);
-  if (flag == LGN_SUCCESS) flag = Newton(mem, &c);
+  if (flag == LGN_SUCCESS) flag = Newton(mem, &c, SUNFALSE, &used_old);
+  if (flag == LGN_CONV_FAILURE && used_old) {
+    /* modified Newton failed with an old matrix: once more with a fresh one */
+    mem->nrestart++;
+    flag = Predict(mem, &c);
+    if (flag == LGN_SUCCESS) flag = Newton(mem, &c, SUNTRUE, &used_old);
+  }
+  if (flag == LGN_CONV_FAILURE)
+    LGN_ERROR(mem, LGN_CONV_FAILURE,
+              MSG_TIME "the Newton iteration failed to converge (diverged or "
+              "more than %d iterations) with h = %g (the state at t is kept).",
+              (double)mem->tn, mem->maxcor, (double)h);
   if (flag != LGN_SUCCESS) {
     mem->nfails++;
     return flag;

@@ -548,6 +548,8 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0))
     flag = LGNSStolerances(o->mem, opt->rtol, opt->atol);
   if (flag == 0) flag = LGNSetPredictor(o->mem, opt->predictor);
+  if (flag == 0) flag = LGNSetNewtonMode(o->mem, opt->newton);
+  if (flag == 0) flag = LGNSetLSetupFrequency(o->mem, opt->msbp);
   if (flag == 0 && opt->zero_a0) {
     N_VConst(0.0, o->a);
     flag = LGNSetInitialAux(o->mem, o->a);
@@ -624,6 +626,7 @@ int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
     LGNGetNumDQEvals(o.mem, &res->ndq);
     LGNGetNumJacEvals(o.mem, &res->njevals);
     LGNGetNumLinSolves(o.mem, &res->nlsolves);
+    LGNGetNumLinSolvSetups(o.mem, &res->nlsetups);
   }
   FreeRun(&o);
   return flag;

@@ -38,6 +38,8 @@ typedef struct {
   int analytic_jacobians;  /* 1: K_t, C_t, Z from the model; 0: DQ      */
   int zero_a0;             /* 1: start with a_0 = 0 (reproduction target A) */
   int predictor;           /* LGN_PREDICTOR_* (default LGN_PREDICTOR_ZERO) */
+  int newton;              /* LGN_NEWTON_* (default LGN_NEWTON_FULL)   */
+  long int msbp;           /* modified Newton: steps between setups (0: default) */
   FILE *csv;               /* time history (NULL: none)                 */
   double *com_history;     /* if not NULL: x at t_k = k h, 3*(nsteps+1)  */
   long int history_len;    /* capacity of com_history in points          */
@@ -56,7 +58,7 @@ typedef struct {
   double u[3], Omega[3];   /* velocities                                */
   double vdot[6], a[6];    /* (udot | Omegadot) and algorithmic accel.  */
   double lambda[3];        /* joint multiplier                          */
-  long int nsteps, nniters, nres, ndq, njevals, nlsolves;
+  long int nsteps, nniters, nres, ndq, njevals, nlsolves, nlsetups;
   long int history_points; /* points written to com_history             */
   double max_phi;          /* max over the output grid of |X - R^T x|_inf,
                               evaluated on the integrator's raw q        */

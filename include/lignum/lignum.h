@@ -108,6 +108,18 @@ extern "C" {
  *  the step for exact kinematics. */
 #define LGN_PREDICTOR_EXTRAPOLATE 1
 
+/** Newton iteration (default): the iteration matrix is evaluated and
+ *  factorised at every iterate (quadratic convergence). */
+#define LGN_NEWTON_FULL     0
+/** Modified Newton iteration: the factorised iteration matrix is reused over
+ *  iterations and steps while the iteration contracts fast, as in IDA. It is
+ *  rebuilt at the first iterate of a step when the step size differs by more
+ *  than 10% from the one it was built with, after LGNSetLSetupFrequency steps,
+ *  or after a change of the model or method; within a step when the
+ *  contraction rate exceeds 0.9; and a step whose iteration fails with a
+ *  reused matrix is retried once with a fresh one. */
+#define LGN_NEWTON_MODIFIED 1
+
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
  * an unrecoverable one. Matrices passed to the user are zeroed beforehand.
@@ -272,6 +284,17 @@ int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol);
 /** Maximum number of Newton iterations per step (0: default 20). */
 int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters);
 
+/** Newton variant: LGN_NEWTON_FULL (default) or LGN_NEWTON_MODIFIED (see the
+ *  constants). The converged solution is the same to the Newton tolerance;
+ *  the modified iteration needs more, but much cheaper, iterations. */
+int LGNSetNewtonMode(void *lgn_mem, int mode);
+
+/** Modified Newton: maximum number of steps between two evaluations and
+ *  factorisations of the iteration matrix (0: default 10; < 0: no limit,
+ *  the matrix is then rebuilt only when the convergence requires it).
+ *  Like CVODE's CVodeSetLSetupFrequency. */
+int LGNSetLSetupFrequency(void *lgn_mem, long int msbp);
+
 /** Maximum number of steps per LGNSolve call (0: default 1000000, < 0: no limit). */
 int LGNSetMaxNumSteps(void *lgn_mem, long int mxsteps);
 
@@ -366,6 +389,14 @@ int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw);
 int LGNGetNumLinSolvSetups(void *lgn_mem, long int *nlsetups);
 /** Number of linear solves. */
 int LGNGetNumLinSolves(void *lgn_mem, long int *nlsolves);
+
+/** Number of Newton iterations solved with a reused (not freshly factorised)
+ *  iteration matrix (modified Newton; 0 with full Newton). */
+int LGNGetNumMatrixReuses(void *lgn_mem, long int *nreuses);
+
+/** Number of steps whose modified Newton iteration failed with a reused
+ *  matrix and was restarted, successfully or not, with a fresh one. */
+int LGNGetNumNewtonRestarts(void *lgn_mem, long int *nrestarts);
 /** Return flag of the last linear solver call. */
 int LGNGetLastLinFlag(void *lgn_mem, long int *flag);
 /** Print all counters as aligned "Name = value" lines or CSV. */

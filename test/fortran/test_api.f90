@@ -422,6 +422,7 @@ contains
     real(c_double), pointer :: qq(:), vv(:), vd(:)
     real(c_double) :: t, am, af, beta, gamma, h
     integer(c_long) :: nsteps, nni, nncf, nsf, nres, ndq, nje, nls, nlsolves, lflag
+    integer(c_long) :: nreuse, nrestart
     integer(c_int) :: flag
     real(c_double), parameter :: tol = 1.0e-6_c_double
 
@@ -473,6 +474,10 @@ contains
     call expect(LGNSStolerances(mem, 1.0e-10_c_double, 1.0e-12_c_double) == 0, &
                 "LGNSStolerances")
     call expect(LGNSetMaxNewtonIters(mem, 10_c_int) == 0, "LGNSetMaxNewtonIters")
+    call expect_flag(LGNSetNewtonMode(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetNewtonMode(7)")
+    call expect(LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED) == 0, "LGNSetNewtonMode")
+    call expect(LGNSetLSetupFrequency(mem, 50_c_long) == 0, "LGNSetLSetupFrequency")
     call expect(LGNSetMaxNumSteps(mem, 5000_c_long) == 0, "LGNSetMaxNumSteps")
     call expect(LGNSetStepSize(mem, 1.0e-3_c_double) == 0, "LGNSetStepSize")
     call expect(LGNSetInitialAcceleration(mem, vdot, c_null_ptr) == 0, &
@@ -510,12 +515,17 @@ contains
     call expect(LGNGetNumLinSolvSetups(mem, nls) == 0, "LGNGetNumLinSolvSetups")
     call expect(LGNGetNumLinSolves(mem, nlsolves) == 0, "LGNGetNumLinSolves")
     call expect(LGNGetLastLinFlag(mem, lflag) == 0, "LGNGetLastLinFlag")
+    call expect(LGNGetNumMatrixReuses(mem, nreuse) == 0, "LGNGetNumMatrixReuses")
+    call expect(LGNGetNumNewtonRestarts(mem, nrestart) == 0, "LGNGetNumNewtonRestarts")
     call expect(nsteps == 1000, "1000 steps")
     call expect(nni >= nsteps, "at least one Newton iteration per step")
     call expect(nncf == 0 .and. nsf == 0, "no Newton or step failures")
     call expect(nres > 0 .and. nje > 0 .and. nls > 0, "residuals, Jacobians, setups counted")
     call expect(ndq > 0, "no stiffness callback: difference quotients counted")
     call expect(nlsolves >= nni, "a linear solve per Newton iteration")
+    call expect(nreuse > 0 .and. nls + nreuse >= nni .and. nls < nni, &
+                "modified Newton: iterations with a reused matrix, fewer setups")
+    call expect(nrestart >= 0, "Newton restarts counted")
     call expect(lflag == 0, "last linear solver flag 0")
 
     ! statistics on C streams: CSV into a file, the table on stdout

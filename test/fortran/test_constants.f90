@@ -85,6 +85,8 @@ program test_constants
   call check("LGN_KINEMATICS_SIGMA", LGN_KINEMATICS_SIGMA)
   call check("LGN_PREDICTOR_ZERO", LGN_PREDICTOR_ZERO)
   call check("LGN_PREDICTOR_EXTRAPOLATE", LGN_PREDICTOR_EXTRAPOLATE)
+  call check("LGN_NEWTON_FULL", LGN_NEWTON_FULL)
+  call check("LGN_NEWTON_MODIFIED", LGN_NEWTON_MODIFIED)
 
   ! --- lignum_group.h: LGNGroupKind -------------------------------------------------
   call check("LGN_GROUP_CUSTOM", LGN_GROUP_CUSTOM)

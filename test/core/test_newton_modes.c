@@ -1,0 +1,213 @@
+/* -----------------------------------------------------------------------------
+ * Full and modified Newton (LGNSetNewtonMode) give the same solution to the
+ * Newton tolerance, the modified iteration reuses the factorised matrix and
+ * rebuilds it when it must: after a change of step size, and by a restart of
+ * the step when the iteration fails with an old matrix.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+
+#include <lignum/lignum.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "models/heavy_top.h"
+#include "test_util.h"
+
+/* ---------------------------------------------------------------------------
+ * 1. Heavy top: full vs modified Newton.
+ * The Newton stop test bounds each correction of sigma/h by rtol |sigma/h|
+ * (+ atol) per component, so the per-step error of sigma is at most about
+ * h rtol |v|; over t_end/h steps the two solutions may drift apart by
+ * t_end rtol |v|_max (|v| <= 160 here) — the bound asserted below. Full
+ * Newton itself is far inside it (quadratic convergence).
+ * ------------------------------------------------------------------------- */
+static void HeavyTopPair(HeavyTopFormulation formulation, HeavyTopMethod method,
+                         int kinematics, int constraints)
+{
+  const double rtol = 1e-10, vmax = 160.0;
+  HeavyTopOptions opt;
+  HeavyTopResult full, mod;
+  char name[128];
+  double dx;
+  int i;
+
+  heavy_top_default_options(&opt);
+  opt.formulation  = formulation;
+  opt.method       = method;
+  opt.kinematics   = kinematics;
+  opt.constraints  = constraints;
+  opt.h            = 5e-4;
+  opt.rtol         = rtol;
+  opt.atol         = rtol;
+  opt.single_solve = 1;
+  heavy_top_describe(&opt, name, sizeof name);
+
+  opt.newton = LGN_NEWTON_FULL;
+  heavy_top_run(&opt, &full);
+  opt.newton = LGN_NEWTON_MODIFIED;
+  heavy_top_run(&opt, &mod);
+  CHECK(full.flag == LGN_SUCCESS && mod.flag == LGN_SUCCESS,
+        "%s: both runs succeed (flags %d, %d)", name, full.flag, mod.flag);
+  if (full.flag != LGN_SUCCESS || mod.flag != LGN_SUCCESS) return;
+
+  dx = 0.0;
+  for (i = 0; i < 3; i++) dx = fmax(dx, fabs(full.x[i] - mod.x[i]));
+  printf("%-24s full: %.2f Newton/step, %ld setups; modified: %.2f Newton/step, "
+         "%ld setups; |x_full - x_mod| = %.2e\n",
+         name, (double)full.nniters / full.nsteps, full.nlsetups,
+         (double)mod.nniters / mod.nsteps, mod.nlsetups, dx);
+  CHECK(dx <= opt.t_end * rtol * vmax,
+        "%s: modified Newton within the Newton tolerance of full Newton "
+        "(%.3g > %.3g)", name, dx, opt.t_end * rtol * vmax);
+  CHECK(full.nlsetups >= full.nniters,
+        "%s: full Newton factorises at every iteration", name);
+  CHECK(mod.nlsetups * 4 < full.nlsetups,
+        "%s: modified Newton factorises less than a quarter as often "
+        "(%ld setups, full Newton %ld)", name, mod.nlsetups, full.nlsetups);
+}
+
+/* ---------------------------------------------------------------------------
+ * 2. A linear oscillator q'' + k(t) q = 0 on R^1 whose stiffness jumps from
+ * 1 to 1e6 at t = 0.5: the matrix factorised before the jump is useless
+ * after it.
+ * ------------------------------------------------------------------------- */
+#define T_JUMP 0.5
+static double Stiffness(double t) { return t < T_JUMP ? 1.0 : 1e6; }
+
+static int OscMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  (void)t; (void)q; (void)ud;
+  SM_ELEMENT_D(M, 0, 0) = 1.0;
+  return 0;
+}
+
+static int OscForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  (void)v; (void)ud;
+  NV_Ith_S(g, 0) = Stiffness(t) * NV_Ith_S(q, 0);
+  return 0;
+}
+
+static int OscStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                        N_Vector lambda, SUNMatrix K, void *ud)
+{
+  (void)q; (void)v; (void)vdot; (void)lambda; (void)ud;
+  SM_ELEMENT_D(K, 0, 0) = Stiffness(t);
+  return 0;
+}
+
+static int OscDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)C; (void)ud;
+  return 0;
+}
+
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  N_Vector q, v, tmpl;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  void *mem;
+} Oscillator;
+
+static int OscCreate(Oscillator *o, int mode, int maxcor)
+{
+  int flag = SUNContext_Create(NULL, &o->ctx);
+  if (flag != 0) return flag;
+  o->G    = LGNGroup_Rn(1);
+  o->q    = N_VNew_Serial(1, o->ctx);
+  o->v    = N_VNew_Serial(1, o->ctx);
+  o->tmpl = N_VNew_Serial(1, o->ctx);
+  o->A    = SUNDenseMatrix(1, 1, o->ctx);
+  o->LS   = SUNLinSol_Dense(o->tmpl, o->A, o->ctx);
+  o->mem  = LGNCreate(o->ctx);
+  NV_Ith_S(o->q, 0) = 1.0;
+  NV_Ith_S(o->v, 0) = 0.0;
+  flag = LGNSetGroup(o->mem, o->G);
+  if (flag == 0) flag = LGNSetMassFn(o->mem, OscMass);
+  if (flag == 0) flag = LGNSetForceFn(o->mem, OscForce);
+  if (flag == 0) flag = LGNSetStiffnessFn(o->mem, OscStiffness);
+  if (flag == 0) flag = LGNSetDampingFn(o->mem, OscDamping);
+  if (flag == 0) flag = LGNInit(o->mem, 0.0, o->q, o->v);
+  if (flag == 0) flag = LGNSetLinearSolver(o->mem, o->LS, o->A);
+  if (flag == 0) flag = LGNSetGenAlpha(o->mem, 0.8);
+  if (flag == 0) flag = LGNSetStepSize(o->mem, 1e-2);
+  if (flag == 0) flag = LGNSetNewtonMode(o->mem, mode);
+  if (flag == 0) flag = LGNSetLSetupFrequency(o->mem, -1); /* no forced setups */
+  if (flag == 0) flag = LGNSetMaxNewtonIters(o->mem, maxcor);
+  return flag;
+}
+
+static void OscFree(Oscillator *o)
+{
+  LGNFree(&o->mem);
+  SUNLinSolFree(o->LS);
+  SUNMatDestroy(o->A);
+  N_VDestroy(o->tmpl);
+  N_VDestroy(o->v);
+  N_VDestroy(o->q);
+  LGNGroup_Destroy(o->G);
+  SUNContext_Free(&o->ctx);
+}
+
+static void StiffnessJump(void)
+{
+  Oscillator full, mod;
+  sunrealtype t;
+  long int nrestart = -1, nreuse = -1, nsetup0 = 0, nsetup1 = 0, nsetup2 = 0;
+  int flag_full, flag_mod;
+
+  /* two iterations per step at most: a linear problem needs one Newton step
+   * and one confirming correction, so only a fresh matrix can converge after
+   * the jump — the step must be restarted with one */
+  CHECK(OscCreate(&full, LGN_NEWTON_FULL, 2) == 0, "oscillator set-up (full)");
+  CHECK(OscCreate(&mod, LGN_NEWTON_MODIFIED, 2) == 0, "oscillator set-up (modified)");
+  flag_full = LGNSolve(full.mem, 1.0, &t, full.q, full.v, LGN_NORMAL);
+  flag_mod  = LGNSolve(mod.mem, 1.0, &t, mod.q, mod.v, LGN_NORMAL);
+  CHECK(flag_full == LGN_SUCCESS && flag_mod == LGN_SUCCESS,
+        "stiffness jump: both runs succeed (flags %d, %d)", flag_full, flag_mod);
+  LGNGetNumNewtonRestarts(mod.mem, &nrestart);
+  LGNGetNumMatrixReuses(mod.mem, &nreuse);
+  LGNGetNumLinSolvSetups(mod.mem, &nsetup0);
+  printf("stiffness jump: %ld restarts, %ld reused-matrix iterations, %ld setups; "
+         "q(1) full %.17g, modified %.17g\n", nrestart, nreuse, nsetup0,
+         NV_Ith_S(full.q, 0), NV_Ith_S(mod.q, 0));
+  CHECK(nrestart >= 1, "the step after the jump is restarted with a fresh matrix");
+  CHECK(nreuse > 0, "iterations with a reused matrix are counted");
+  CHECK_CLOSE(NV_Ith_S(mod.q, 0), NV_Ith_S(full.q, 0),
+              1e-12 * fmax(1.0, fabs(NV_Ith_S(full.q, 0))),
+              "q(1): modified = full Newton (linear problem)");
+
+  /* a new step size makes the factorised matrix stale: one setup at the
+   * next step, none at the step after */
+  CHECK(LGNSetStepSize(mod.mem, 5e-3) == LGN_SUCCESS, "LGNSetStepSize");
+  LGNSolve(mod.mem, 1.0, &t, mod.q, mod.v, LGN_ONE_STEP);
+  LGNGetNumLinSolvSetups(mod.mem, &nsetup1);
+  LGNSolve(mod.mem, 1.0, &t, mod.q, mod.v, LGN_ONE_STEP);
+  LGNGetNumLinSolvSetups(mod.mem, &nsetup2);
+  CHECK(nsetup1 == nsetup0 + 1 && nsetup2 == nsetup1,
+        "after a new step size: one setup, then reuse (setups %ld -> %ld -> %ld)",
+        nsetup0, nsetup1, nsetup2);
+
+  CHECK(LGNSetNewtonMode(mod.mem, 2) == LGN_ILL_INPUT, "LGNSetNewtonMode(2) is illegal");
+  CHECK(LGNSetNewtonMode(NULL, LGN_NEWTON_FULL) == LGN_MEM_NULL,
+        "LGNSetNewtonMode(NULL) is LGN_MEM_NULL");
+  OscFree(&full);
+  OscFree(&mod);
+}
+
+int main(void)
+{
+  HeavyTopPair(HT_LIE, HT_NEWMARK, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3);
+  HeavyTopPair(HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3);
+  HeavyTopPair(HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2);
+  HeavyTopPair(HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED,
+               LGN_CONSTR_INDEX3);
+  StiffnessJump();
+  return test_summary("test_newton_modes");
+}
