@@ -7,7 +7,8 @@
  *
  * The chain of examples/models/chain.h (generalized-alpha rho_inf = 0.9,
  * index 3, h = 1e-3, analytic K_t, C_t, Z from the joint helpers), S steps
- * per run, with KLU (CSC) for every N and the dense solver up to --dense-max.
+ * per run, with KLU (CSC) for every N, full and modified Newton ("klu-mN",
+ * LGNSetNewtonMode), and the dense solver up to --dense-max.
  * Time = process CPU time inside LGNSolve (set-up, consistent initial
  * values, the first assembly and KLU's symbolic analysis included, so
  * S should be large enough to amortise them). Prints a table, writes
@@ -45,8 +46,8 @@ int main(int argc, char **argv)
 {
   int ns[MAXN] = {10, 100, 1000, 10000}, nn = 4, steps = 50, dense_max = 100, i, k, s;
   const char *csv_name = "chain_scaling.csv", *mem_name = "chain_memory.csv";
-  double klu_n[MAXN], klu_t[MAXN];
-  int nklu = 0;
+  double klu_n[2][MAXN], klu_t[2][MAXN]; /* full, modified Newton */
+  int nklu[2] = {0, 0}, v;
   FILE *csv, *mem;
   SUNContext ctx;
 
@@ -93,20 +94,24 @@ int main(int argc, char **argv)
   for (i = 0; i < nn; i++) {
     RigidSystem *sys = chain_create(ns[i], RB_R3XSO3, ctx);
     if (sys == NULL) return 1;
-    for (s = 0; s < 2; s++) {
+    for (s = 0; s < 3; s++) { /* dense, KLU, KLU with modified Newton */
       RigidRunOptions opt;
       RigidRunResult r;
       double bytes, per_step;
+      char label[16];
       int flag;
       if (s == 0 && ns[i] > dense_max) continue;
       rigid_default_run_options(&opt);
       opt.solver  = s == 0 ? RB_DENSE : RB_KLU_CSC;
+      opt.newton  = s == 2 ? LGN_NEWTON_MODIFIED : LGN_NEWTON_FULL;
+      snprintf(label, sizeof label, "%s%s", rigid_solver_name(opt.solver),
+               s == 2 ? "-mN" : "");
       opt.h       = 1e-3;
       opt.t_end   = steps * opt.h;
       opt.outputs = 1;
       flag = rigid_run(sys, &opt, &r);
       if (flag != LGN_SUCCESS || r.nsteps < 1) {
-        printf("%7d %-6s failed: %s\n", ns[i], rigid_solver_name(opt.solver),
+        printf("%7d %-6s failed: %s\n", ns[i], label,
                LGNGetReturnFlagName(flag));
         rigid_result_free(&r);
         continue;
@@ -114,15 +119,15 @@ int main(int argc, char **argv)
       per_step = r.cpu_seconds / r.nsteps;
       bytes    = 8.0 * (double)(r.lenrw + r.leniw) + r.klu_peak_bytes;
       printf("%7d %-6s %8ld %10.4f %12.4f %9.2f %10ld %8ld %14.0f\n", ns[i],
-             rigid_solver_name(opt.solver), r.nsteps, r.cpu_seconds, 1e3 * per_step,
+             label, r.nsteps, r.cpu_seconds, 1e3 * per_step,
              (double)r.nni / r.nsteps, r.nnz, r.nanalyses, bytes / ns[i]);
-      fprintf(csv, "%d,%s,%ld,%.6g,%.6g,%.4g,%ld\n", ns[i], rigid_solver_name(opt.solver),
+      fprintf(csv, "%d,%s,%ld,%.6g,%.6g,%.4g,%ld\n", ns[i], label,
               r.nsteps, r.cpu_seconds, per_step, (double)r.nni / r.nsteps, r.nnz);
-      fprintf(mem, "%d,%s,%.0f,%.0f,%.1f\n", ns[i], rigid_solver_name(opt.solver),
+      fprintf(mem, "%d,%s,%.0f,%.0f,%.1f\n", ns[i], label,
               8.0 * (double)(r.lenrw + r.leniw), r.klu_peak_bytes, bytes / ns[i]);
-      if (s == 1) {
-        klu_n[nklu]   = ns[i];
-        klu_t[nklu++] = per_step;
+      if (s >= 1) {
+        klu_n[s - 1][nklu[s - 1]]   = ns[i];
+        klu_t[s - 1][nklu[s - 1]++] = per_step;
       }
       rigid_result_free(&r);
     }
@@ -130,16 +135,23 @@ int main(int argc, char **argv)
   }
   fclose(csv);
   fclose(mem);
-  if (nklu >= 2) {
-    const double p_all = FitExponent(klu_n, klu_t, nklu);
-    const double p_top = FitExponent(klu_n + nklu - 2, klu_t + nklu - 2, 2);
-    printf("\nKLU: time per step ~ N^p, p = %.3f (least squares over N = %g..%g), "
-           "p = %.3f (between the two largest N)\n", p_all, klu_n[0], klu_n[nklu - 1], p_top);
-    printf("target p <= 1.1: %s\n", fmax(p_all, p_top) <= 1.1 ? "MET" : "MISSED");
-    for (k = 0; k < nklu; k++)
-      if (klu_n[k] == 10000)
-        printf("target < 5 ms per step at N = 10000: %.2f ms, %s\n", 1e3 * klu_t[k],
-               klu_t[k] < 5e-3 ? "MET" : "MISSED");
+  for (v = 0; v < 2; v++) {
+    const int nk = nklu[v];
+    const double *kn = klu_n[v], *kt = klu_t[v];
+    const char *name = v == 0 ? "KLU" : "KLU, modified Newton";
+    if (nk < 2) continue;
+    {
+      const double p_all = FitExponent(kn, kt, nk);
+      const double p_top = FitExponent(kn + nk - 2, kt + nk - 2, 2);
+      printf("\n%s: time per step ~ N^p, p = %.3f (least squares over N = %g..%g), "
+             "p = %.3f (between the two largest N)\n", name, p_all, kn[0],
+             kn[nk - 1], p_top);
+      printf("target p <= 1.1: %s\n", fmax(p_all, p_top) <= 1.1 ? "MET" : "MISSED");
+    }
+    for (k = 0; k < nk; k++)
+      if (kn[k] == 10000)
+        printf("target < 5 ms per step at N = 10000: %.2f ms, %s\n", 1e3 * kt[k],
+               kt[k] < 5e-3 ? "MET" : "MISSED");
   }
   printf("wrote %s and %s\n", csv_name, mem_name);
   SUNContext_Free(&ctx);

@@ -427,6 +427,8 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     flag = opt->method == 1 ? LGNSetGenAlpha(mem, opt->rho_inf)
                             : LGNSetNewmark(mem, opt->beta, opt->gamma);
   if (flag == 0) flag = LGNSetKinematics(mem, opt->kinematics);
+  if (flag == 0) flag = LGNSetNewtonMode(mem, opt->newton);
+  if (flag == 0) flag = LGNSetLSetupFrequency(mem, opt->msbp);
   if (flag == 0) flag = LGNSetConstraintIndex(mem, opt->constraints);
   if (flag == 0 && opt->rtol > 0) flag = LGNSStolerances(mem, opt->rtol, opt->atol);
 
@@ -484,7 +486,8 @@ void rigid_print_usage(FILE *out)
           "          [--method newmark|genalpha] [--rho-inf R] [--beta B --gamma G]\n"
           "          [--kinematics simplified|exact] [--constraints index3|index2]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
-          "          [--rtol R] [--atol A] [--csv FILE]\n");
+          "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
+          "          [--csv FILE]\n");
 }
 
 int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
@@ -520,7 +523,12 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     if (VAL("analytic")) opt->analytic = 1;
     else if (VAL("dq")) opt->analytic = 0;
     else return -1;
-  } else if (IS("--rho-inf")) opt->rho_inf = atof(val);
+  } else if (IS("--newton")) {
+    if (VAL("full")) opt->newton = LGN_NEWTON_FULL;
+    else if (VAL("modified")) opt->newton = LGN_NEWTON_MODIFIED;
+    else return -1;
+  } else if (IS("--msbp")) opt->msbp = atol(val);
+  else if (IS("--rho-inf")) opt->rho_inf = atof(val);
   else if (IS("--beta")) opt->beta = atof(val);
   else if (IS("--gamma")) opt->gamma = atof(val);
   else if (IS("--h")) opt->h = atof(val);

@@ -55,6 +55,8 @@ typedef struct {
   int analytic;             /* 1: K_t, C_t, Z from the model; 0: DQ         */
   double h, t_end;
   double rtol, atol;        /* Newton tolerances (0: defaults)              */
+  int newton;               /* LGN_NEWTON_* (default full)                  */
+  long int msbp;            /* modified Newton: steps between setups (0: default) */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */
 } RigidRunOptions;
