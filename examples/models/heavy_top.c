@@ -24,7 +24,9 @@
  *    M = diag(m I, 4 G^T J G),  g = [-m gamma_g ; 8 Gdot^T J G pdot],
  *    Phi = [X - R(p)^T x ; p^T p - 1],  B = dPhi/dq,
  *    with G(p) = [-pbar, -pbar~ + p0 I] and R(p) = (p0^2 - pbar.pbar) I
- *    + 2 pbar pbar^T + 2 p0 pbar~. Tangent matrices by difference quotients.
+ *    + 2 pbar pbar^T + 2 p0 pbar~. K_t, C_t and Z are the plain derivatives
+ *    on R^7 (q w~ = w); their formulas are at EPStiffness, EPDamping and
+ *    EPCurvature.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -53,6 +55,11 @@ static void Cross(const double a[3], const double b[3], double c[3])
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* T = a~ (row-major), so that T b = a x b */
@@ -261,7 +268,60 @@ static int SE3Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void 
 
 /* =============================================================================
  * Euler-parameter callbacks (q = (x, p0, pbar) in R^7)
+ *
+ * G(p) is linear in p and G(p) p = 0, so G(a) b = -G(b) a; G(d)^T c = H(c) d
+ * with H(c) = [[0, -c^T], [c, -c~]] (4 x 4). R(p) = Q(p, p) for the symmetric
+ * bilinear Q(a, b) = (a0 b0 - abar.bbar) I + abar bbar^T + bbar abar^T
+ * + a0 bbar~ + b0 abar~, so Phi and B are polynomials in q and the tangent
+ * matrices below are their exact derivatives.
  * ===========================================================================*/
+
+/* c = G a (3-vector) for G = G(p) row-major 3 x 4 */
+static void EPGVec(const double G[12], const double a[4], double c[3])
+{
+  int k;
+  for (k = 0; k < 3; k++)
+    c[k] = G[4 * k] * a[0] + G[4 * k + 1] * a[1] + G[4 * k + 2] * a[2] + G[4 * k + 3] * a[3];
+}
+
+/* out (4 x 4 row-major) += s G1^T J G2 */
+static void EPAddGtJG(const double G1[12], const double G2[12], double s, double out[16])
+{
+  int i, j, k;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) {
+      double a = 0.0;
+      for (k = 0; k < 3; k++) a += G1[4 * k + i] * J_BODY[k] * G2[4 * k + j];
+      out[4 * i + j] += s * a;
+    }
+}
+
+/* out (4 x 4 row-major) += s H(c), H(c) = [[0, -c^T], [c, -c~]] */
+static void EPAddH(const double c[3], double s, double out[16])
+{
+  int i;
+  for (i = 0; i < 3; i++) {
+    out[1 + i] -= s * c[i];
+    out[4 * (1 + i)] += s * c[i];
+  }
+  out[4 * 1 + 2] += s * c[2]; out[4 * 1 + 3] -= s * c[1];
+  out[4 * 2 + 1] -= s * c[2]; out[4 * 2 + 3] += s * c[0];
+  out[4 * 3 + 1] += s * c[1]; out[4 * 3 + 2] -= s * c[0];
+}
+
+/* z = Q(a, b)^T y = (a0 b0 - abar.bbar) y + bbar (abar.y) + abar (bbar.y)
+ *                   - a0 bbar x y - b0 abar x y */
+static void EPQuadTVec(const double a[4], const double b[4], const double y[3],
+                       double z[3])
+{
+  const double s = a[0] * b[0] - Dot(a + 1, b + 1), ay = Dot(a + 1, y), by = Dot(b + 1, y);
+  double axy[3], bxy[3];
+  int i;
+  Cross(a + 1, y, axy);
+  Cross(b + 1, y, bxy);
+  for (i = 0; i < 3; i++)
+    z[i] = s * y[i] + b[1 + i] * ay + a[1 + i] * by - a[0] * bxy[i] - b[0] * axy[i];
+}
 
 
 static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
@@ -334,6 +394,98 @@ static int EPConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
                             2.0 * pb[i] * x[j] + 2.0 * p[0] * xt[3 * i + j]);
   }
   for (j = 0; j < 4; j++) ELEM(B, 3, 3 + j) = 2.0 * p[j];
+  return 0;
+}
+
+/* K_t = d/dq [M(q) qddot + g(q, qdot) + B(q)^T lambda]. With l = lambda[0..2],
+ * mu = lambda[3], w = pddot and S(q) = l . R(p)^T x = x . R(p) l:
+ *   B^T lambda = [-R(p) l ; -dS/dp + 2 mu p],
+ *   D := d(R(p) l)/dp = [2 p0 l - 2 l x pbar | -2 l pbar^T + 2 pbar l^T + 2 (l.pbar) I - 2 p0 l~],
+ *   d2S/dp2 = [[2 x.l, -2 (x x l)^T], [-2 x x l, -2 (x.l) I + 2 (x l^T + l x^T)]],
+ *   d/dp [4 G^T J G w]       = 4 H(J G w) - 4 G^T J G(w),
+ *   d/dp [8 G(pdot)^T J G pdot] = -8 G(pdot)^T J G(pdot),
+ * K_t = [[0, -D], [-D^T, -d2S/dp2 + 2 mu I + 4 H(J G w) - 4 G^T J G(w)
+ *                        - 8 G(pdot)^T J G(pdot)]]  (x enters only through B). */
+static int EPStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                       N_Vector lambda, SUNMatrix K, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q), *p = x + 3, *pb = p + 1;
+  const double *pd = N_VGetArrayPointer(v) + 3, *w = N_VGetArrayPointer(vdot) + 3;
+  const double *l = N_VGetArrayPointer(lambda);
+  const double lx = Dot(l, x), lp = Dot(l, pb);
+  double G[12], Gd[12], Gw[12], c[3], lxp[3], xxl[3], lt[9], Kpp[16];
+  int i, j;
+  (void)t; (void)ud;
+
+  /* -D and -D^T */
+  Cross(l, pb, lxp);
+  Tilde(l, lt);
+  for (i = 0; i < 3; i++) {
+    ELEM(K, i, 3) = ELEM(K, 3, i) = -(2.0 * p[0] * l[i] - 2.0 * lxp[i]);
+    for (j = 0; j < 3; j++)
+      ELEM(K, i, 4 + j) = ELEM(K, 4 + j, i) =
+          -(-2.0 * l[i] * pb[j] + 2.0 * pb[i] * l[j] + (i == j ? 2.0 * lp : 0.0) -
+            2.0 * p[0] * lt[3 * i + j]);
+  }
+
+  /* -d2S/dp2 + 2 mu I */
+  Cross(x, l, xxl);
+  Kpp[0] = -2.0 * lx;
+  for (i = 0; i < 3; i++) {
+    Kpp[1 + i] = Kpp[4 * (1 + i)] = 2.0 * xxl[i];
+    for (j = 0; j < 3; j++)
+      Kpp[4 * (1 + i) + 1 + j] = (i == j ? 2.0 * lx : 0.0) - 2.0 * (x[i] * l[j] + l[i] * x[j]);
+  }
+  for (i = 0; i < 4; i++) Kpp[5 * i] += 2.0 * l[3];
+
+  /* inertial terms */
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  ep_matrix_g(w, Gw);
+  EPGVec(G, w, c);
+  for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
+  EPAddH(c, 4.0, Kpp);
+  EPAddGtJG(G, Gw, -4.0, Kpp);
+  EPAddGtJG(Gd, Gd, -8.0, Kpp);
+
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) ELEM(K, 3 + i, 3 + j) = Kpp[4 * i + j];
+  return 0;
+}
+
+/* C_t = dg/dqdot: only g_p = 8 G(pdot)^T J G(p) pdot depends on qdot,
+ *   C_t = diag(0, 8 H(J G pdot) + 8 G(pdot)^T J G). */
+static int EPDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  const double *p = N_VGetArrayPointer(q) + 3, *pd = N_VGetArrayPointer(v) + 3;
+  double G[12], Gd[12], c[3], Cpp[16] = {0.0};
+  int i, j;
+  (void)t; (void)ud;
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  EPGVec(G, pd, c);
+  for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
+  EPAddH(c, 8.0, Cpp);
+  EPAddGtJG(Gd, G, 8.0, Cpp);
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) ELEM(C, 3 + i, 3 + j) = Cpp[4 * i + j];
+  return 0;
+}
+
+/* Z(q)(qdot, qdot) = (d/dq (B(q) qdot)) qdot = d^2/de^2 Phi(q + e qdot) at 0.
+ * Phi is X - Q(p, p)^T x (cubic) and p^T p - 1, so
+ *   Z = [-(2 Q(pdot, pdot)^T x + 4 Q(p, pdot)^T xdot) ; 2 pdot^T pdot]. */
+static int EPCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q), *p = x + 3;
+  const double *xd = N_VGetArrayPointer(v), *pd = xd + 3;
+  double *zz = N_VGetArrayPointer(z), a[3], b[3];
+  int i;
+  (void)t; (void)ud;
+  EPQuadTVec(pd, pd, x, a);
+  EPQuadTVec(p, pd, xd, b);
+  for (i = 0; i < 3; i++) zz[i] = -(2.0 * a[i] + 4.0 * b[i]);
+  zz[3] = 2.0 * (pd[0] * pd[0] + pd[1] * pd[1] + pd[2] * pd[2] + pd[3] * pd[3]);
   return 0;
 }
 
@@ -532,7 +684,11 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
     flag = LGNSetStiffnessFn(o->mem, SE3Stiffness);
     if (flag == 0) flag = LGNSetDampingFn(o->mem, SE3Damping);
     if (flag == 0) flag = LGNSetCurvatureFn(o->mem, SE3Curvature);
-  } else if (flag == 0 && !ep && opt->analytic_jacobians) {
+  } else if (flag == 0 && ep && opt->analytic_jacobians) {
+    flag = LGNSetStiffnessFn(o->mem, EPStiffness);
+    if (flag == 0) flag = LGNSetDampingFn(o->mem, EPDamping);
+    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, EPCurvature);
+  } else if (flag == 0 && opt->analytic_jacobians) {
     flag = LGNSetStiffnessFn(o->mem, LieStiffness);
     if (flag == 0) flag = LGNSetDampingFn(o->mem, LieDamping);
     if (flag == 0) flag = LGNSetCurvatureFn(o->mem, LieCurvature);
