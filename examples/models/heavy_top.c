@@ -33,6 +33,7 @@
 #include "heavy_top.h"
 #include "euler_parameters.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -490,6 +491,33 @@ static int EPCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *
 }
 
 /* =============================================================================
+ * The callbacks of each formulation
+ * ===========================================================================*/
+
+typedef struct {
+  LGNMassFn mass;
+  LGNForceFn force;
+  LGNConstrFn constr;
+  LGNConstrJacFn constr_jac;
+  LGNStiffnessFn stiffness; /* the analytic tangents (analytic_jacobians) */
+  LGNDampingFn damping;
+  LGNCurvatureFn curvature;
+} ModelCallbacks;
+
+static const ModelCallbacks LIE_CALLBACKS = {
+    LieMass, LieForce, LieConstr, LieConstrJac, LieStiffness, LieDamping, LieCurvature};
+static const ModelCallbacks SE3_CALLBACKS = {
+    LieMass, SE3Force, LieConstr, SE3ConstrJac, SE3Stiffness, SE3Damping, SE3Curvature};
+static const ModelCallbacks EP_CALLBACKS = {
+    EPMass, EPForce, EPConstr, EPConstrJac, EPStiffness, EPDamping, EPCurvature};
+
+static const ModelCallbacks *Callbacks(HeavyTopFormulation f)
+{
+  return f == HT_EULER_PARAMETERS ? &EP_CALLBACKS : f == HT_SE3 ? &SE3_CALLBACKS
+                                                                : &LIE_CALLBACKS;
+}
+
+/* =============================================================================
  * Driver
  * ===========================================================================*/
 
@@ -634,6 +662,7 @@ static void FreeRun(RunObjects *o)
 /* Set up model, method and linear solver; returns a Lignum flag. */
 static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
 {
+  const ModelCallbacks *cb = Callbacks(opt->formulation);
   const int ep = opt->formulation == HT_EULER_PARAMETERS;
   const int se3 = opt->formulation == HT_SE3;
   const sunindextype nv = ep ? 7 : 6, m = ep ? 4 : 3;
@@ -674,24 +703,13 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   }
 
   flag = LGNSetGroup(o->mem, o->G);
-  if (flag == 0) flag = LGNSetMassFn(o->mem, ep ? EPMass : LieMass);
-  if (flag == 0)
-    flag = LGNSetForceFn(o->mem, ep ? EPForce : se3 ? SE3Force : LieForce);
-  if (flag == 0)
-    flag = LGNSetConstraints(o->mem, m, ep ? EPConstr : LieConstr,
-                             ep ? EPConstrJac : se3 ? SE3ConstrJac : LieConstrJac);
-  if (flag == 0 && se3 && opt->analytic_jacobians) {
-    flag = LGNSetStiffnessFn(o->mem, SE3Stiffness);
-    if (flag == 0) flag = LGNSetDampingFn(o->mem, SE3Damping);
-    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, SE3Curvature);
-  } else if (flag == 0 && ep && opt->analytic_jacobians) {
-    flag = LGNSetStiffnessFn(o->mem, EPStiffness);
-    if (flag == 0) flag = LGNSetDampingFn(o->mem, EPDamping);
-    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, EPCurvature);
-  } else if (flag == 0 && opt->analytic_jacobians) {
-    flag = LGNSetStiffnessFn(o->mem, LieStiffness);
-    if (flag == 0) flag = LGNSetDampingFn(o->mem, LieDamping);
-    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, LieCurvature);
+  if (flag == 0) flag = LGNSetMassFn(o->mem, cb->mass);
+  if (flag == 0) flag = LGNSetForceFn(o->mem, cb->force);
+  if (flag == 0) flag = LGNSetConstraints(o->mem, m, cb->constr, cb->constr_jac);
+  if (flag == 0 && opt->analytic_jacobians) {
+    flag = LGNSetStiffnessFn(o->mem, cb->stiffness);
+    if (flag == 0) flag = LGNSetDampingFn(o->mem, cb->damping);
+    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, cb->curvature);
   }
   if (flag == 0) flag = LGNInit(o->mem, 0.0, o->q, o->v);
   if (flag == 0) flag = LGNSetLinearSolver(o->mem, o->LS, o->A);
