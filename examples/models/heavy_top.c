@@ -518,6 +518,228 @@ static const ModelCallbacks *Callbacks(HeavyTopFormulation f)
 }
 
 /* =============================================================================
+ * Check of the analytic tangents against central differences
+ * ===========================================================================*/
+
+/* Uniform in [-1, 1) from a 64-bit LCG (Knuth's MMIX constants): the same
+ * states on every platform. */
+static double RandomUniform(unsigned long long *s)
+{
+  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return 2.0 * (double)(*s >> 11) / 9007199254740992.0 - 1.0;
+}
+
+/* max |a - b| / max(|a|, |b|) over n entries (0 if both vanish) */
+static double RelDiff(const double *a, const double *b, int n)
+{
+  double d = 0.0, s = 0.0;
+  int i;
+  for (i = 0; i < n; i++) {
+    d = fmax(d, fabs(a[i] - b[i]));
+    s = fmax(s, fmax(fabs(a[i]), fabs(b[i])));
+  }
+  return d == 0.0 ? 0.0 : d / s;
+}
+
+/* Objects of one check, freed together. */
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  N_Vector q, v, vdot, lambda, qe, ve, g, z;
+  SUNMatrix M, B, T;
+} CheckObjects;
+
+static void FreeCheck(CheckObjects *o)
+{
+  N_Vector *vec[] = {&o->q, &o->v, &o->vdot, &o->lambda, &o->qe, &o->ve, &o->g, &o->z};
+  SUNMatrix *mat[] = {&o->M, &o->B, &o->T};
+  size_t i;
+  for (i = 0; i < sizeof vec / sizeof vec[0]; i++)
+    if (*vec[i]) N_VDestroy(*vec[i]);
+  for (i = 0; i < sizeof mat / sizeof mat[0]; i++)
+    if (*mat[i]) SUNMatDestroy(*mat[i]);
+  LGNGroup_Destroy(o->G);
+  if (o->ctx) SUNContext_Free(&o->ctx);
+}
+
+/* qe = q o exp(s w) */
+static int Displace(CheckObjects *o, const double *w, double s, int nv)
+{
+  double sw[7];
+  int i;
+  for (i = 0; i < nv; i++) sw[i] = s * w[i];
+  return LGNGroup_ComposeExp(o->G, N_VGetArrayPointer(o->q), sw, N_VGetArrayPointer(o->qe));
+}
+
+/* r = M(qe) vdot + g(qe, v) + B(qe)^T lambda (nv) */
+static int DynamicResidual(const ModelCallbacks *cb, CheckObjects *o, int nv, int m,
+                           double *r)
+{
+  const double *vd = N_VGetArrayPointer(o->vdot), *l = N_VGetArrayPointer(o->lambda);
+  const double *g = N_VGetArrayPointer(o->g);
+  int i, j, ret;
+  SUNMatZero(o->M);
+  SUNMatZero(o->B);
+  N_VConst(0.0, o->g);
+  ret = cb->mass(0.0, o->qe, o->M, NULL);
+  if (ret == 0) ret = cb->force(0.0, o->qe, o->v, o->g, NULL);
+  if (ret == 0) ret = cb->constr_jac(0.0, o->qe, o->B, NULL);
+  if (ret != 0) return ret;
+  for (i = 0; i < nv; i++) {
+    r[i] = g[i];
+    for (j = 0; j < nv; j++) r[i] += ELEM(o->M, i, j) * vd[j];
+    for (j = 0; j < m; j++) r[i] += ELEM(o->B, j, i) * l[j];
+  }
+  return 0;
+}
+
+/* y = B(qe) v (m) */
+static int ConstraintVelocity(const ModelCallbacks *cb, CheckObjects *o, int nv, int m,
+                              double *y)
+{
+  const double *v = N_VGetArrayPointer(o->v);
+  int i, j, ret;
+  SUNMatZero(o->B);
+  ret = cb->constr_jac(0.0, o->qe, o->B, NULL);
+  for (i = 0; i < m; i++) {
+    y[i] = 0.0;
+    for (j = 0; j < nv; j++) y[i] += ELEM(o->B, i, j) * v[j];
+  }
+  return ret;
+}
+
+/* Column-major copy of the dense matrix A (rows x cols) */
+static void CopyDense(SUNMatrix A, int rows, int cols, double *out)
+{
+  int i, j;
+  for (j = 0; j < cols; j++)
+    for (i = 0; i < rows; i++) out[i + rows * j] = ELEM(A, i, j);
+}
+
+int heavy_top_check_jacobians(HeavyTopFormulation formulation, unsigned int seed,
+                              HeavyTopJacobianErrors *err)
+{
+  const ModelCallbacks *cb = Callbacks(formulation);
+  const int ep = formulation == HT_EULER_PARAMETERS;
+  const int nv = ep ? 7 : 6, m = ep ? 4 : 3;
+  /* central differences of unit-size data: error ~ eps^2 + DBL_EPSILON / eps */
+  const double eps = cbrt(DBL_EPSILON);
+  unsigned long long s = 0x9e3779b97f4a7c15ULL ^ seed;
+  double *q, *v, *vd, *l, w[7], nrm, R[9];
+  double an[49], dq[49], yp[7], ym[7];
+  CheckObjects o;
+  int i, j, ret;
+
+  memset(&o, 0, sizeof o);
+  memset(err, 0, sizeof *err);
+  if (SUNContext_Create(NULL, &o.ctx) != 0) return -1;
+  o.G = ep ? LGNGroup_Rn(7) : formulation == HT_SE3 ? LGNGroup_SE3() : LGNGroup_R3xSO3();
+  o.q = N_VNew_Serial(7, o.ctx);
+  o.qe = N_VNew_Serial(7, o.ctx);
+  o.v = N_VNew_Serial(nv, o.ctx);
+  o.ve = N_VNew_Serial(nv, o.ctx);
+  o.vdot = N_VNew_Serial(nv, o.ctx);
+  o.g = N_VNew_Serial(nv, o.ctx);
+  o.lambda = N_VNew_Serial(m, o.ctx);
+  o.z = N_VNew_Serial(m, o.ctx);
+  o.M = SUNDenseMatrix(nv, nv, o.ctx);
+  o.T = SUNDenseMatrix(nv, nv, o.ctx);
+  o.B = SUNDenseMatrix(m, nv, o.ctx);
+  if (!o.G || !o.q || !o.qe || !o.v || !o.ve || !o.vdot || !o.g || !o.lambda || !o.z ||
+      !o.M || !o.T || !o.B) {
+    FreeCheck(&o);
+    return -1;
+  }
+
+  /* random state: unit p; x anywhere for Euler parameters, but x = R X for
+   * the Lie group models, whose B uses the constant -X~ for -(R^T x)~ (exact
+   * on the joint manifold only); v, vdot, lambda in [-1, 1) */
+  q = N_VGetArrayPointer(o.q);
+  v = N_VGetArrayPointer(o.v);
+  vd = N_VGetArrayPointer(o.vdot);
+  l = N_VGetArrayPointer(o.lambda);
+  do {
+    for (i = 0; i < 4; i++) q[3 + i] = RandomUniform(&s);
+    nrm = sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+  } while (nrm < 0.1);
+  for (i = 0; i < 4; i++) q[3 + i] /= nrm;
+  for (i = 0; i < 3; i++) q[i] = RandomUniform(&s);
+  if (!ep) {
+    LGNQuaternionToRotation(q + 3, R);
+    for (i = 0; i < 3; i++)
+      q[i] = R[3 * i] * X_BODY[0] + R[3 * i + 1] * X_BODY[1] + R[3 * i + 2] * X_BODY[2];
+  }
+  for (i = 0; i < nv; i++) v[i] = RandomUniform(&s);
+  for (i = 0; i < nv; i++) vd[i] = RandomUniform(&s);
+  for (i = 0; i < m; i++) l[i] = RandomUniform(&s);
+
+  /* B w = d/de Phi(q o exp(e w)) */
+  ret = cb->constr_jac(0.0, o.q, o.B, NULL);
+  CopyDense(o.B, m, nv, an);
+  for (j = 0; ret == 0 && j < nv; j++) {
+    memset(w, 0, sizeof w);
+    w[j] = eps;
+    ret = Displace(&o, w, 1.0, nv);
+    if (ret == 0) ret = cb->constr(0.0, o.qe, o.z, NULL);
+    memcpy(yp, N_VGetArrayPointer(o.z), (size_t)m * sizeof(double));
+    if (ret == 0) ret = Displace(&o, w, -1.0, nv);
+    if (ret == 0) ret = cb->constr(0.0, o.qe, o.z, NULL);
+    for (i = 0; i < m; i++) dq[i + m * j] = (yp[i] - N_VGetArrayPointer(o.z)[i]) / (2.0 * eps);
+  }
+  err->B = RelDiff(an, dq, m * nv);
+
+  /* K_t w = d/de r(q o exp(e w)), r = M vdot + g + B^T lambda */
+  if (ret == 0) {
+    SUNMatZero(o.T);
+    ret = cb->stiffness(0.0, o.q, o.v, o.vdot, o.lambda, o.T, NULL);
+    CopyDense(o.T, nv, nv, an);
+  }
+  for (j = 0; ret == 0 && j < nv; j++) {
+    memset(w, 0, sizeof w);
+    w[j] = eps;
+    ret = Displace(&o, w, 1.0, nv);
+    if (ret == 0) ret = DynamicResidual(cb, &o, nv, m, yp);
+    if (ret == 0) ret = Displace(&o, w, -1.0, nv);
+    if (ret == 0) ret = DynamicResidual(cb, &o, nv, m, ym);
+    for (i = 0; i < nv; i++) dq[i + nv * j] = (yp[i] - ym[i]) / (2.0 * eps);
+  }
+  err->K = RelDiff(an, dq, nv * nv);
+
+  /* C_t w = d/de g(q, v + e w) */
+  if (ret == 0) {
+    SUNMatZero(o.T);
+    ret = cb->damping(0.0, o.q, o.v, o.T, NULL);
+    CopyDense(o.T, nv, nv, an);
+  }
+  for (j = 0; ret == 0 && j < nv; j++) {
+    const double *g = N_VGetArrayPointer(o.g);
+    double *ve = N_VGetArrayPointer(o.ve);
+    memcpy(ve, v, (size_t)nv * sizeof(double));
+    ve[j] = v[j] + eps;
+    N_VConst(0.0, o.g);
+    ret = cb->force(0.0, o.q, o.ve, o.g, NULL);
+    memcpy(yp, g, (size_t)nv * sizeof(double));
+    ve[j] = v[j] - eps;
+    N_VConst(0.0, o.g);
+    if (ret == 0) ret = cb->force(0.0, o.q, o.ve, o.g, NULL);
+    for (i = 0; i < nv; i++) dq[i + nv * j] = (yp[i] - g[i]) / (2.0 * eps);
+  }
+  err->C = RelDiff(an, dq, nv * nv);
+
+  /* Z(q)(v, v) = d/de B(q o exp(e v)) v */
+  if (ret == 0) ret = cb->curvature(0.0, o.q, o.v, o.z, NULL);
+  if (ret == 0) ret = Displace(&o, v, eps, nv);
+  if (ret == 0) ret = ConstraintVelocity(cb, &o, nv, m, yp);
+  if (ret == 0) ret = Displace(&o, v, -eps, nv);
+  if (ret == 0) ret = ConstraintVelocity(cb, &o, nv, m, ym);
+  for (i = 0; i < m; i++) dq[i] = (yp[i] - ym[i]) / (2.0 * eps);
+  err->Z = RelDiff(N_VGetArrayPointer(o.z), dq, m);
+
+  FreeCheck(&o);
+  return ret == 0 ? 0 : -1;
+}
+
+/* =============================================================================
  * Driver
  * ===========================================================================*/
 
