@@ -24,13 +24,16 @@
  *    M = diag(m I, 4 G^T J G),  g = [-m gamma_g ; 8 Gdot^T J G pdot],
  *    Phi = [X - R(p)^T x ; p^T p - 1],  B = dPhi/dq,
  *    with G(p) = [-pbar, -pbar~ + p0 I] and R(p) = (p0^2 - pbar.pbar) I
- *    + 2 pbar pbar^T + 2 p0 pbar~. Tangent matrices by difference quotients.
+ *    + 2 pbar pbar^T + 2 p0 pbar~. K_t, C_t and Z are the plain derivatives
+ *    on R^7 (q w~ = w); their formulas are at EPStiffness, EPDamping and
+ *    EPCurvature.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
 #include "heavy_top.h"
 #include "euler_parameters.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 #include <time.h>
@@ -53,6 +56,11 @@ static void Cross(const double a[3], const double b[3], double c[3])
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double Dot(const double a[3], const double b[3])
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
 /* T = a~ (row-major), so that T b = a x b */
@@ -261,7 +269,60 @@ static int SE3Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void 
 
 /* =============================================================================
  * Euler-parameter callbacks (q = (x, p0, pbar) in R^7)
+ *
+ * G(p) is linear in p and G(p) p = 0, so G(a) b = -G(b) a; G(d)^T c = H(c) d
+ * with H(c) = [[0, -c^T], [c, -c~]] (4 x 4). R(p) = Q(p, p) for the symmetric
+ * bilinear Q(a, b) = (a0 b0 - abar.bbar) I + abar bbar^T + bbar abar^T
+ * + a0 bbar~ + b0 abar~, so Phi and B are polynomials in q and the tangent
+ * matrices below are their exact derivatives.
  * ===========================================================================*/
+
+/* c = G a (3-vector) for G = G(p) row-major 3 x 4 */
+static void EPGVec(const double G[12], const double a[4], double c[3])
+{
+  int k;
+  for (k = 0; k < 3; k++)
+    c[k] = G[4 * k] * a[0] + G[4 * k + 1] * a[1] + G[4 * k + 2] * a[2] + G[4 * k + 3] * a[3];
+}
+
+/* out (4 x 4 row-major) += s G1^T J G2 */
+static void EPAddGtJG(const double G1[12], const double G2[12], double s, double out[16])
+{
+  int i, j, k;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) {
+      double a = 0.0;
+      for (k = 0; k < 3; k++) a += G1[4 * k + i] * J_BODY[k] * G2[4 * k + j];
+      out[4 * i + j] += s * a;
+    }
+}
+
+/* out (4 x 4 row-major) += s H(c), H(c) = [[0, -c^T], [c, -c~]] */
+static void EPAddH(const double c[3], double s, double out[16])
+{
+  int i;
+  for (i = 0; i < 3; i++) {
+    out[1 + i] -= s * c[i];
+    out[4 * (1 + i)] += s * c[i];
+  }
+  out[4 * 1 + 2] += s * c[2]; out[4 * 1 + 3] -= s * c[1];
+  out[4 * 2 + 1] -= s * c[2]; out[4 * 2 + 3] += s * c[0];
+  out[4 * 3 + 1] += s * c[1]; out[4 * 3 + 2] -= s * c[0];
+}
+
+/* z = Q(a, b)^T y = (a0 b0 - abar.bbar) y + bbar (abar.y) + abar (bbar.y)
+ *                   - a0 bbar x y - b0 abar x y */
+static void EPQuadTVec(const double a[4], const double b[4], const double y[3],
+                       double z[3])
+{
+  const double s = a[0] * b[0] - Dot(a + 1, b + 1), ay = Dot(a + 1, y), by = Dot(b + 1, y);
+  double axy[3], bxy[3];
+  int i;
+  Cross(a + 1, y, axy);
+  Cross(b + 1, y, bxy);
+  for (i = 0; i < 3; i++)
+    z[i] = s * y[i] + b[1 + i] * ay + a[1 + i] * by - a[0] * bxy[i] - b[0] * axy[i];
+}
 
 
 static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
@@ -335,6 +396,347 @@ static int EPConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   }
   for (j = 0; j < 4; j++) ELEM(B, 3, 3 + j) = 2.0 * p[j];
   return 0;
+}
+
+/* K_t = d/dq [M(q) qddot + g(q, qdot) + B(q)^T lambda]. With l = lambda[0..2],
+ * mu = lambda[3], w = pddot and S(q) = l . R(p)^T x = x . R(p) l:
+ *   B^T lambda = [-R(p) l ; -dS/dp + 2 mu p],
+ *   D := d(R(p) l)/dp = [2 p0 l - 2 l x pbar | -2 l pbar^T + 2 pbar l^T + 2 (l.pbar) I - 2 p0 l~],
+ *   d2S/dp2 = [[2 x.l, -2 (x x l)^T], [-2 x x l, -2 (x.l) I + 2 (x l^T + l x^T)]],
+ *   d/dp [4 G^T J G w]       = 4 H(J G w) - 4 G^T J G(w),
+ *   d/dp [8 G(pdot)^T J G pdot] = -8 G(pdot)^T J G(pdot),
+ * K_t = [[0, -D], [-D^T, -d2S/dp2 + 2 mu I + 4 H(J G w) - 4 G^T J G(w)
+ *                        - 8 G(pdot)^T J G(pdot)]]  (x enters only through B). */
+static int EPStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                       N_Vector lambda, SUNMatrix K, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q), *p = x + 3, *pb = p + 1;
+  const double *pd = N_VGetArrayPointer(v) + 3, *w = N_VGetArrayPointer(vdot) + 3;
+  const double *l = N_VGetArrayPointer(lambda);
+  const double lx = Dot(l, x), lp = Dot(l, pb);
+  double G[12], Gd[12], Gw[12], c[3], lxp[3], xxl[3], lt[9], Kpp[16];
+  int i, j;
+  (void)t; (void)ud;
+
+  /* -D and -D^T */
+  Cross(l, pb, lxp);
+  Tilde(l, lt);
+  for (i = 0; i < 3; i++) {
+    ELEM(K, i, 3) = ELEM(K, 3, i) = -(2.0 * p[0] * l[i] - 2.0 * lxp[i]);
+    for (j = 0; j < 3; j++)
+      ELEM(K, i, 4 + j) = ELEM(K, 4 + j, i) =
+          -(-2.0 * l[i] * pb[j] + 2.0 * pb[i] * l[j] + (i == j ? 2.0 * lp : 0.0) -
+            2.0 * p[0] * lt[3 * i + j]);
+  }
+
+  /* -d2S/dp2 + 2 mu I */
+  Cross(x, l, xxl);
+  Kpp[0] = -2.0 * lx;
+  for (i = 0; i < 3; i++) {
+    Kpp[1 + i] = Kpp[4 * (1 + i)] = 2.0 * xxl[i];
+    for (j = 0; j < 3; j++)
+      Kpp[4 * (1 + i) + 1 + j] = (i == j ? 2.0 * lx : 0.0) - 2.0 * (x[i] * l[j] + l[i] * x[j]);
+  }
+  for (i = 0; i < 4; i++) Kpp[5 * i] += 2.0 * l[3];
+
+  /* inertial terms */
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  ep_matrix_g(w, Gw);
+  EPGVec(G, w, c);
+  for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
+  EPAddH(c, 4.0, Kpp);
+  EPAddGtJG(G, Gw, -4.0, Kpp);
+  EPAddGtJG(Gd, Gd, -8.0, Kpp);
+
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) ELEM(K, 3 + i, 3 + j) = Kpp[4 * i + j];
+  return 0;
+}
+
+/* C_t = dg/dqdot: only g_p = 8 G(pdot)^T J G(p) pdot depends on qdot,
+ *   C_t = diag(0, 8 H(J G pdot) + 8 G(pdot)^T J G). */
+static int EPDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  const double *p = N_VGetArrayPointer(q) + 3, *pd = N_VGetArrayPointer(v) + 3;
+  double G[12], Gd[12], c[3], Cpp[16] = {0.0};
+  int i, j;
+  (void)t; (void)ud;
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  EPGVec(G, pd, c);
+  for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
+  EPAddH(c, 8.0, Cpp);
+  EPAddGtJG(Gd, G, 8.0, Cpp);
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) ELEM(C, 3 + i, 3 + j) = Cpp[4 * i + j];
+  return 0;
+}
+
+/* Z(q)(qdot, qdot) = (d/dq (B(q) qdot)) qdot = d^2/de^2 Phi(q + e qdot) at 0.
+ * Phi is X - Q(p, p)^T x (cubic) and p^T p - 1, so
+ *   Z = [-(2 Q(pdot, pdot)^T x + 4 Q(p, pdot)^T xdot) ; 2 pdot^T pdot]. */
+static int EPCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q), *p = x + 3;
+  const double *xd = N_VGetArrayPointer(v), *pd = xd + 3;
+  double *zz = N_VGetArrayPointer(z), a[3], b[3];
+  int i;
+  (void)t; (void)ud;
+  EPQuadTVec(pd, pd, x, a);
+  EPQuadTVec(p, pd, xd, b);
+  for (i = 0; i < 3; i++) zz[i] = -(2.0 * a[i] + 4.0 * b[i]);
+  zz[3] = 2.0 * (pd[0] * pd[0] + pd[1] * pd[1] + pd[2] * pd[2] + pd[3] * pd[3]);
+  return 0;
+}
+
+/* =============================================================================
+ * The callbacks of each formulation
+ * ===========================================================================*/
+
+typedef struct {
+  LGNMassFn mass;
+  LGNForceFn force;
+  LGNConstrFn constr;
+  LGNConstrJacFn constr_jac;
+  LGNStiffnessFn stiffness; /* the analytic tangents (analytic_jacobians) */
+  LGNDampingFn damping;
+  LGNCurvatureFn curvature;
+} ModelCallbacks;
+
+static const ModelCallbacks LIE_CALLBACKS = {
+    LieMass, LieForce, LieConstr, LieConstrJac, LieStiffness, LieDamping, LieCurvature};
+static const ModelCallbacks SE3_CALLBACKS = {
+    LieMass, SE3Force, LieConstr, SE3ConstrJac, SE3Stiffness, SE3Damping, SE3Curvature};
+static const ModelCallbacks EP_CALLBACKS = {
+    EPMass, EPForce, EPConstr, EPConstrJac, EPStiffness, EPDamping, EPCurvature};
+
+static const ModelCallbacks *Callbacks(HeavyTopFormulation f)
+{
+  return f == HT_EULER_PARAMETERS ? &EP_CALLBACKS : f == HT_SE3 ? &SE3_CALLBACKS
+                                                                : &LIE_CALLBACKS;
+}
+
+/* =============================================================================
+ * Check of the analytic tangents against central differences
+ * ===========================================================================*/
+
+/* Uniform in [-1, 1) from a 64-bit LCG (Knuth's MMIX constants): the same
+ * states on every platform. */
+static double RandomUniform(unsigned long long *s)
+{
+  *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return 2.0 * (double)(*s >> 11) / 9007199254740992.0 - 1.0;
+}
+
+/* max |a - b| / max(|a|, |b|) over n entries (0 if both vanish) */
+static double RelDiff(const double *a, const double *b, int n)
+{
+  double d = 0.0, s = 0.0;
+  int i;
+  for (i = 0; i < n; i++) {
+    d = fmax(d, fabs(a[i] - b[i]));
+    s = fmax(s, fmax(fabs(a[i]), fabs(b[i])));
+  }
+  return d == 0.0 ? 0.0 : d / s;
+}
+
+/* Objects of one check, freed together. */
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  N_Vector q, v, vdot, lambda, qe, ve, g, z;
+  SUNMatrix M, B, T;
+} CheckObjects;
+
+static void FreeCheck(CheckObjects *o)
+{
+  N_Vector *vec[] = {&o->q, &o->v, &o->vdot, &o->lambda, &o->qe, &o->ve, &o->g, &o->z};
+  SUNMatrix *mat[] = {&o->M, &o->B, &o->T};
+  size_t i;
+  for (i = 0; i < sizeof vec / sizeof vec[0]; i++)
+    if (*vec[i]) N_VDestroy(*vec[i]);
+  for (i = 0; i < sizeof mat / sizeof mat[0]; i++)
+    if (*mat[i]) SUNMatDestroy(*mat[i]);
+  LGNGroup_Destroy(o->G);
+  if (o->ctx) SUNContext_Free(&o->ctx);
+}
+
+/* qe = q o exp(s w) */
+static int Displace(CheckObjects *o, const double *w, double s, int nv)
+{
+  double sw[7];
+  int i;
+  for (i = 0; i < nv; i++) sw[i] = s * w[i];
+  return LGNGroup_ComposeExp(o->G, N_VGetArrayPointer(o->q), sw, N_VGetArrayPointer(o->qe));
+}
+
+/* r = M(qe) vdot + g(qe, v) + B(qe)^T lambda (nv) */
+static int DynamicResidual(const ModelCallbacks *cb, CheckObjects *o, int nv, int m,
+                           double *r)
+{
+  const double *vd = N_VGetArrayPointer(o->vdot), *l = N_VGetArrayPointer(o->lambda);
+  const double *g = N_VGetArrayPointer(o->g);
+  int i, j, ret;
+  SUNMatZero(o->M);
+  SUNMatZero(o->B);
+  N_VConst(0.0, o->g);
+  ret = cb->mass(0.0, o->qe, o->M, NULL);
+  if (ret == 0) ret = cb->force(0.0, o->qe, o->v, o->g, NULL);
+  if (ret == 0) ret = cb->constr_jac(0.0, o->qe, o->B, NULL);
+  if (ret != 0) return ret;
+  for (i = 0; i < nv; i++) {
+    r[i] = g[i];
+    for (j = 0; j < nv; j++) r[i] += ELEM(o->M, i, j) * vd[j];
+    for (j = 0; j < m; j++) r[i] += ELEM(o->B, j, i) * l[j];
+  }
+  return 0;
+}
+
+/* y = B(qe) v (m) */
+static int ConstraintVelocity(const ModelCallbacks *cb, CheckObjects *o, int nv, int m,
+                              double *y)
+{
+  const double *v = N_VGetArrayPointer(o->v);
+  int i, j, ret;
+  SUNMatZero(o->B);
+  ret = cb->constr_jac(0.0, o->qe, o->B, NULL);
+  for (i = 0; i < m; i++) {
+    y[i] = 0.0;
+    for (j = 0; j < nv; j++) y[i] += ELEM(o->B, i, j) * v[j];
+  }
+  return ret;
+}
+
+/* Column-major copy of the dense matrix A (rows x cols) */
+static void CopyDense(SUNMatrix A, int rows, int cols, double *out)
+{
+  int i, j;
+  for (j = 0; j < cols; j++)
+    for (i = 0; i < rows; i++) out[i + rows * j] = ELEM(A, i, j);
+}
+
+int heavy_top_check_jacobians(HeavyTopFormulation formulation, unsigned int seed,
+                              HeavyTopJacobianErrors *err)
+{
+  const ModelCallbacks *cb = Callbacks(formulation);
+  const int ep = formulation == HT_EULER_PARAMETERS;
+  const int nv = ep ? 7 : 6, m = ep ? 4 : 3;
+  /* central differences of unit-size data: error ~ eps^2 + DBL_EPSILON / eps */
+  const double eps = cbrt(DBL_EPSILON);
+  unsigned long long s = 0x9e3779b97f4a7c15ULL ^ seed;
+  double *q, *v, *vd, *l, w[7], nrm, R[9];
+  double an[49], dq[49], yp[7], ym[7];
+  CheckObjects o;
+  int i, j, ret;
+
+  memset(&o, 0, sizeof o);
+  memset(err, 0, sizeof *err);
+  if (SUNContext_Create(NULL, &o.ctx) != 0) return -1;
+  o.G = ep ? LGNGroup_Rn(7) : formulation == HT_SE3 ? LGNGroup_SE3() : LGNGroup_R3xSO3();
+  o.q = N_VNew_Serial(7, o.ctx);
+  o.qe = N_VNew_Serial(7, o.ctx);
+  o.v = N_VNew_Serial(nv, o.ctx);
+  o.ve = N_VNew_Serial(nv, o.ctx);
+  o.vdot = N_VNew_Serial(nv, o.ctx);
+  o.g = N_VNew_Serial(nv, o.ctx);
+  o.lambda = N_VNew_Serial(m, o.ctx);
+  o.z = N_VNew_Serial(m, o.ctx);
+  o.M = SUNDenseMatrix(nv, nv, o.ctx);
+  o.T = SUNDenseMatrix(nv, nv, o.ctx);
+  o.B = SUNDenseMatrix(m, nv, o.ctx);
+  if (!o.G || !o.q || !o.qe || !o.v || !o.ve || !o.vdot || !o.g || !o.lambda || !o.z ||
+      !o.M || !o.T || !o.B) {
+    FreeCheck(&o);
+    return -1;
+  }
+
+  /* random state: unit p; x anywhere for Euler parameters, but x = R X for
+   * the Lie group models, whose B uses the constant -X~ for -(R^T x)~ (exact
+   * on the joint manifold only); v, vdot, lambda in [-1, 1) */
+  q = N_VGetArrayPointer(o.q);
+  v = N_VGetArrayPointer(o.v);
+  vd = N_VGetArrayPointer(o.vdot);
+  l = N_VGetArrayPointer(o.lambda);
+  do {
+    for (i = 0; i < 4; i++) q[3 + i] = RandomUniform(&s);
+    nrm = sqrt(q[3] * q[3] + q[4] * q[4] + q[5] * q[5] + q[6] * q[6]);
+  } while (nrm < 0.1);
+  for (i = 0; i < 4; i++) q[3 + i] /= nrm;
+  for (i = 0; i < 3; i++) q[i] = RandomUniform(&s);
+  if (!ep) {
+    LGNQuaternionToRotation(q + 3, R);
+    for (i = 0; i < 3; i++)
+      q[i] = R[3 * i] * X_BODY[0] + R[3 * i + 1] * X_BODY[1] + R[3 * i + 2] * X_BODY[2];
+  }
+  for (i = 0; i < nv; i++) v[i] = RandomUniform(&s);
+  for (i = 0; i < nv; i++) vd[i] = RandomUniform(&s);
+  for (i = 0; i < m; i++) l[i] = RandomUniform(&s);
+
+  /* B w = d/de Phi(q o exp(e w)) */
+  ret = cb->constr_jac(0.0, o.q, o.B, NULL);
+  CopyDense(o.B, m, nv, an);
+  for (j = 0; ret == 0 && j < nv; j++) {
+    memset(w, 0, sizeof w);
+    w[j] = eps;
+    ret = Displace(&o, w, 1.0, nv);
+    if (ret == 0) ret = cb->constr(0.0, o.qe, o.z, NULL);
+    memcpy(yp, N_VGetArrayPointer(o.z), (size_t)m * sizeof(double));
+    if (ret == 0) ret = Displace(&o, w, -1.0, nv);
+    if (ret == 0) ret = cb->constr(0.0, o.qe, o.z, NULL);
+    for (i = 0; i < m; i++) dq[i + m * j] = (yp[i] - N_VGetArrayPointer(o.z)[i]) / (2.0 * eps);
+  }
+  err->B = RelDiff(an, dq, m * nv);
+
+  /* K_t w = d/de r(q o exp(e w)), r = M vdot + g + B^T lambda */
+  if (ret == 0) {
+    SUNMatZero(o.T);
+    ret = cb->stiffness(0.0, o.q, o.v, o.vdot, o.lambda, o.T, NULL);
+    CopyDense(o.T, nv, nv, an);
+  }
+  for (j = 0; ret == 0 && j < nv; j++) {
+    memset(w, 0, sizeof w);
+    w[j] = eps;
+    ret = Displace(&o, w, 1.0, nv);
+    if (ret == 0) ret = DynamicResidual(cb, &o, nv, m, yp);
+    if (ret == 0) ret = Displace(&o, w, -1.0, nv);
+    if (ret == 0) ret = DynamicResidual(cb, &o, nv, m, ym);
+    for (i = 0; i < nv; i++) dq[i + nv * j] = (yp[i] - ym[i]) / (2.0 * eps);
+  }
+  err->K = RelDiff(an, dq, nv * nv);
+
+  /* C_t w = d/de g(q, v + e w) */
+  if (ret == 0) {
+    SUNMatZero(o.T);
+    ret = cb->damping(0.0, o.q, o.v, o.T, NULL);
+    CopyDense(o.T, nv, nv, an);
+  }
+  for (j = 0; ret == 0 && j < nv; j++) {
+    const double *g = N_VGetArrayPointer(o.g);
+    double *ve = N_VGetArrayPointer(o.ve);
+    memcpy(ve, v, (size_t)nv * sizeof(double));
+    ve[j] = v[j] + eps;
+    N_VConst(0.0, o.g);
+    ret = cb->force(0.0, o.q, o.ve, o.g, NULL);
+    memcpy(yp, g, (size_t)nv * sizeof(double));
+    ve[j] = v[j] - eps;
+    N_VConst(0.0, o.g);
+    if (ret == 0) ret = cb->force(0.0, o.q, o.ve, o.g, NULL);
+    for (i = 0; i < nv; i++) dq[i + nv * j] = (yp[i] - g[i]) / (2.0 * eps);
+  }
+  err->C = RelDiff(an, dq, nv * nv);
+
+  /* Z(q)(v, v) = d/de B(q o exp(e v)) v */
+  if (ret == 0) ret = cb->curvature(0.0, o.q, o.v, o.z, NULL);
+  if (ret == 0) ret = Displace(&o, v, eps, nv);
+  if (ret == 0) ret = ConstraintVelocity(cb, &o, nv, m, yp);
+  if (ret == 0) ret = Displace(&o, v, -eps, nv);
+  if (ret == 0) ret = ConstraintVelocity(cb, &o, nv, m, ym);
+  for (i = 0; i < m; i++) dq[i] = (yp[i] - ym[i]) / (2.0 * eps);
+  err->Z = RelDiff(N_VGetArrayPointer(o.z), dq, m);
+
+  FreeCheck(&o);
+  return ret == 0 ? 0 : -1;
 }
 
 /* =============================================================================
@@ -482,6 +884,7 @@ static void FreeRun(RunObjects *o)
 /* Set up model, method and linear solver; returns a Lignum flag. */
 static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
 {
+  const ModelCallbacks *cb = Callbacks(opt->formulation);
   const int ep = opt->formulation == HT_EULER_PARAMETERS;
   const int se3 = opt->formulation == HT_SE3;
   const sunindextype nv = ep ? 7 : 6, m = ep ? 4 : 3;
@@ -522,20 +925,13 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   }
 
   flag = LGNSetGroup(o->mem, o->G);
-  if (flag == 0) flag = LGNSetMassFn(o->mem, ep ? EPMass : LieMass);
-  if (flag == 0)
-    flag = LGNSetForceFn(o->mem, ep ? EPForce : se3 ? SE3Force : LieForce);
-  if (flag == 0)
-    flag = LGNSetConstraints(o->mem, m, ep ? EPConstr : LieConstr,
-                             ep ? EPConstrJac : se3 ? SE3ConstrJac : LieConstrJac);
-  if (flag == 0 && se3 && opt->analytic_jacobians) {
-    flag = LGNSetStiffnessFn(o->mem, SE3Stiffness);
-    if (flag == 0) flag = LGNSetDampingFn(o->mem, SE3Damping);
-    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, SE3Curvature);
-  } else if (flag == 0 && !ep && opt->analytic_jacobians) {
-    flag = LGNSetStiffnessFn(o->mem, LieStiffness);
-    if (flag == 0) flag = LGNSetDampingFn(o->mem, LieDamping);
-    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, LieCurvature);
+  if (flag == 0) flag = LGNSetMassFn(o->mem, cb->mass);
+  if (flag == 0) flag = LGNSetForceFn(o->mem, cb->force);
+  if (flag == 0) flag = LGNSetConstraints(o->mem, m, cb->constr, cb->constr_jac);
+  if (flag == 0 && opt->analytic_jacobians) {
+    flag = LGNSetStiffnessFn(o->mem, cb->stiffness);
+    if (flag == 0) flag = LGNSetDampingFn(o->mem, cb->damping);
+    if (flag == 0) flag = LGNSetCurvatureFn(o->mem, cb->curvature);
   }
   if (flag == 0) flag = LGNInit(o->mem, 0.0, o->q, o->v);
   if (flag == 0) flag = LGNSetLinearSolver(o->mem, o->LS, o->A);

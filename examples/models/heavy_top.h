@@ -75,6 +75,23 @@ void heavy_top_default_options(HeavyTopOptions *opt);
  * Setup failures (e.g. illegal options) are returned the same way. */
 int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res);
 
+/* Relative differences max|analytic - DQ| / max(|analytic|, |DQ|) between a
+ * formulation's analytic B, K_t, C_t, Z and central differences of its
+ * constraint, residual and force callbacks along the group:
+ *   B w        = d/de Phi(q o exp(e w)),
+ *   K_t w      = d/de [M vdot + g + B^T lambda](q o exp(e w)),
+ *   C_t w      = d/de g(q, v + e w),
+ *   Z(q)(v, v) = d/de B(q o exp(e v)) v.  */
+typedef struct {
+  double B, K, C, Z;
+} HeavyTopJacobianErrors;
+
+/* The check at a random state from seed: unit quaternion p, x, v, vdot,
+ * lambda of unit size (x = R X on the Lie groups, see heavy_top.c).
+ * Returns 0, or -1 if an allocation or a callback failed. */
+int heavy_top_check_jacobians(HeavyTopFormulation formulation, unsigned int seed,
+                              HeavyTopJacobianErrors *err);
+
 /* Human-readable name of a configuration, e.g. "LGGalpha(0.9) idx3". */
 void heavy_top_describe(const HeavyTopOptions *opt, char *buf, size_t len);
 
