@@ -15,9 +15,9 @@
 ! ---------------------------------------------------------------------------
 program test_constants
   use, intrinsic :: iso_c_binding
-  use, intrinsic :: iso_fortran_env, only: error_unit
   use flignum_mod
   use flignum_sundials_mod
+  use ftest_util
   implicit none
 
   interface
@@ -41,7 +41,7 @@ program test_constants
     end function lgn_c_group_layout
   end interface
 
-  integer :: nfail = 0, ncheck = 0, i, n
+  integer :: ncheck = 0, i, n
   logical, allocatable :: seen(:)
   type(LGNGroupRec), target :: rec
 
@@ -139,24 +139,9 @@ program test_constants
 
   write (*, "(i0, a, i0, a)") ncheck, " constants checked against ", n, " C entries"
   deallocate (seen)   ! a main program's variables are never deallocated automatically
-  if (nfail > 0) then
-    write (error_unit, "(i0, a)") nfail, " check(s) failed"
-    error stop 1
-  end if
-  write (*, "(a)") "test_constants: all checks passed"
+  call ftest_finish("test_constants")
 
 contains
-
-  !> Record a failure unless ok.
-  subroutine expect(ok, what)
-    logical, intent(in) :: ok
-    character(len=*), intent(in) :: what
-
-    if (.not. ok) then
-      write (error_unit, "(a, a)") "FAILED: ", what
-      nfail = nfail + 1
-    end if
-  end subroutine expect
 
   !> Compare the Fortran constant fvalue with the C entry called name.
   subroutine check(name, fvalue, optional_in_c)
