@@ -23,13 +23,6 @@ module test_api_callbacks
   use flignum_sundials_mod
   implicit none
 
-  !> What the error handler saw (its eh_data).
-  type :: error_record
-    integer :: count = 0
-    integer(c_int) :: code = 0
-    character(len=:), allocatable :: module_name, function_name, msg
-  end type error_record
-
   !> Oscillator data (user data): stiffness, and a switch to make the force fail.
   type :: oscillator
     real(c_double) :: k = 1.0_c_double
@@ -37,20 +30,6 @@ module test_api_callbacks
   end type oscillator
 
 contains
-
-  !> LGNErrHandlerFn: record the last error.
-  subroutine record_error(error_code, module_name, function_name, msg, eh_data) bind(c)
-    integer(c_int), value :: error_code
-    type(c_ptr), value :: module_name, function_name, msg, eh_data
-    type(error_record), pointer :: rec
-
-    call c_f_pointer(eh_data, rec)
-    rec%count = rec%count + 1
-    rec%code = error_code
-    rec%module_name = FLGNString(module_name)
-    rec%function_name = FLGNString(function_name)
-    rec%msg = FLGNString(msg)
-  end subroutine record_error
 
   ! --- R^n as a user-supplied group: exp(w) = w, T = I, Tdot = 0 ----------------
 

@@ -1,21 +1,23 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran test: every constant of flignum_mod and flignum_sundials_mod
-! equals its C value, and every C constant has been checked.
+! Lignum Fortran test: every constant of flignum_mod, flignum_joints_mod and
+! flignum_sundials_mod equals its C value, and every C constant has been
+! checked.
 !
 ! The C side (lgn_c_constants.c, generated from the public headers at
 ! configure time) lists every LGN_ constant (numeric #defines and
-! enumerators of lignum.h, lignum_group.h, lignum_config.h) and the SUNDIALS
-! constants the Fortran modules duplicate. This program compares each
-! Fortran constant with the C entry of the same name and fails if a name is
-! missing on either side: a constant added to a header without a Fortran
-! binding fails the test, so does a value that drifts. Also checked: the
-! version string and the layout of struct LGNGroupRec against the bind(C)
-! type LGNGroupRec.
+! enumerators of lignum.h, lignum_group.h, lignum_joints.h, lignum_config.h)
+! and the SUNDIALS constants the Fortran modules duplicate. This program
+! compares each Fortran constant with the C entry of the same name and fails
+! if a name is missing on either side: a constant added to a header without
+! a Fortran binding fails the test, so does a value that drifts. Also
+! checked: the version string and the layout of struct LGNGroupRec against
+! the bind(C) type LGNGroupRec.
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 program test_constants
   use, intrinsic :: iso_c_binding
   use flignum_mod
+  use flignum_joints_mod
   use flignum_sundials_mod
   use ftest_util
   implicit none
@@ -93,6 +95,9 @@ program test_constants
   call check("LGN_GROUP_R3XSO3", LGN_GROUP_R3XSO3)
   call check("LGN_GROUP_SE3", LGN_GROUP_SE3)
   call check("LGN_GROUP_PRODUCT", LGN_GROUP_PRODUCT)
+
+  ! --- lignum_joints.h (flignum_joints_mod) ------------------------------------------
+  call check("LGN_GROUND", LGN_GROUND)
 
   ! --- lignum_config.h: version ------------------------------------------------------
   call check("LGN_VERSION_MAJOR", LGN_VERSION_MAJOR)

@@ -44,6 +44,7 @@ set(_libdir ${_prefix}/${LGN_INSTALL_LIBDIR})
 set(_moddir ${_prefix}/${LGN_INSTALL_INCLUDEDIR}/lignum/fortran)
 foreach(_file
     ${_moddir}/flignum_mod.mod
+    ${_moddir}/flignum_joints_mod.mod
     ${_moddir}/flignum_sundials_mod.mod
     ${_libdir}/cmake/Lignum/LignumConfig.cmake
     ${_libdir}/cmake/Lignum/LignumTargets.cmake)
