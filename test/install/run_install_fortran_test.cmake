@@ -42,12 +42,16 @@ lgn_run(install ${_install_cmd})
 
 set(_libdir ${_prefix}/${LGN_INSTALL_LIBDIR})
 set(_moddir ${_prefix}/${LGN_INSTALL_INCLUDEDIR}/lignum/fortran)
-foreach(_file
+set(_files
     ${_moddir}/flignum_mod.mod
     ${_moddir}/flignum_joints_mod.mod
     ${_moddir}/flignum_sundials_mod.mod
     ${_libdir}/cmake/Lignum/LignumConfig.cmake
     ${_libdir}/cmake/Lignum/LignumTargets.cmake)
+if(LGN_ENABLE_KLU)
+  list(APPEND _files ${_moddir}/flignum_klu_mod.mod)
+endif()
+foreach(_file IN LISTS _files)
   if(NOT EXISTS ${_file})
     message(FATAL_ERROR "[install] missing installed file ${_file}")
   endif()
