@@ -4,7 +4,8 @@
 ! -----------------------------------------------------------------------------
 ! flignum_mod: hand-written ISO_C_BINDING interface to the whole public C API
 ! of Lignum (include/lignum/lignum.h and include/lignum/lignum_group.h).
-! The SUNDIALS calls a Fortran program needs are in flignum_sundials_mod.
+! The joint helpers (lignum_joints.h) are in flignum_joints_mod, the SUNDIALS
+! calls a Fortran program needs in flignum_sundials_mod.
 !
 ! Names are the C names. Types (style.md §4):
 !   void *, N_Vector, SUNMatrix, SUNLinearSolver, SUNContext, LGNGroup, FILE *

@@ -17,7 +17,8 @@
 ! Types: N_Vector, SUNMatrix, SUNLinearSolver, SUNContext -> type(c_ptr);
 ! sunindextype -> integer(c_int64_t); sunrealtype -> real(c_double).
 ! Helpers that exist only in Fortran carry an F prefix: FSUNContext_Create,
-! FN_VGetArray, FSUNDenseMatrix_Array.
+! FN_VGetArray, FSUNDenseMatrix_Array; those for sparse matrices
+! (FSUNSparseMatrix_Data, ...) are in flignum_klu_mod (LGN_ENABLE_KLU).
 ! ---------------------------------------------------------------------------
 module flignum_sundials_mod
   use, intrinsic :: iso_c_binding

@@ -12,7 +12,8 @@ module fexample_util
   implicit none
   private
 
-  public :: get_arg, parse_real, reference_values, check_close, print_values
+  public :: get_arg, parse_real, parse_int, reference_values, reference_after
+  public :: check_close, print_values, fixed
 
 contains
 
@@ -37,6 +38,47 @@ contains
     read (str, *, iostat=ios) x
     ok = ios == 0
   end subroutine parse_real
+
+  !> Read an integer from a string; ok = .false. if it is not one.
+  subroutine parse_int(str, n, ok)
+    character(len=*), intent(in) :: str
+    integer, intent(out) :: n
+    logical, intent(out) :: ok
+    integer :: ios
+
+    read (str, *, iostat=ios) n
+    ok = ios == 0 .and. verify(trim(adjustl(str)), "+-0123456789") == 0
+  end subroutine parse_int
+
+  !> Values that follow the text marker in the first line containing it,
+  !! e.g. marker "E(t_end) =" in "energy E0 = -196.1  E(t_end) = -196.2  ...".
+  !! @param path   file written by the C example
+  !! @param marker text in the line, right before the values
+  !! @param vals   on return, as many values as vals holds
+  !! @param found  .true. if the marker was found and all values read
+  subroutine reference_after(path, marker, vals, found)
+    character(len=*), intent(in) :: path, marker
+    real(c_double), intent(out) :: vals(:)
+    logical, intent(out) :: found
+    character(len=1024) :: line
+    integer :: unit, ios, pos
+
+    found = .false.
+    vals = 0.0_c_double
+    open (newunit=unit, file=path, status="old", action="read", iostat=ios)
+    if (ios /= 0) return
+    do
+      read (unit, "(a)", iostat=ios) line
+      if (ios /= 0) exit
+      pos = index(line, marker)
+      if (pos > 0) then
+        read (line(pos + len(marker):), *, iostat=ios) vals
+        found = ios == 0
+        exit
+      end if
+    end do
+    close (unit)
+  end subroutine reference_after
 
   !> Values of the first line "<key> v1 v2 ..." of a text file.
   !! @param path  file written by the C example
@@ -84,6 +126,23 @@ contains
       nfail = nfail + 1
     end if
   end subroutine check_close
+
+  !> x with d decimals and no padding, as C's %.<d>f (gfortran's F0.d
+  !! drops the zero before the decimal point: ".5" -> "0.5").
+  function fixed(x, d) result(str)
+    real(c_double), intent(in) :: x
+    integer, intent(in) :: d
+    character(len=:), allocatable :: str
+    character(len=64) :: buf, fmt
+
+    write (fmt, "(a, i0, a)") "(f0.", d, ")"
+    write (buf, fmt) x
+    str = trim(buf)
+    if (str(1:1) == ".") str = "0"//str
+    if (len(str) > 1) then
+      if (str(1:2) == "-.") str = "-0"//str(2:)
+    end if
+  end function fixed
 
   !> One line "<key> v1 v2 ..." with 17 significant digits (as C's %.17g).
   subroutine print_values(key, vals)

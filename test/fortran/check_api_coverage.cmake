@@ -1,13 +1,23 @@
 # Every public function and callback type of the Lignum headers has a
-# binding in flignum_mod.f90:
+# binding in one of the Fortran modules:
 #  - a function LGNxxx( declared in a header -> an interface with
-#    bind(c, name="LGNxxx") in the module;
+#    bind(c, name="LGNxxx") in a module;
 #  - a callback typedef (*LGNxxxFn)( -> an abstract interface LGNxxxFn.
-#   cmake "-DLGN_HEADERS=a.h|b.h" -DLGN_MODULE=flignum_mod.f90 -P check_api_coverage.cmake
+#   cmake "-DLGN_HEADERS=a.h|b.h" "-DLGN_MODULES=flignum_mod.f90|x.f90"
+#         -P check_api_coverage.cmake
+# Each header must declare at least one function (else its parsing broke).
 cmake_minimum_required(VERSION 3.25)
 
 string(REPLACE "|" ";" _headers "${LGN_HEADERS}")
-file(READ ${LGN_MODULE} _module)
+string(REPLACE "|" ";" _modules "${LGN_MODULES}")
+if(NOT _headers OR NOT _modules)
+  message(FATAL_ERROR "check_api_coverage.cmake: -DLGN_HEADERS=... and -DLGN_MODULES=... are required")
+endif()
+set(_module "")
+foreach(_m IN LISTS _modules)
+  file(READ ${_m} _text)
+  string(APPEND _module "${_text}\n")
+endforeach()
 string(TOLOWER "${_module}" _module_lc)
 
 set(_nfun 0)
@@ -19,12 +29,18 @@ foreach(_h IN LISTS _headers)
   string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" "" _text "${_text}")
   # functions: a name followed by "(" at the start of a declarator
   string(REGEX MATCHALL "[ *\n](LGN[A-Za-z0-9_]*)\\(" _calls "${_text}")
+  list(LENGTH _calls _nh)
+  get_filename_component(_hname ${_h} NAME)
+  message(STATUS "${_hname}: ${_nh} functions")
+  if(_nh EQUAL 0)
+    message(FATAL_ERROR "no function found in ${_h}: is the header parsing broken?")
+  endif()
   foreach(_c IN LISTS _calls)
     string(REGEX REPLACE "^.(LGN[A-Za-z0-9_]*)\\($" "\\1" _name "${_c}")
     math(EXPR _nfun "${_nfun} + 1")
     string(FIND "${_module}" "name=\"${_name}\"" _pos)
     if(_pos EQUAL -1)
-      list(APPEND _missing "function ${_name}")
+      list(APPEND _missing "function ${_name} (${_hname})")
     endif()
   endforeach()
   # callback types: typedef ... (*LGNxxxFn)(
@@ -35,7 +51,7 @@ foreach(_h IN LISTS _headers)
     string(TOLOWER "${_name}" _name_lc)
     string(REGEX MATCH "(function|subroutine) ${_name_lc}\\(" _found "${_module_lc}")
     if(NOT _found)
-      list(APPEND _missing "callback type ${_name}")
+      list(APPEND _missing "callback type ${_name} (${_hname})")
     endif()
   endforeach()
 endforeach()
@@ -44,8 +60,9 @@ message(STATUS "${_nfun} functions and ${_ntype} callback types in the headers")
 if(_nfun LESS 60 OR _ntype LESS 8)
   message(FATAL_ERROR "too few declarations found: is the header parsing broken?")
 endif()
+string(REPLACE ";" ", " _mod_list "${_modules}")
 if(_missing)
   string(REPLACE ";" "\n  " _list "${_missing}")
-  message(FATAL_ERROR "not bound in ${LGN_MODULE}:\n  ${_list}")
+  message(FATAL_ERROR "not bound in ${_mod_list}:\n  ${_list}")
 endif()
-message(STATUS "all bound in ${LGN_MODULE}")
+message(STATUS "all bound in ${_mod_list}")

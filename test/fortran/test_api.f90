@@ -23,13 +23,6 @@ module test_api_callbacks
   use flignum_sundials_mod
   implicit none
 
-  !> What the error handler saw (its eh_data).
-  type :: error_record
-    integer :: count = 0
-    integer(c_int) :: code = 0
-    character(len=:), allocatable :: module_name, function_name, msg
-  end type error_record
-
   !> Oscillator data (user data): stiffness, and a switch to make the force fail.
   type :: oscillator
     real(c_double) :: k = 1.0_c_double
@@ -37,20 +30,6 @@ module test_api_callbacks
   end type oscillator
 
 contains
-
-  !> LGNErrHandlerFn: record the last error.
-  subroutine record_error(error_code, module_name, function_name, msg, eh_data) bind(c)
-    integer(c_int), value :: error_code
-    type(c_ptr), value :: module_name, function_name, msg, eh_data
-    type(error_record), pointer :: rec
-
-    call c_f_pointer(eh_data, rec)
-    rec%count = rec%count + 1
-    rec%code = error_code
-    rec%module_name = FLGNString(module_name)
-    rec%function_name = FLGNString(function_name)
-    rec%msg = FLGNString(msg)
-  end subroutine record_error
 
   ! --- R^n as a user-supplied group: exp(w) = w, T = I, Tdot = 0 ----------------
 
@@ -144,59 +123,20 @@ end module test_api_callbacks
 
 program test_api
   use, intrinsic :: iso_c_binding
-  use, intrinsic :: iso_fortran_env, only: error_unit
   use flignum_mod
   use flignum_sundials_mod
   use test_api_callbacks
+  use ftest_util
   implicit none
-
-  integer :: nfail = 0
 
   call test_flag_names()
   call test_usage_errors()
   call test_groups()
   call test_parameter_map()
   call test_oscillator()
-
-  if (nfail > 0) then
-    write (error_unit, "(i0, a)") nfail, " check(s) failed"
-    error stop 1
-  end if
-  write (*, "(a)") "test_api: all checks passed"
+  call ftest_finish("test_api")
 
 contains
-
-  !> Record a failure unless ok.
-  subroutine expect(ok, what)
-    logical, intent(in) :: ok
-    character(len=*), intent(in) :: what
-
-    if (.not. ok) then
-      write (error_unit, "(a, a)") "FAILED: ", what
-      nfail = nfail + 1
-    end if
-  end subroutine expect
-
-  !> flag == expected, and its name is the expected constant's name.
-  subroutine expect_flag(flag, expected, name, what)
-    integer(c_int), intent(in) :: flag, expected
-    character(len=*), intent(in) :: name, what
-
-    call expect(flag == expected, what//" returns "//name//", got " &
-                //FLGNGetReturnFlagName(flag))
-    call expect(FLGNGetReturnFlagName(flag) == name, &
-                what//": the name of the flag is "//FLGNGetReturnFlagName(flag))
-  end subroutine expect_flag
-
-  !> |x - y| <= tol
-  subroutine expect_near(x, y, tol, what)
-    real(c_double), intent(in) :: x, y, tol
-    character(len=*), intent(in) :: what
-    character(len=80) :: buf
-
-    write (buf, "(a, es24.16, a, es24.16)") " = ", x, ", expected ", y
-    call expect(abs(x - y) <= tol, what//trim(buf))
-  end subroutine expect_near
 
   !> Every flag's name, and the name of an unknown value.
   subroutine test_flag_names()

@@ -1,23 +1,25 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran test: every constant of flignum_mod and flignum_sundials_mod
-! equals its C value, and every C constant has been checked.
+! Lignum Fortran test: every constant of flignum_mod, flignum_joints_mod and
+! flignum_sundials_mod equals its C value, and every C constant has been
+! checked.
 !
 ! The C side (lgn_c_constants.c, generated from the public headers at
 ! configure time) lists every LGN_ constant (numeric #defines and
-! enumerators of lignum.h, lignum_group.h, lignum_config.h) and the SUNDIALS
-! constants the Fortran modules duplicate. This program compares each
-! Fortran constant with the C entry of the same name and fails if a name is
-! missing on either side: a constant added to a header without a Fortran
-! binding fails the test, so does a value that drifts. Also checked: the
-! version string and the layout of struct LGNGroupRec against the bind(C)
-! type LGNGroupRec.
+! enumerators of lignum.h, lignum_group.h, lignum_joints.h, lignum_config.h)
+! and the SUNDIALS constants the Fortran modules duplicate. This program
+! compares each Fortran constant with the C entry of the same name and fails
+! if a name is missing on either side: a constant added to a header without
+! a Fortran binding fails the test, so does a value that drifts. Also
+! checked: the version string and the layout of struct LGNGroupRec against
+! the bind(C) type LGNGroupRec.
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 program test_constants
   use, intrinsic :: iso_c_binding
-  use, intrinsic :: iso_fortran_env, only: error_unit
   use flignum_mod
+  use flignum_joints_mod
   use flignum_sundials_mod
+  use ftest_util
   implicit none
 
   interface
@@ -41,7 +43,7 @@ program test_constants
     end function lgn_c_group_layout
   end interface
 
-  integer :: nfail = 0, ncheck = 0, i, n
+  integer :: ncheck = 0, i, n
   logical, allocatable :: seen(:)
   type(LGNGroupRec), target :: rec
 
@@ -96,6 +98,9 @@ program test_constants
   call check("LGN_GROUP_SE3", LGN_GROUP_SE3)
   call check("LGN_GROUP_PRODUCT", LGN_GROUP_PRODUCT)
 
+  ! --- lignum_joints.h (flignum_joints_mod) ------------------------------------------
+  call check("LGN_GROUND", LGN_GROUND)
+
   ! --- lignum_config.h: version ------------------------------------------------------
   call check("LGN_VERSION_MAJOR", LGN_VERSION_MAJOR)
   call check("LGN_VERSION_MINOR", LGN_VERSION_MINOR)
@@ -141,24 +146,9 @@ program test_constants
 
   write (*, "(i0, a, i0, a)") ncheck, " constants checked against ", n, " C entries"
   deallocate (seen)   ! a main program's variables are never deallocated automatically
-  if (nfail > 0) then
-    write (error_unit, "(i0, a)") nfail, " check(s) failed"
-    error stop 1
-  end if
-  write (*, "(a)") "test_constants: all checks passed"
+  call ftest_finish("test_constants")
 
 contains
-
-  !> Record a failure unless ok.
-  subroutine expect(ok, what)
-    logical, intent(in) :: ok
-    character(len=*), intent(in) :: what
-
-    if (.not. ok) then
-      write (error_unit, "(a, a)") "FAILED: ", what
-      nfail = nfail + 1
-    end if
-  end subroutine expect
 
   !> Compare the Fortran constant fvalue with the C entry called name.
   subroutine check(name, fvalue, optional_in_c)

@@ -7,94 +7,37 @@
 #  (c) run it
 #  (d) if pkg-config (pkgconf) is found: compile main.c with the flags of
 #      `pkg-config --cflags --libs lignum` and run that program too.
+# The steps shared with the Fortran install test are in install_common.cmake.
 cmake_minimum_required(VERSION 3.25)
+include(${CMAKE_CURRENT_LIST_DIR}/install_common.cmake)
 
-foreach(_var LGN_BUILD_DIR LGN_WORK_DIR LGN_CONSUMER_SOURCE_DIR
-             LGN_INSTALL_LIBDIR LGN_INSTALL_INCLUDEDIR LGN_VERSION)
-  if(NOT DEFINED ${_var} OR "${${_var}}" STREQUAL "")
-    message(FATAL_ERROR "run_install_test.cmake: -D${_var}=... is required")
-  endif()
-endforeach()
+lgn_install_setup(run_install_test.cmake)
 if(NOT LGN_C_COMPILER)
   set(LGN_C_COMPILER cc)
 endif()
 
-set(_prefix ${LGN_WORK_DIR}/prefix)
-set(_consumer_build ${LGN_WORK_DIR}/consumer-build)
-file(REMOVE_RECURSE ${LGN_WORK_DIR})
-file(MAKE_DIRECTORY ${LGN_WORK_DIR})
-
-# Run a command, echo it, stop with its output on failure.
-function(lgn_run step)
-  string(REPLACE ";" " " _pretty "${ARGN}")
-  message(STATUS "[${step}] ${_pretty}")
-  execute_process(COMMAND ${ARGN}
-    RESULT_VARIABLE _rc OUTPUT_VARIABLE _out ERROR_VARIABLE _err)
-  if(NOT _rc EQUAL 0)
-    message(FATAL_ERROR "[${step}] failed (${_rc}):\n${_out}\n${_err}")
-  endif()
-  set(LGN_LAST_OUTPUT "${_out}" PARENT_SCOPE)
-endfunction()
-
 # --- (a) install --------------------------------------------------------------
-set(_install_cmd ${CMAKE_COMMAND} --install ${LGN_BUILD_DIR} --prefix ${_prefix})
-if(LGN_CONFIG)
-  list(APPEND _install_cmd --config ${LGN_CONFIG})
-endif()
-lgn_run(install ${_install_cmd})
-
-set(_libdir ${_prefix}/${LGN_INSTALL_LIBDIR})
-set(_incdir ${_prefix}/${LGN_INSTALL_INCLUDEDIR})
-foreach(_file
-    ${_incdir}/lignum/lignum.h
-    ${_incdir}/lignum/lignum_group.h
-    ${_incdir}/lignum/lignum_config.h
-    ${_libdir}/cmake/Lignum/LignumConfig.cmake
-    ${_libdir}/cmake/Lignum/LignumConfigVersion.cmake
-    ${_libdir}/cmake/Lignum/LignumTargets.cmake
-    ${_libdir}/pkgconfig/lignum.pc)
-  if(NOT EXISTS ${_file})
-    message(FATAL_ERROR "[install] missing installed file ${_file}")
-  endif()
-endforeach()
-file(GLOB _libs ${_libdir}/liblignum.*)
+lgn_install()
+lgn_expect_files(
+  ${LGN_INCDIR}/lignum/lignum.h
+  ${LGN_INCDIR}/lignum/lignum_group.h
+  ${LGN_INCDIR}/lignum/lignum_joints.h
+  ${LGN_INCDIR}/lignum/lignum_config.h
+  ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
+  ${LGN_LIBDIR}/cmake/Lignum/LignumConfigVersion.cmake
+  ${LGN_LIBDIR}/cmake/Lignum/LignumTargets.cmake
+  ${LGN_LIBDIR}/pkgconfig/lignum.pc)
+file(GLOB _libs ${LGN_LIBDIR}/liblignum.*)
 if(NOT _libs)
-  message(FATAL_ERROR "[install] no liblignum.* in ${_libdir}")
+  message(FATAL_ERROR "[install] no liblignum.* in ${LGN_LIBDIR}")
 endif()
 
-# --- (b) configure and build the outside project ---------------------------------
-set(_configure_cmd ${CMAKE_COMMAND}
-  -S ${LGN_CONSUMER_SOURCE_DIR} -B ${_consumer_build}
-  -DCMAKE_PREFIX_PATH=${_prefix}
+# --- (b) configure and build the outside project, (c) run it ---------------------
+lgn_build_consumer(
   -DCMAKE_C_COMPILER=${LGN_C_COMPILER}
   -DCMAKE_C_FLAGS=${LGN_C_FLAGS}
   -DLIGNUM_EXPECTED_VERSION=${LGN_VERSION})
-if(LGN_GENERATOR)
-  list(APPEND _configure_cmd -G ${LGN_GENERATOR})
-endif()
-if(LGN_MAKE_PROGRAM)
-  list(APPEND _configure_cmd -DCMAKE_MAKE_PROGRAM=${LGN_MAKE_PROGRAM})
-endif()
-if(LGN_CONFIG)
-  list(APPEND _configure_cmd -DCMAKE_BUILD_TYPE=${LGN_CONFIG})
-endif()
-lgn_run(consumer-configure ${_configure_cmd})
-
-set(_build_cmd ${CMAKE_COMMAND} --build ${_consumer_build})
-if(LGN_CONFIG)
-  list(APPEND _build_cmd --config ${LGN_CONFIG})
-endif()
-lgn_run(consumer-build ${_build_cmd})
-
-# --- (c) run it -----------------------------------------------------------------
-find_program(_exe lignum_consumer
-  PATHS ${_consumer_build} ${_consumer_build}/${LGN_CONFIG}
-  NO_DEFAULT_PATH NO_CACHE)
-if(NOT _exe)
-  message(FATAL_ERROR "[consumer-run] lignum_consumer not found in ${_consumer_build}")
-endif()
-lgn_run(consumer-run ${_exe})
-message(STATUS "[consumer-run] output:\n${LGN_LAST_OUTPUT}")
+lgn_run_consumer(lignum_consumer)
 
 # --- (d) pkg-config -------------------------------------------------------------
 find_program(_pkgconfig NAMES pkgconf pkg-config NO_CACHE)
@@ -102,7 +45,7 @@ if(NOT _pkgconfig)
   message(STATUS "[pkg-config] pkgconf/pkg-config not found: check skipped")
   return()
 endif()
-set(ENV{PKG_CONFIG_PATH} "${_libdir}/pkgconfig")
+set(ENV{PKG_CONFIG_PATH} "${LGN_LIBDIR}/pkgconfig")
 lgn_run(pkg-config ${_pkgconfig} --modversion lignum)
 string(STRIP "${LGN_LAST_OUTPUT}" _pc_version)
 if(NOT _pc_version STREQUAL LGN_VERSION)
@@ -120,6 +63,6 @@ set(_pc_exe ${LGN_WORK_DIR}/lignum_consumer_pc)
 lgn_run(pkg-config-build ${LGN_C_COMPILER} -std=c11 ${_extra_flags}
   "-DLIGNUM_EXPECTED_VERSION=\"${LGN_VERSION}\""
   ${LGN_CONSUMER_SOURCE_DIR}/main.c -o ${_pc_exe} ${_pc_flags}
-  -Wl,-rpath,${_libdir})
+  -Wl,-rpath,${LGN_LIBDIR})
 lgn_run(pkg-config-run ${_pc_exe})
 message(STATUS "[pkg-config-run] output:\n${LGN_LAST_OUTPUT}")

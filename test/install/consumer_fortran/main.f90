@@ -1,8 +1,10 @@
 ! -----------------------------------------------------------------------------
 ! Lignum install test: a Fortran program outside the source tree that uses
-! the installed modules flignum_mod / flignum_sundials_mod and the library
-! Lignum::lignum_fortran (found with find_package(Lignum COMPONENTS Fortran)).
-! Integrates q'' = -q on R^1 with Fortran callbacks and checks q(1) = cos(1).
+! the installed modules flignum_mod / flignum_sundials_mod /
+! flignum_joints_mod and the library Lignum::lignum_fortran (found with
+! find_package(Lignum COMPONENTS Fortran)). Integrates q'' = -q on R^1 with
+! Fortran callbacks and checks q(1) = cos(1); adds a spherical joint to a
+! rigid body (3 constraints).
 !   lignum_consumer_fortran [expected version]
 ! Exits nonzero on any mismatch.
 ! ---------------------------------------------------------------------------
@@ -49,12 +51,13 @@ program lignum_consumer_fortran
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: error_unit
   use flignum_mod
+  use flignum_joints_mod
   use flignum_sundials_mod
   use consumer_model
   implicit none
 
   type(oscillator), target :: osc
-  type(c_ptr) :: ctx, G, q, v, A, tmpl, LS, mem
+  type(c_ptr) :: ctx, G, q, v, A, tmpl, LS, mem, body, J
   real(c_double), pointer :: qq(:)
   real(c_double) :: t
   character(len=32) :: expected
@@ -100,6 +103,18 @@ program lignum_consumer_fortran
   call N_VDestroy(v)
   call N_VDestroy(tmpl)
   call LGNGroup_Destroy(G)
+
+  ! the joint helpers: a rigid body hanging from the ground
+  body = LGNGroup_R3xSO3()
+  J = LGNJoints_Create(c_null_ptr, body)
+  call expect(LGNJoints_NumBodies(J) == 1, "LGNJoints_NumBodies")
+  call expect(LGNJoints_AddSpherical(J, LGN_GROUND, [0.0_c_double, 0.0_c_double, &
+                                     0.0_c_double], 0_c_int, [0.0_c_double, 0.0_c_double, &
+                                     0.5_c_double]) == LGN_SUCCESS, "LGNJoints_AddSpherical")
+  call expect(LGNJoints_NumConstraints(J) == 3, "a spherical joint has 3 constraints")
+  call LGNJoints_Destroy(J)
+  call expect(.not. c_associated(J), "LGNJoints_Destroy sets J to c_null_ptr")
+  call LGNGroup_Destroy(body)
   call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
 
   if (nfail > 0) then

@@ -1,0 +1,157 @@
+! -----------------------------------------------------------------------------
+! Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+! SPDX-License-Identifier: BSD-3-Clause
+! -----------------------------------------------------------------------------
+! flignum_joints_mod: hand-written ISO_C_BINDING interface to the joint
+! helpers of include/lignum/lignum_joints.h (spherical, revolute and
+! universal joints between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
+! configuration group: Phi, B, the curvature Z(q)(v, v) and the geometric
+! stiffness d/dq (B^T lambda), ready to call from the constraint callbacks).
+!
+! Names are the C names, types as in flignum_mod:
+!   LGNJoints, LGNGroup, N_Vector, SUNMatrix, void *lgn_mem
+!                          -> type(c_ptr), value
+!   LGNJoints *J (LGNJoints_Destroy)
+!                          -> type(c_ptr), by reference (set to c_null_ptr)
+!   int (body indices, flags) -> integer(c_int)
+!   sunindextype           -> integer(c_int64_t)
+!   const sunrealtype[3]   -> real(c_double) :: x(3)
+!
+! Body indices are the C ones: 0-based (body k is leaf k of the group, in
+! the order of the product's factors, products of products flattened), or
+! LGN_GROUND for the fixed inertial frame. Rows of Phi and B and columns of
+! B are 0-based in C; through FN_VGetArray, FSUNDenseMatrix_Array and the
+! sparse helpers of flignum_klu_mod they are 1-based Fortran arrays.
+! ---------------------------------------------------------------------------
+module flignum_joints_mod
+  use, intrinsic :: iso_c_binding
+  implicit none
+
+  !> Body index of the fixed inertial frame.
+  integer(c_int), parameter :: LGN_GROUND = -1
+
+  interface
+    ! =========================================================================
+    ! Construction
+    ! =========================================================================
+
+    !> Create an empty joint set for the bodies of G (R^3 x SO(3), SE(3) or
+    !! a product of them; G is referenced and must outlive the set). Bad
+    !! input of every LGNJoints function is reported through the error
+    !! handler of lgn_mem (c_null_ptr: flags only). Returns c_null_ptr if G
+    !! has another leaf group or memory ran out.
+    type(c_ptr) function LGNJoints_Create(lgn_mem, G) bind(c, name="LGNJoints_Create")
+      import :: c_ptr
+      type(c_ptr), value :: lgn_mem, G
+    end function LGNJoints_Create
+
+    !> Free a joint set and set J = c_null_ptr; c_null_ptr is allowed.
+    subroutine LGNJoints_Destroy(J) bind(c, name="LGNJoints_Destroy")
+      import :: c_ptr
+      type(c_ptr), intent(inout) :: J
+    end subroutine LGNJoints_Destroy
+
+    !> Number of bodies (leaves of G); 0 for c_null_ptr.
+    integer(c_int) function LGNJoints_NumBodies(J) bind(c, name="LGNJoints_NumBodies")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J
+    end function LGNJoints_NumBodies
+
+    !> Spherical joint (3 rows): point sa of body a coincides with point sb
+    !! of body b; a, b 0-based or LGN_GROUND, a /= b; points in the body
+    !! frames (inertial for LGN_GROUND). LGN_SUCCESS, LGN_ILL_INPUT (bad body
+    !! index) or LGN_MEM_FAIL.
+    integer(c_int) function LGNJoints_AddSpherical(J, a, sa, b, sb) &
+        bind(c, name="LGNJoints_AddSpherical")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), sb(3)
+    end function LGNJoints_AddSpherical
+
+    !> Revolute joint (5 rows): spherical at (sa, sb) and the body axes
+    !! axis_a, axis_b (nonzero, need not be unit) kept parallel.
+    integer(c_int) function LGNJoints_AddRevolute(J, a, sa, axis_a, b, sb, axis_b) &
+        bind(c, name="LGNJoints_AddRevolute")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
+    end function LGNJoints_AddRevolute
+
+    !> Universal (Cardan) joint (4 rows): spherical at (sa, sb) and the body
+    !! axes axis_a, axis_b kept perpendicular (they must be perpendicular
+    !! initially for the joint to be satisfied).
+    integer(c_int) function LGNJoints_AddUniversal(J, a, sa, axis_a, b, sb, axis_b) &
+        bind(c, name="LGNJoints_AddUniversal")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
+    end function LGNJoints_AddUniversal
+
+    ! =========================================================================
+    ! Sizes
+    ! =========================================================================
+
+    !> Number of constraints m of all joints added so far (rows of Phi, B).
+    integer(c_int64_t) function LGNJoints_NumConstraints(J) &
+        bind(c, name="LGNJoints_NumConstraints")
+      import :: c_int64_t, c_ptr
+      type(c_ptr), value :: J
+    end function LGNJoints_NumConstraints
+
+    !> Stored entries of a sparse B written by LGNJoints_Jacobian (explicit
+    !! zeros included; the pattern does not depend on q).
+    integer(c_int64_t) function LGNJoints_JacobianNnz(J) &
+        bind(c, name="LGNJoints_JacobianNnz")
+      import :: c_int64_t, c_ptr
+      type(c_ptr), value :: J
+    end function LGNJoints_JacobianNnz
+
+    !> Stored entries of a sparse K written by LGNJoints_Stiffness.
+    integer(c_int64_t) function LGNJoints_StiffnessNnz(J) &
+        bind(c, name="LGNJoints_StiffnessNnz")
+      import :: c_int64_t, c_ptr
+      type(c_ptr), value :: J
+    end function LGNJoints_StiffnessNnz
+
+    ! =========================================================================
+    ! Evaluation, for the callbacks (vectors: serial N_Vectors)
+    ! =========================================================================
+
+    !> phi = Phi(q), length m (for an LGNConstrFn).
+    integer(c_int) function LGNJoints_Residual(J, q, phi) bind(c, name="LGNJoints_Residual")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, q, phi
+    end function LGNJoints_Residual
+
+    !> B = B(q), m x nv (for an LGNConstrJacFn). A dense B is written entry
+    !! by entry (zero it first; Lignum does before the callback); a sparse B
+    !! (CSC or CSR) gets the whole structure, reallocated if it has fewer
+    !! than LGNJoints_JacobianNnz(J) entries.
+    integer(c_int) function LGNJoints_Jacobian(J, q, B) bind(c, name="LGNJoints_Jacobian")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, q, B
+    end function LGNJoints_Jacobian
+
+    !> z = Z(q)(v, v), length m: the curvature term of the consistent
+    !! initial accelerations (for an LGNCurvatureFn).
+    integer(c_int) function LGNJoints_Curvature(J, q, v, z) &
+        bind(c, name="LGNJoints_Curvature")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, q, v, z
+    end function LGNJoints_Curvature
+
+    !> K = d/dq (B(q)^T lambda), nv x nv: the joints' part of K_t (for an
+    !! LGNStiffnessFn). Added to a dense K; a sparse K is overwritten with
+    !! its pattern (6x6 blocks of the bodies and of the pairs coupled by a
+    !! revolute or universal joint).
+    integer(c_int) function LGNJoints_Stiffness(J, q, lambda, K) &
+        bind(c, name="LGNJoints_Stiffness")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, q, lambda, K
+    end function LGNJoints_Stiffness
+  end interface
+
+end module flignum_joints_mod
