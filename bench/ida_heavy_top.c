@@ -49,44 +49,6 @@ static const double X_BODY[3] = {0.0, 1.0, 0.0};
 static const double J_BODY[3] = {HT_J1, HT_J2, HT_J3};
 
 /* =============================================================================
- * Euler-parameter kinematics (row-major small matrices)
- * ===========================================================================*/
-
-/* c = G a (3-vector) */
-static void GVec(const double G[12], const double a[4], double c[3])
-{
-  int k;
-  for (k = 0; k < 3; k++)
-    c[k] = G[4 * k] * a[0] + G[4 * k + 1] * a[1] + G[4 * k + 2] * a[2] + G[4 * k + 3] * a[3];
-}
-
-/* out (4x4) += s * G1^T J G2 */
-static void AddGtJG(const double G1[12], const double G2[12], double s, double out[16])
-{
-  int i, j, k;
-  for (i = 0; i < 4; i++)
-    for (j = 0; j < 4; j++) {
-      double a = 0.0;
-      for (k = 0; k < 3; k++) a += G1[4 * k + i] * J_BODY[k] * G2[4 * k + j];
-      out[4 * i + j] += s * a;
-    }
-}
-
-/* out (4x4) += s * H(c), H(c) = [[0, -c^T], [c, -c~]] */
-static void AddH(const double c[3], double s, double out[16])
-{
-  int i;
-  for (i = 0; i < 3; i++) {
-    out[1 + i] -= s * c[i];
-    out[4 * (1 + i)] += s * c[i];
-  }
-  /* -c~ in rows/cols 1..3 */
-  out[4 * 1 + 2] += s * c[2];  out[4 * 1 + 3] -= s * c[1];
-  out[4 * 2 + 1] -= s * c[2];  out[4 * 2 + 3] += s * c[0];
-  out[4 * 3 + 1] += s * c[1];  out[4 * 3 + 2] -= s * c[0];
-}
-
-/* =============================================================================
  * Model pieces
  * ===========================================================================*/
 
@@ -172,8 +134,8 @@ static void RotDynamics(const double *p, const double *pd, const double *w, doub
   int i, k;
   ep_matrix_g(p, G);
   ep_matrix_g(pd, Gd);
-  GVec(G, w, c);
-  GVec(G, pd, e);
+  ep_g_vec(G, w, c);
+  ep_g_vec(G, pd, e);
   for (k = 0; k < 3; k++) {
     c[k] *= J_BODY[k];
     e[k] *= J_BODY[k];
@@ -189,7 +151,7 @@ static void RotMass(const double *p, double Mp[16])
   double G[12];
   memset(Mp, 0, 16 * sizeof(double));
   ep_matrix_g(p, G);
-  AddGtJG(G, G, 4.0, Mp);
+  ep_add_gt_j_g(G, J_BODY, G, 4.0, Mp);
 }
 
 /* F(t, y, y'), all 22 components */
@@ -273,17 +235,17 @@ static void Jacobian(double cj, const double *y, const double *yp, double *Jd)
   for (i = 3; i < 7; i++) JD(OV + i, OQ + i) += 2.0 * l[3];
   /* K = d/dp [4 G^T J G w + 8 G(pd)^T J G pd] */
   memset(K, 0, sizeof K);
-  GVec(G, w, c);
+  ep_g_vec(G, w, c);
   for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
-  AddH(c, 4.0, K);
-  AddGtJG(G, Gw, -4.0, K);
-  AddGtJG(Gd, Gd, -8.0, K);
+  ep_add_h(c, 4.0, K);
+  ep_add_gt_j_g(G, J_BODY, Gw, -4.0, K);
+  ep_add_gt_j_g(Gd, J_BODY, Gd, -8.0, K);
   /* C = d/dpd [8 G(pd)^T J G pd] */
   memset(C, 0, sizeof C);
-  GVec(G, pd, c);
+  ep_g_vec(G, pd, c);
   for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
-  AddH(c, 8.0, C);
-  AddGtJG(Gd, G, 8.0, C);
+  ep_add_h(c, 8.0, C);
+  ep_add_gt_j_g(Gd, J_BODY, G, 8.0, C);
   RotMass(p, Mp);
   for (i = 0; i < 4; i++)
     for (j = 0; j < 4; j++) {

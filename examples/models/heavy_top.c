@@ -277,39 +277,6 @@ static int SE3Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void 
  * matrices below are their exact derivatives.
  * ===========================================================================*/
 
-/* c = G a (3-vector) for G = G(p) row-major 3 x 4 */
-static void EPGVec(const double G[12], const double a[4], double c[3])
-{
-  int k;
-  for (k = 0; k < 3; k++)
-    c[k] = G[4 * k] * a[0] + G[4 * k + 1] * a[1] + G[4 * k + 2] * a[2] + G[4 * k + 3] * a[3];
-}
-
-/* out (4 x 4 row-major) += s G1^T J G2 */
-static void EPAddGtJG(const double G1[12], const double G2[12], double s, double out[16])
-{
-  int i, j, k;
-  for (i = 0; i < 4; i++)
-    for (j = 0; j < 4; j++) {
-      double a = 0.0;
-      for (k = 0; k < 3; k++) a += G1[4 * k + i] * J_BODY[k] * G2[4 * k + j];
-      out[4 * i + j] += s * a;
-    }
-}
-
-/* out (4 x 4 row-major) += s H(c), H(c) = [[0, -c^T], [c, -c~]] */
-static void EPAddH(const double c[3], double s, double out[16])
-{
-  int i;
-  for (i = 0; i < 3; i++) {
-    out[1 + i] -= s * c[i];
-    out[4 * (1 + i)] += s * c[i];
-  }
-  out[4 * 1 + 2] += s * c[2]; out[4 * 1 + 3] -= s * c[1];
-  out[4 * 2 + 1] -= s * c[2]; out[4 * 2 + 3] += s * c[0];
-  out[4 * 3 + 1] += s * c[1]; out[4 * 3 + 2] -= s * c[0];
-}
-
 /* z = Q(a, b)^T y = (a0 b0 - abar.bbar) y + bbar (abar.y) + abar (bbar.y)
  *                   - a0 bbar x y - b0 abar x y */
 static void EPQuadTVec(const double a[4], const double b[4], const double y[3],
@@ -328,17 +295,14 @@ static void EPQuadTVec(const double a[4], const double b[4], const double y[3],
 static int EPMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
 {
   const double *p = N_VGetArrayPointer(q) + 3;
-  double G[12];
-  int i, j, k;
+  double G[12], Mp[16] = {0.0};
+  int i, j;
   (void)t; (void)ud;
   ep_matrix_g(p, G);
+  ep_add_gt_j_g(G, J_BODY, G, 4.0, Mp); /* 4 G^T J G */
   for (i = 0; i < 3; i++) ELEM(M, i, i) = HT_MASS;
   for (i = 0; i < 4; i++)
-    for (j = 0; j < 4; j++) {
-      double s = 0.0;
-      for (k = 0; k < 3; k++) s += G[4 * k + i] * J_BODY[k] * G[4 * k + j];
-      ELEM(M, 3 + i, 3 + j) = 4.0 * s;
-    }
+    for (j = 0; j < 4; j++) ELEM(M, 3 + i, 3 + j) = Mp[4 * i + j];
   return 0;
 }
 
@@ -353,9 +317,8 @@ static int EPForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
   gg[0] = 0.0;
   gg[1] = 0.0;
   gg[2] = -HT_MASS * HT_GRAVITY;
-  for (k = 0; k < 3; k++)
-    JGpd[k] = J_BODY[k] * (G[4 * k] * pd[0] + G[4 * k + 1] * pd[1] +
-                           G[4 * k + 2] * pd[2] + G[4 * k + 3] * pd[3]);
+  ep_g_vec(G, pd, JGpd);
+  for (k = 0; k < 3; k++) JGpd[k] *= J_BODY[k];
   for (i = 0; i < 4; i++)
     gg[3 + i] = 8.0 * (Gd[i] * JGpd[0] + Gd[4 + i] * JGpd[1] + Gd[8 + i] * JGpd[2]);
   return 0;
@@ -443,11 +406,11 @@ static int EPStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
   ep_matrix_g(p, G);
   ep_matrix_g(pd, Gd);
   ep_matrix_g(w, Gw);
-  EPGVec(G, w, c);
+  ep_g_vec(G, w, c);
   for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
-  EPAddH(c, 4.0, Kpp);
-  EPAddGtJG(G, Gw, -4.0, Kpp);
-  EPAddGtJG(Gd, Gd, -8.0, Kpp);
+  ep_add_h(c, 4.0, Kpp);
+  ep_add_gt_j_g(G, J_BODY, Gw, -4.0, Kpp);
+  ep_add_gt_j_g(Gd, J_BODY, Gd, -8.0, Kpp);
 
   for (i = 0; i < 4; i++)
     for (j = 0; j < 4; j++) ELEM(K, 3 + i, 3 + j) = Kpp[4 * i + j];
@@ -464,10 +427,10 @@ static int EPDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *u
   (void)t; (void)ud;
   ep_matrix_g(p, G);
   ep_matrix_g(pd, Gd);
-  EPGVec(G, pd, c);
+  ep_g_vec(G, pd, c);
   for (i = 0; i < 3; i++) c[i] *= J_BODY[i];
-  EPAddH(c, 8.0, Cpp);
-  EPAddGtJG(Gd, G, 8.0, Cpp);
+  ep_add_h(c, 8.0, Cpp);
+  ep_add_gt_j_g(Gd, J_BODY, G, 8.0, Cpp);
   for (i = 0; i < 4; i++)
     for (j = 0; j < 4; j++) ELEM(C, 3 + i, 3 + j) = Cpp[4 * i + j];
   return 0;
