@@ -260,8 +260,9 @@ static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
  * last rate seen), the error left after d_k is at most r/(1-r) |d_k|, so it
  * stops when |d_k| <= 1 and, if r > 1/2, r/(1-r) |d_k| <= 1. When r exceeds
  * 0.9, or is too slow to converge in the iterations left, the matrix is
- * rebuilt at the current iterate (a correction that grew is dropped first). *used_old tells whether a matrix of an earlier step was
- * used: the caller may then retry a failure with a fresh one.
+ * rebuilt at the current iterate (a correction that grew is dropped first).
+ * *used_old tells whether a matrix of an earlier step was used: the caller
+ * may then retry a failure with a fresh one.
  * Returns LGN_CONV_FAILURE without a message (the caller reports it). */
 static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
                   sunbooleantype *used_old)
@@ -278,12 +279,12 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
 
   *used_old = !setup;
   for (iter = 0; iter < mem->maxcor; iter++) {
-    flag = Kinematics(mem, setup && use_tangent);
+    flag = Kinematics(mem, setup);
     if (flag == LGN_SUCCESS && setup && mem->kinematics == LGN_KINEMATICS_EXACT)
       flag = lgnExactKinematicsDerivatives(mem, c->gamma_p, c->beta_p);
     if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
     if (flag == LGN_SUCCESS && setup) {
-      mem->lu_valid = SUNFALSE;
+      lgnInvalidateMatrix(mem); /* A is overwritten */
       flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,
                                   c->scale * c->gamma_p, c->scale, use_tangent);
       if (flag == LGN_SUCCESS) {
