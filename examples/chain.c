@@ -50,6 +50,8 @@ static void Report(const RigidSystem *sys, const RigidRunOptions *opt,
          r->max_phi, r->lenrw, r->leniw,
          (8.0 * r->lenrw + 8.0 * r->leniw) / sys->n);
   printf("         free end %.17g %.17g %.17g\n", tip[0], tip[1], tip[2]);
+  printf("         matrix setups %ld  reused-matrix iterations %ld  Newton stalls %ld\n",
+         r->nlsetups, r->nreuse, r->nstall);
 }
 
 static double MaxDiff(const double *a, const double *b, long int n)

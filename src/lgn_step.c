@@ -261,6 +261,9 @@ static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
  * stops when |d_k| <= 1 and, if r > 1/2, r/(1-r) |d_k| <= 1. When r exceeds
  * 0.9, or is too slow to converge in the iterations left, the matrix is
  * rebuilt at the current iterate (a correction that grew is dropped first).
+ * With either matrix, from the third iteration on, the iteration also stops
+ * when the configuration part is <= 1 and the multiplier corrections have
+ * stopped contracting (stalled multipliers, counted by LGNGetNumNewtonStalls).
  * *used_old tells whether a matrix of an earlier step was used: the caller
  * may then retry a failure with a fresh one.
  * Returns LGN_CONV_FAILURE without a message (the caller reports it). */
@@ -304,16 +307,16 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
     sol  = lgnData(mem->sol); /* (delta, dmu) */
     norm = CorrectionNorm(mem, c, sol, sol + nv, &norm_sigma);
     if (!isfinite(norm)) break;
-    stalled = SUNFALSE;
+    /* stalled multipliers: the configuration has converged but the
+     * multiplier corrections have stopped contracting. At index 3 the
+     * multipliers of a long chain are determined only to about
+     * cond(A) eps |q| / (beta h^2), with cond(A) growing like the square
+     * of the number of links, so they may sit above the tolerance at
+     * roundoff level; further iterations (or a new matrix, which sees the
+     * same noise) would only stir it. */
+    stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
+              norm > SUN_RCONST(1.0) && norm > SUN_RCONST(0.5) * norm_prev;
     if (fresh) {
-      /* stalled multipliers: the configuration has converged but the
-       * multiplier corrections have stopped contracting. At index 3 the
-       * multipliers of a long chain are determined only to about
-       * cond(A) eps |q| / (beta h^2), with cond(A) growing like the square
-       * of the number of links, so they may sit above the tolerance at
-       * roundoff level; further iterations would only stir the noise. */
-      stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
-                norm > SUN_RCONST(0.5) * norm_prev;
       /* divergence: from the third iteration on, a Newton correction ten
        * times larger than the previous one means Newton is not contracting */
       if (!stalled && iter >= 2 && fresh_prev && norm > 10 * norm_prev &&
@@ -323,13 +326,15 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
     } else {
       rate = iter > 0 ? norm / norm_prev : mem->newton_rate;
       if (iter > 0) mem->newton_rate = rate;
-      if (iter > 0 && (rate > NEWTON_RATE_MAX || !WithinBudget(mem, iter, norm, rate))) {
+      if (!stalled && iter > 0 &&
+          (rate > NEWTON_RATE_MAX || !WithinBudget(mem, iter, norm, rate))) {
         setup = SUNTRUE;
         if (norm > norm_prev) continue; /* drop it, rebuild at this iterate */
       }
-      converged = norm <= SUN_RCONST(1.0) &&
-                  (rate <= NEWTON_RATE_FAST ||
-                   rate / (SUN_RCONST(1.0) - rate) * norm <= SUN_RCONST(1.0));
+      converged = stalled ||
+                  (norm <= SUN_RCONST(1.0) &&
+                   (rate <= NEWTON_RATE_FAST ||
+                    rate / (SUN_RCONST(1.0) - rate) * norm <= SUN_RCONST(1.0)));
     }
     norm_prev = norm;
     flag = ApplyCorrection(mem, c, sol, sol + nv);

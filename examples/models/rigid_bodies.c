@@ -382,6 +382,30 @@ void rigid_result_free(RigidRunResult *res)
   res->q = res->v = NULL;
 }
 
+/* The floor under a Newton iteration: CPU time of one solve and one
+ * factorisation with the last iteration matrix (averages over a few calls,
+ * after the run; the matrix and the solver are discarded afterwards). */
+static void TimeLinearAlgebra(SUNLinearSolver LS, SUNMatrix A, sunindextype n,
+                              SUNContext ctx, RigidRunResult *res)
+{
+  const int reps = 5;
+  N_Vector b = N_VNew_Serial(n, ctx), x = N_VNew_Serial(n, ctx);
+  double t0;
+  int r, fail = 0;
+  if (b == NULL || x == NULL) goto done;
+  N_VConst(1.0, b);
+  t0 = CpuSeconds();
+  for (r = 0; r < reps; r++) fail |= SUNLinSolSolve(LS, A, x, b, 0.0) != 0;
+  res->solve_seconds = (CpuSeconds() - t0) / reps;
+  t0 = CpuSeconds();
+  for (r = 0; r < reps; r++) fail |= SUNLinSolSetup(LS, A) != 0;
+  res->setup_seconds = (CpuSeconds() - t0) / reps;
+  if (fail) res->solve_seconds = res->setup_seconds = 0.0;
+done:
+  if (b != NULL) N_VDestroy(b);
+  if (x != NULL) N_VDestroy(x);
+}
+
 int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
 {
   SUNContext ctx = sys->q0->sunctx;
@@ -429,6 +453,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   if (flag == 0) flag = LGNSetKinematics(mem, opt->kinematics);
   if (flag == 0) flag = LGNSetNewtonMode(mem, opt->newton);
   if (flag == 0) flag = LGNSetLSetupFrequency(mem, opt->msbp);
+  if (flag == 0) flag = LGNSetPredictor(mem, opt->predictor);
   if (flag == 0) flag = LGNSetConstraintIndex(mem, opt->constraints);
   if (flag == 0 && opt->rtol > 0) flag = LGNSStolerances(mem, opt->rtol, opt->atol);
 
@@ -456,11 +481,14 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetNumDQEvals(mem, &res->ndq);
   LGNGetNumJacEvals(mem, &res->nje);
   LGNGetNumLinSolvSetups(mem, &res->nlsetups);
+  LGNGetNumMatrixReuses(mem, &res->nreuse);
+  LGNGetNumNewtonStalls(mem, &res->nstall);
   LGNGetNumSparsityAnalyses(mem, &res->nanalyses);
   LGNGetNumDQColors(mem, &res->ncolors);
   LGNGetIterationMatrixNnz(mem, &res->nnz);
   LGNGetWorkSpace(mem, &res->lenrw, &res->leniw);
   if (opt->solver != RB_DENSE) res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
+  if (flag == 0 && opt->time_linear_algebra) TimeLinearAlgebra(LS, A, n, ctx, res);
   res->q = (double *)malloc((size_t)nq * sizeof(double));
   res->v = (double *)malloc((size_t)nv * sizeof(double));
   if (res->q != NULL) memcpy(res->q, N_VGetArrayPointer(q), (size_t)nq * sizeof(double));
@@ -487,7 +515,7 @@ void rigid_print_usage(FILE *out)
           "          [--kinematics simplified|exact] [--constraints index3|index2]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
           "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
-          "          [--csv FILE]\n");
+          "          [--predictor zero|extrapolate] [--csv FILE]\n");
 }
 
 int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
@@ -526,6 +554,10 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
   } else if (IS("--newton")) {
     if (VAL("full")) opt->newton = LGN_NEWTON_FULL;
     else if (VAL("modified")) opt->newton = LGN_NEWTON_MODIFIED;
+    else return -1;
+  } else if (IS("--predictor")) {
+    if (VAL("zero")) opt->predictor = LGN_PREDICTOR_ZERO;
+    else if (VAL("extrapolate")) opt->predictor = LGN_PREDICTOR_EXTRAPOLATE;
     else return -1;
   } else if (IS("--msbp")) opt->msbp = atol(val);
   else if (IS("--rho-inf")) opt->rho_inf = atof(val);

@@ -57,6 +57,8 @@ typedef struct {
   double rtol, atol;        /* Newton tolerances (0: defaults)              */
   int newton;               /* LGN_NEWTON_* (default full)                  */
   long int msbp;            /* modified Newton: steps between setups (0: default) */
+  int predictor;            /* LGN_PREDICTOR_* (default zero)               */
+  int time_linear_algebra;  /* 1: time one solve and one setup after the run */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */
 } RigidRunOptions;
@@ -67,9 +69,12 @@ typedef struct {
   double energy0, energy, max_drift; /* E(0), E(t_end), max |E - E(0)|      */
   double max_phi;                    /* max |Phi| over the samples           */
   long int nsteps, nni, nre, ndq, nje, nlsetups, nanalyses, ncolors;
+  long int nreuse, nstall;
   long int nnz, lenrw, leniw;
   double klu_peak_bytes;             /* KLU's peak memory (0 for dense)     */
   double cpu_seconds;                /* process CPU time in LGNSolve only    */
+  double solve_seconds;              /* one linear solve with the last matrix */
+  double setup_seconds;              /* one factorisation of the last matrix  */
   double *q, *v;                     /* final state (nq, nv), malloc'ed      */
 } RigidRunResult;
 
