@@ -126,7 +126,9 @@ int main(int argc, char **argv)
      * tolerance */
     const double same_tol = opt.constraints == LGN_CONSTR_INDEX3 ? 1e-10 : 1e-8;
     for (s = 0; s < 3; s++) {
-      if (solvers[s] == mine || (solvers[s] == RB_DENSE && n > 200)) continue;
+      if (solvers[s] == mine || (solvers[s] == RB_DENSE && n > 200) ||
+          !rigid_solver_available(solvers[s]))
+        continue;
       opt.solver = solvers[s];
       flag = rigid_run(sys, &opt, &other);
       Report(sys, &opt, &other);

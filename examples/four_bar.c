@@ -123,7 +123,7 @@ int main(int argc, char **argv)
 {
   RigidRunOptions opt;
   RigidFormulation formulation = RB_R3XSO3;
-  RigidRunResult res[3];
+  RigidRunResult res[3] = {{0}, {0}, {0}};
   RigidSystem *sys;
   SUNContext ctx;
   double len[3], angle0, same_tol;
@@ -158,6 +158,7 @@ int main(int argc, char **argv)
     int flag;
     double plane, turn;
     opt.solver = (RigidSolver)s;
+    if (!rigid_solver_available(opt.solver)) continue;
     flag  = rigid_run(sys, &opt, &res[s]);
     plane = res[s].q != NULL ? OutOfPlane(res[s].q) : 1.0;
     turn  = res[s].q != NULL ? CrankAngle(res[s].q) - angle0 : 0.0;

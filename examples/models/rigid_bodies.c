@@ -21,11 +21,14 @@
 #include <string.h>
 #include <time.h>
 
+#include <lignum/lignum_config.h> /* LGN_HAVE_KLU */
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
+#if defined(LGN_HAVE_KLU)
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
 
 RigidSystem *rigid_create(int n, RigidFormulation formulation, SUNContext ctx)
 {
@@ -350,7 +353,7 @@ static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud
 void rigid_default_run_options(RigidRunOptions *opt)
 {
   memset(opt, 0, sizeof *opt);
-  opt->solver      = RB_KLU_CSC;
+  opt->solver      = rigid_solver_available(RB_KLU_CSC) ? RB_KLU_CSC : RB_DENSE;
   opt->method      = 1;
   opt->rho_inf     = 0.9;
   opt->beta        = 0.25;
@@ -361,6 +364,15 @@ void rigid_default_run_options(RigidRunOptions *opt)
   opt->h           = 1e-3;
   opt->t_end       = 1.0;
   opt->outputs     = 100;
+}
+
+int rigid_solver_available(RigidSolver s)
+{
+#if defined(LGN_HAVE_KLU)
+  return s == RB_DENSE || s == RB_KLU_CSC || s == RB_KLU_CSR;
+#else
+  return s == RB_DENSE;
+#endif
 }
 
 const char *rigid_solver_name(RigidSolver s)
@@ -429,7 +441,11 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
       LS = SUNLinSol_Dense(y, A, ctx);
     } else {
       A  = SUNSparseMatrix(n, n, 30 * n, opt->solver == RB_KLU_CSC ? CSC_MAT : CSR_MAT, ctx);
+#if defined(LGN_HAVE_KLU)
       LS = SUNLinSol_KLU(y, A, ctx);
+#else
+      LS = NULL; /* rigid_parse_option refuses KLU; LGNSetLinearSolver reports it */
+#endif
     }
     N_VDestroy(y);
   }
@@ -487,7 +503,10 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetNumDQColors(mem, &res->ncolors);
   LGNGetIterationMatrixNnz(mem, &res->nnz);
   LGNGetWorkSpace(mem, &res->lenrw, &res->leniw);
-  if (opt->solver != RB_DENSE) res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
+#if defined(LGN_HAVE_KLU)
+  if (opt->solver != RB_DENSE && LS != NULL)
+    res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
+#endif
   if (flag == 0 && opt->time_linear_algebra) TimeLinearAlgebra(LS, A, n, ctx, res);
   res->q = (double *)malloc((size_t)nq * sizeof(double));
   res->v = (double *)malloc((size_t)nv * sizeof(double));
@@ -531,6 +550,10 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     else if (VAL("klu")) opt->solver = RB_KLU_CSC;
     else if (VAL("klu-csr")) opt->solver = RB_KLU_CSR;
     else return -1;
+    if (!rigid_solver_available(opt->solver)) {
+      fprintf(stderr, "--solver %s: Lignum was built without KLU (LGN_ENABLE_KLU=OFF)\n", val);
+      return -1;
+    }
   } else if (IS("--formulation")) {
     if (VAL("r3so3")) *formulation = RB_R3XSO3;
     else if (VAL("se3")) *formulation = RB_SE3;

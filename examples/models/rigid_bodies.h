@@ -90,5 +90,7 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
                        RigidFormulation *formulation);
 void rigid_print_usage(FILE *out);
 const char *rigid_solver_name(RigidSolver s);
+/* 1 if the solver is built (KLU needs LGN_ENABLE_KLU), 0 if not. */
+int rigid_solver_available(RigidSolver s);
 
 #endif
