@@ -3,12 +3,13 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  *   chain_scaling [--n N1,N2,...] [--steps S] [--dense-max N] [--csv FILE]
- *                 [--memory-csv FILE] [--quick]
+ *                 [--memory-csv FILE] [--floor-csv FILE] [--quick]
  *
  * The chain of examples/models/chain.h (generalized-alpha rho_inf = 0.9,
  * index 3, h = 1e-3, analytic K_t, C_t, Z from the joint helpers), S steps
- * per run, with KLU (CSC) for every N, full and modified Newton ("klu-mN",
- * LGNSetNewtonMode), and the dense solver up to --dense-max.
+ * per run, with KLU (CSC) for every N, full Newton ("klu") and modified
+ * Newton with the extrapolating predictor ("klu-mN", LGNSetNewtonMode,
+ * LGNSetPredictor), and the dense solver up to --dense-max.
  * Time = process CPU time inside LGNSolve (set-up, consistent initial
  * values, the first assembly and KLU's symbolic analysis included, so
  * S should be large enough to amortise them). Prints a table, writes
@@ -16,7 +17,9 @@
  * and fits the exponent p of seconds_per_step ~ N^p for KLU (least squares
  * in log-log over all N, and between the two largest N). Memory per body
  * (Lignum's work space from LGNGetWorkSpace plus KLU's peak) goes to a
- * second CSV. Never fails on timing.
+ * second CSV, and the floor under a Newton iteration, the CPU time of one
+ * solve and one factorisation with the last iteration matrix, to a third.
+ * Never fails on timing.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -44,11 +47,12 @@ static double FitExponent(const double *x, const double *y, int n)
 
 int main(int argc, char **argv)
 {
-  int ns[MAXN] = {10, 100, 1000, 10000}, nn = 4, steps = 50, dense_max = 100, i, k, s;
+  int ns[MAXN] = {10, 100, 1000, 10000}, nn = 4, steps = 100, dense_max = 100, i, k, s;
   const char *csv_name = "chain_scaling.csv", *mem_name = "chain_memory.csv";
+  const char *floor_name = "chain_floor.csv";
   double klu_n[2][MAXN], klu_t[2][MAXN]; /* full, modified Newton */
   int nklu[2] = {0, 0}, v;
-  FILE *csv, *mem;
+  FILE *csv, *mem, *flr;
   SUNContext ctx;
 
   for (i = 1; i < argc; i++) {
@@ -67,6 +71,8 @@ int main(int argc, char **argv)
       csv_name = argv[++i];
     } else if (strcmp(argv[i], "--memory-csv") == 0 && i + 1 < argc) {
       mem_name = argv[++i];
+    } else if (strcmp(argv[i], "--floor-csv") == 0 && i + 1 < argc) {
+      floor_name = argv[++i];
     } else if (strcmp(argv[i], "--quick") == 0) {
       ns[0] = 10; ns[1] = 30; ns[2] = 100;
       nn = 3;
@@ -74,7 +80,8 @@ int main(int argc, char **argv)
       dense_max = 30;
     } else {
       fprintf(stderr, "usage: %s [--n N1,N2,...] [--steps S] [--dense-max N] "
-                      "[--csv FILE] [--memory-csv FILE] [--quick]\n", argv[0]);
+                      "[--csv FILE] [--memory-csv FILE] [--floor-csv FILE] [--quick]\n",
+              argv[0]);
       return 2;
     }
   }
@@ -83,14 +90,18 @@ int main(int argc, char **argv)
   if (steps < 1) return 2;
   csv = fopen(csv_name, "w");
   mem = fopen(mem_name, "w");
-  if (csv == NULL || mem == NULL || SUNContext_Create(NULL, &ctx) != 0) return 1;
+  flr = fopen(floor_name, "w");
+  if (csv == NULL || mem == NULL || flr == NULL || SUNContext_Create(NULL, &ctx) != 0)
+    return 1;
   fprintf(csv, "n,solver,steps,seconds,seconds_per_step,newton_per_step,nnz\n");
   fprintf(mem, "n,solver,lignum_bytes,klu_peak_bytes,bytes_per_body\n");
+  fprintf(flr, "n,solver,solve_seconds,setup_seconds,setups,stalls\n");
 
   printf("chain scaling: generalized-alpha 0.9, index 3, h = 1e-3, %d steps, "
          "analytic tangents\n\n", steps);
-  printf("%7s %-6s %8s %10s %12s %9s %10s %8s %14s\n", "N", "solver", "steps",
-         "cpu [s]", "ms/step", "Newton/st", "nnz", "analyses", "bytes/body");
+  printf("%7s %-6s %6s %9s %10s %9s %7s %9s %10s %10s %11s\n", "N", "solver", "steps",
+         "cpu [s]", "ms/step", "Newton/st", "setups", "nnz", "solve [ms]", "setup [ms]",
+         "bytes/body");
   for (i = 0; i < nn; i++) {
     RigidSystem *sys = chain_create(ns[i], RB_R3XSO3, ctx);
     if (sys == NULL) return 1;
@@ -104,6 +115,8 @@ int main(int argc, char **argv)
       rigid_default_run_options(&opt);
       opt.solver  = s == 0 ? RB_DENSE : RB_KLU_CSC;
       opt.newton  = s == 2 ? LGN_NEWTON_MODIFIED : LGN_NEWTON_FULL;
+      opt.predictor = s == 2 ? LGN_PREDICTOR_EXTRAPOLATE : LGN_PREDICTOR_ZERO;
+      opt.time_linear_algebra = 1;
       snprintf(label, sizeof label, "%s%s", rigid_solver_name(opt.solver),
                s == 2 ? "-mN" : "");
       opt.h       = 1e-3;
@@ -118,9 +131,12 @@ int main(int argc, char **argv)
       }
       per_step = r.cpu_seconds / r.nsteps;
       bytes    = 8.0 * (double)(r.lenrw + r.leniw) + r.klu_peak_bytes;
-      printf("%7d %-6s %8ld %10.4f %12.4f %9.2f %10ld %8ld %14.0f\n", ns[i],
-             label, r.nsteps, r.cpu_seconds, 1e3 * per_step,
-             (double)r.nni / r.nsteps, r.nnz, r.nanalyses, bytes / ns[i]);
+      printf("%7d %-6s %6ld %9.3f %10.4f %9.2f %7ld %9ld %10.4f %10.4f %11.0f\n", ns[i],
+             label, r.nsteps, r.cpu_seconds, 1e3 * per_step, (double)r.nni / r.nsteps,
+             r.nlsetups, r.nnz, 1e3 * r.solve_seconds, 1e3 * r.setup_seconds,
+             bytes / ns[i]);
+      fprintf(flr, "%d,%s,%.6g,%.6g,%ld,%ld\n", ns[i], label, r.solve_seconds,
+              r.setup_seconds, r.nlsetups, r.nstall);
       fprintf(csv, "%d,%s,%ld,%.6g,%.6g,%.4g,%ld\n", ns[i], label,
               r.nsteps, r.cpu_seconds, per_step, (double)r.nni / r.nsteps, r.nnz);
       fprintf(mem, "%d,%s,%.0f,%.0f,%.1f\n", ns[i], label,
@@ -135,6 +151,7 @@ int main(int argc, char **argv)
   }
   fclose(csv);
   fclose(mem);
+  fclose(flr);
   for (v = 0; v < 2; v++) {
     const int nk = nklu[v];
     const double *kn = klu_n[v], *kt = klu_t[v];
@@ -153,7 +170,7 @@ int main(int argc, char **argv)
         printf("target < 5 ms per step at N = 10000: %.2f ms, %s\n", 1e3 * kt[k],
                kt[k] < 5e-3 ? "MET" : "MISSED");
   }
-  printf("wrote %s and %s\n", csv_name, mem_name);
+  printf("wrote %s, %s and %s\n", csv_name, mem_name, floor_name);
   SUNContext_Free(&ctx);
   return 0;
 }

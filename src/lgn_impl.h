@@ -153,6 +153,8 @@ typedef struct LGNMemRec {
   sunrealtype lu_h;         /* the step size it was built with             */
   long int lu_nst;          /* nst when it was built                       */
   sunrealtype newton_rate;  /* last contraction rate seen with a reused A  */
+  sunrealtype lambda_noise; /* multiplier part of the last stalled correction */
+  sunrealtype lambda_noise_h; /* ... and its step size (0: none seen)      */
 
   /* ---- bookkeeping ---- */
   sunbooleantype malloc_done; /* LGNInit called                             */

@@ -263,7 +263,11 @@ static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
  * rebuilt at the current iterate (a correction that grew is dropped first).
  * With either matrix, from the third iteration on, the iteration also stops
  * when the configuration part is <= 1 and the multiplier corrections have
- * stopped contracting (stalled multipliers, counted by LGNGetNumNewtonStalls).
+ * stopped contracting (stalled multipliers, counted by LGNGetNumNewtonStalls);
+ * the multiplier part of that correction is kept as the noise level of the
+ * step size, and from the second iteration on a correction whose
+ * configuration part is <= 1 and whose multiplier part is within that level
+ * stops the iteration too.
  * *used_old tells whether a matrix of an earlier step was used: the caller
  * may then retry a failure with a fresh one.
  * Returns LGN_CONV_FAILURE without a message (the caller reports it). */
@@ -273,7 +277,7 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
   const sunbooleantype modified = mem->newton_mode == LGN_NEWTON_MODIFIED;
   const sunbooleantype use_tangent = mem->kinematics != LGN_KINEMATICS_SIGMA;
   sunindextype nv = mem->nv;
-  sunrealtype *sol, norm, norm_sigma, rate, norm_prev = SUN_RCONST(0.0);
+  sunrealtype *sol, norm, norm_sigma, norm_lambda, rate, norm_prev = SUN_RCONST(0.0);
   sunbooleantype setup = !modified || force_setup || !MatrixReusable(mem, c);
   sunbooleantype fresh = SUNFALSE, fresh_prev, stalled, converged;
   int iter, flag;
@@ -316,6 +320,17 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
      * same noise) would only stir it. */
     stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
               norm > SUN_RCONST(1.0) && norm > SUN_RCONST(0.5) * norm_prev;
+    /* ... or, from the second iteration on, they are already down to the
+     * noise level of the last stall at this step size */
+    norm_lambda = sqrt(SUNMAX(norm * norm - norm_sigma * norm_sigma, SUN_RCONST(0.0)));
+    if (stalled) {
+      mem->lambda_noise   = norm_lambda;
+      mem->lambda_noise_h = c->h;
+    } else {
+      stalled = iter >= 1 && norm_sigma <= SUN_RCONST(1.0) && norm > SUN_RCONST(1.0) &&
+                fabs(c->h - mem->lambda_noise_h) <= REUSE_H_TOL * c->h &&
+                norm_lambda <= mem->lambda_noise;
+    }
     if (fresh) {
       /* divergence: from the third iteration on, a Newton correction ten
        * times larger than the previous one means Newton is not contracting */
