@@ -43,6 +43,8 @@ struct LGNJointsRec {
   int nb;                     /* bodies                                    */
   sunindextype *qoff, *voff;  /* offsets of each body                      */
   sunbooleantype *se3;        /* body on SE(3) (else R^3 x SO(3))          */
+  sunbooleantype *injoint;    /* body appears in a primitive               */
+  sunrealtype *rot;           /* 9 per body: R(q) of the current call      */
   Primitive *prim;
   int nprim, cap;
   sunindextype m;
@@ -105,29 +107,41 @@ static void Mul3(const sunrealtype *A, const sunrealtype *B, sunrealtype *C)
       C[i + 3 * j] = A[i] * B[3 * j] + A[i + 3] * B[3 * j + 1] + A[i + 6] * B[3 * j + 2];
 }
 
-/* Position and rotation of a body (identity for the ground). */
+/* R(q) of every body that appears in a joint, once per evaluation: a chain
+ * body is in two joints, and each joint reads it in several primitives. */
+static void FillRotations(struct LGNJointsRec *J, const sunrealtype *q)
+{
+  int k;
+  for (k = 0; k < J->nb; k++)
+    if (J->injoint[k]) LGNQuaternionToRotation(q + J->qoff[k] + 3, J->rot + 9 * (size_t)k);
+}
+
+/* Position and rotation of a body (identity for the ground), pointing into
+ * q and the rotations of FillRotations. */
 typedef struct {
-  sunrealtype x[3], R[9];
+  const sunrealtype *x, *R;
   const sunrealtype *v;   /* body velocity (u or U, Omega), NULL: none */
   sunbooleantype se3, ground;
   sunindextype voff;
 } Pose;
 
+static const sunrealtype Origin[3]   = {0, 0, 0};
+static const sunrealtype Identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
 static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
                     const sunrealtype *v, Pose *P)
 {
-  int i;
   P->ground = (k == LGN_GROUND);
   if (P->ground) {
-    for (i = 0; i < 9; i++) P->R[i] = (i % 4 == 0) ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
-    P->x[0] = P->x[1] = P->x[2] = SUN_RCONST(0.0);
+    P->x    = Origin;
+    P->R    = Identity;
     P->v    = NULL;
     P->se3  = SUNFALSE;
     P->voff = -1;
     return;
   }
-  for (i = 0; i < 3; i++) P->x[i] = q[J->qoff[k] + i];
-  LGNQuaternionToRotation(q + J->qoff[k] + 3, P->R);
+  P->x    = q + J->qoff[k];
+  P->R    = J->rot + 9 * (size_t)k;
   P->v    = v != NULL ? v + J->voff[k] : NULL;
   P->se3  = J->se3[k];
   P->voff = J->voff[k];
@@ -181,8 +195,11 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
   J->qoff = (sunindextype *)malloc((size_t)nb * sizeof *J->qoff);
   J->voff = (sunindextype *)malloc((size_t)nb * sizeof *J->voff);
   J->se3  = (sunbooleantype *)malloc((size_t)nb * sizeof *J->se3);
+  J->injoint  = (sunbooleantype *)calloc((size_t)nb, sizeof *J->injoint);
+  J->rot      = (sunrealtype *)malloc((size_t)nb * 9 * sizeof *J->rot);
   J->colcount = (sunindextype *)malloc((size_t)(G->nv + 1) * sizeof *J->colcount);
-  if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->colcount == NULL) {
+  if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->injoint == NULL ||
+      J->rot == NULL || J->colcount == NULL) {
     LGNJoints_Destroy(&J);
     return NULL;
   }
@@ -208,6 +225,8 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   free(J->qoff);
   free(J->voff);
   free(J->se3);
+  free(J->injoint);
+  free(J->rot);
   free(J->prim);
   free(J->trow);
   free(J->tcol);
@@ -259,6 +278,8 @@ static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
   memcpy(p->w, w, sizeof p->w);
   p->row = J->m;
   J->m  += kind == PRIM_POINT ? 3 : 1;
+  if (a != LGN_GROUND) J->injoint[a] = SUNTRUE;
+  if (b != LGN_GROUND) J->injoint[b] = SUNTRUE;
   FreeStiffnessStructure(J); /* the coupling changed */
   return LGN_SUCCESS;
 }
@@ -354,6 +375,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   f  = N_VGetArrayPointer(phi);
+  FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, NULL, &A);
@@ -477,6 +499,7 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
     }
     J->tcap = nnz;
   }
+  FillRotations(J, N_VGetArrayPointer(q));
   nt = Triplets(J, N_VGetArrayPointer(q));
 
   if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
@@ -545,6 +568,7 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
   zd = N_VGetArrayPointer(z);
+  FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, vd, &A);
@@ -752,6 +776,7 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
   if (J->m == 0) return LGN_SUCCESS;
   qd = N_VGetArrayPointer(q);
   ld = N_VGetArrayPointer(lambda);
+  FillRotations(J, qd);
   memset(J->kblk, 0, (size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
   for (k = 0; k < J->nprim; k++) PrimitiveStiffness(J, J->prim + k, qd, ld + J->prim[k].row);
 
