@@ -14,6 +14,10 @@
  * The curvature Z(q)(v,v) is the second time derivative of Phi along the
  * flow with constant body velocities, and the geometric stiffness is
  * d/dq (B^T lambda) along the group; the formulas are at each routine.
+ * Every evaluation first computes the rotation of each jointed body once
+ * (FillRotations). The pattern of a sparse B depends only on the joints: it
+ * is built on the first call and kept, and later calls write the values
+ * straight to their positions.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -43,17 +47,23 @@ struct LGNJointsRec {
   int nb;                     /* bodies                                    */
   sunindextype *qoff, *voff;  /* offsets of each body                      */
   sunbooleantype *se3;        /* body on SE(3) (else R^3 x SO(3))          */
+  sunbooleantype *injoint;    /* body appears in a primitive               */
+  sunrealtype *rot;           /* 9 per body: R(q) of the current call      */
   Primitive *prim;
   int nprim, cap;
   sunindextype m;
-  /* triplets of B in row order (columns sorted within a row) */
-  sunindextype *trow, *tcol, tcap;
-  sunrealtype *tval;
-  sunindextype *colcount;     /* nv + 1 scratch for CSC output             */
+  sunindextype nnzB;          /* entries of B (explicit zeros included)    */
+  /* pattern of the sparse B in format bfmt (NO_PATTERN: none yet), and the
+   * position in its data of each entry in generation order */
+  int bfmt;
+  sunindextype *bptr, *bind;  /* index pointers, index values              */
+  sunindextype *bpos;         /* nnzB                                      */
   /* geometric stiffness: per body, the sorted list of coupled bodies */
   int *kptr, *kbody;          /* nb + 1, kptr[nb]                          */
   sunrealtype *kblk;          /* 36 per (body, coupled body), column-major */
 };
+
+#define NO_PATTERN (-1) /* bfmt before the first sparse B and after an Add */
 
 #define JERR(J, code, ...)                                                  \
   do {                                                                      \
@@ -105,29 +115,41 @@ static void Mul3(const sunrealtype *A, const sunrealtype *B, sunrealtype *C)
       C[i + 3 * j] = A[i] * B[3 * j] + A[i + 3] * B[3 * j + 1] + A[i + 6] * B[3 * j + 2];
 }
 
-/* Position and rotation of a body (identity for the ground). */
+/* R(q) of every body that appears in a joint, once per evaluation: a chain
+ * body is in two joints, and each joint reads it in several primitives. */
+static void FillRotations(struct LGNJointsRec *J, const sunrealtype *q)
+{
+  int k;
+  for (k = 0; k < J->nb; k++)
+    if (J->injoint[k]) LGNQuaternionToRotation(q + J->qoff[k] + 3, J->rot + 9 * (size_t)k);
+}
+
+/* Position and rotation of a body (identity for the ground), pointing into
+ * q and the rotations of FillRotations. */
 typedef struct {
-  sunrealtype x[3], R[9];
+  const sunrealtype *x, *R;
   const sunrealtype *v;   /* body velocity (u or U, Omega), NULL: none */
   sunbooleantype se3, ground;
   sunindextype voff;
 } Pose;
 
+static const sunrealtype Origin[3]   = {0, 0, 0};
+static const sunrealtype Identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+
 static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
                     const sunrealtype *v, Pose *P)
 {
-  int i;
   P->ground = (k == LGN_GROUND);
   if (P->ground) {
-    for (i = 0; i < 9; i++) P->R[i] = (i % 4 == 0) ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
-    P->x[0] = P->x[1] = P->x[2] = SUN_RCONST(0.0);
+    P->x    = Origin;
+    P->R    = Identity;
     P->v    = NULL;
     P->se3  = SUNFALSE;
     P->voff = -1;
     return;
   }
-  for (i = 0; i < 3; i++) P->x[i] = q[J->qoff[k] + i];
-  LGNQuaternionToRotation(q + J->qoff[k] + 3, P->R);
+  P->x    = q + J->qoff[k];
+  P->R    = J->rot + 9 * (size_t)k;
   P->v    = v != NULL ? v + J->voff[k] : NULL;
   P->se3  = J->se3[k];
   P->voff = J->voff[k];
@@ -181,13 +203,25 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
   J->qoff = (sunindextype *)malloc((size_t)nb * sizeof *J->qoff);
   J->voff = (sunindextype *)malloc((size_t)nb * sizeof *J->voff);
   J->se3  = (sunbooleantype *)malloc((size_t)nb * sizeof *J->se3);
-  J->colcount = (sunindextype *)malloc((size_t)(G->nv + 1) * sizeof *J->colcount);
-  if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->colcount == NULL) {
+  J->injoint  = (sunbooleantype *)calloc((size_t)nb, sizeof *J->injoint);
+  J->rot      = (sunrealtype *)malloc((size_t)nb * 9 * sizeof *J->rot);
+  J->bfmt     = NO_PATTERN;
+  if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->injoint == NULL ||
+      J->rot == NULL) {
     LGNJoints_Destroy(&J);
     return NULL;
   }
   CountBodies(G, 0, 0, J, 0);
   return J;
+}
+
+static void FreeJacobianPattern(struct LGNJointsRec *J)
+{
+  free(J->bptr);
+  free(J->bind);
+  free(J->bpos);
+  J->bptr = J->bind = J->bpos = NULL;
+  J->bfmt = NO_PATTERN;
 }
 
 static void FreeStiffnessStructure(struct LGNJointsRec *J)
@@ -204,15 +238,14 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   struct LGNJointsRec *J;
   if (Jp == NULL || *Jp == NULL) return;
   J = *Jp;
+  FreeJacobianPattern(J);
   FreeStiffnessStructure(J);
   free(J->qoff);
   free(J->voff);
   free(J->se3);
+  free(J->injoint);
+  free(J->rot);
   free(J->prim);
-  free(J->trow);
-  free(J->tcol);
-  free(J->tval);
-  free(J->colcount);
   free(J);
   *Jp = NULL;
 }
@@ -257,8 +290,13 @@ static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
   p->b    = b;
   memcpy(p->u, u, sizeof p->u);
   memcpy(p->w, w, sizeof p->w);
-  p->row = J->m;
-  J->m  += kind == PRIM_POINT ? 3 : 1;
+  p->row   = J->m;
+  J->m    += kind == PRIM_POINT ? 3 : 1;
+  /* per body in B: 3 rows x 6 columns (POINT), 1 row x 3 columns (PERP) */
+  J->nnzB += (kind == PRIM_POINT ? 18 : 3) * ((a != LGN_GROUND) + (b != LGN_GROUND));
+  if (a != LGN_GROUND) J->injoint[a] = SUNTRUE;
+  if (b != LGN_GROUND) J->injoint[b] = SUNTRUE;
+  FreeJacobianPattern(J);    /* the pattern of B changed */
   FreeStiffnessStructure(J); /* the coupling changed */
   return LGN_SUCCESS;
 }
@@ -354,6 +392,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   f  = N_VGetArrayPointer(phi);
+  FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, NULL, &A);
@@ -368,20 +407,93 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   return LGN_SUCCESS;
 }
 
-/* Append one triplet. */
-#define TRIP(r, c, v)          \
-  do {                         \
-    J->trow[nt] = (r);         \
-    J->tcol[nt] = (c);         \
-    J->tval[nt] = (v);         \
-    nt++;                      \
-  } while (0)
+/* ---------------------------------------------------------------------------
+ * Jacobian B(q)
+ *
+ * One generator, JacobianEntries, puts the entries of B in a fixed order
+ * into a Sink: once to record their rows and columns, from which the sparse
+ * pattern and each entry's position in the data are built and kept; then
+ * at every call to write the values, straight to their positions in a
+ * sparse B or to a dense B.
+ * ------------------------------------------------------------------------ */
 
-/* The entries of B in row order, columns ascending within each row. */
-static sunindextype Triplets(struct LGNJointsRec *J, const sunrealtype *qd)
+typedef enum {
+  SINK_PATTERN, /* record row and column of each entry */
+  SINK_VALUES,  /* value of entry n to val[pos[n]]     */
+  SINK_DENSE    /* value to B(row, column)             */
+} SinkKind;
+
+typedef struct {
+  SinkKind kind;
+  sunindextype n;          /* entries put so far                      */
+  sunindextype *row, *col; /* SINK_PATTERN                            */
+  sunrealtype *val;        /* SINK_VALUES: data of the sparse B       */
+  const sunindextype *pos;
+  SUNMatrix B;             /* SINK_DENSE                              */
+} Sink;
+
+/* Put the entries (r, c + j) = x[j], j < len. */
+static void PutRow(Sink *s, sunindextype r, sunindextype c, const sunrealtype *x,
+                   int len)
 {
-  sunindextype nt = 0;
-  int k, i, j, side;
+  const sunindextype n = s->n;
+  int j;
+  switch (s->kind) {
+  case SINK_VALUES:
+    for (j = 0; j < len; j++) s->val[s->pos[n + j]] = x[j];
+    break;
+  case SINK_DENSE:
+    for (j = 0; j < len; j++) SM_ELEMENT_D(s->B, r, c + j) = x[j];
+    break;
+  case SINK_PATTERN:
+    for (j = 0; j < len; j++) {
+      s->row[n + j] = r;
+      s->col[n + j] = c + j;
+    }
+    break;
+  }
+  s->n = n + len;
+}
+
+/* The 3 x 6 block of a POINT primitive's rows at one body, row-major:
+ * sign [P, -R s~] (sign = 1 for body a, -1 for body b). (R s~)_ij is the
+ * sum over k of R_ik (s~)_kj in the order of Mul3, zero terms included, so
+ * that the rounding is that of the product. */
+static void PointBlock(const Pose *P, const sunrealtype *s, sunrealtype sign,
+                       sunrealtype *blk)
+{
+  sunrealtype sk[9];
+  int i, j;
+  Skew(s, sk);
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) {
+      const sunrealtype *r = P->R + 3 * i, *c = sk + 3 * j;
+      blk[6 * i + j] = sign * (P->se3 ? r[j] : (i == j ? SUN_RCONST(1.0) : SUN_RCONST(0.0)));
+      blk[6 * i + 3 + j] = (r[0] * c[0] + r[1] * c[1] + r[2] * c[2]) * -sign;
+    }
+}
+
+/* The 1 x 3 rotation parts of a PERP primitive: (e x R_a^T R_b c)^T at
+ * body a, (c x R_b^T R_a e)^T at body b. */
+static void PerpRows(const Pose *A, const Pose *B, const sunrealtype *e,
+                     const sunrealtype *c, sunrealtype g[2][3])
+{
+  sunrealtype t1[3], t2[3];
+  RotApply(B->R, c, t1);
+  RotApplyT(A->R, t1, t2);
+  Cross(e, t2, g[0]);
+  RotApply(A->R, e, t1);
+  RotApplyT(B->R, t1, t2);
+  Cross(c, t2, g[1]);
+}
+
+/* The entries of B (rotations from FillRotations) in generation order:
+ * primitives in order, so rows ascending, and columns ascending within each
+ * row. LGNJointsRec.nnzB of them. */
+static void JacobianEntries(const struct LGNJointsRec *J, const sunrealtype *qd,
+                            Sink *s)
+{
+  int k, i, side;
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
     Pose P[2];
@@ -392,63 +504,108 @@ static sunindextype Triplets(struct LGNJointsRec *J, const sunrealtype *qd)
     order[0] = (P[1].voff >= 0 && (P[0].voff < 0 || P[1].voff < P[0].voff)) ? 1 : 0;
     order[1] = 1 - order[0];
     if (p->kind == PRIM_POINT) {
-      /* rows: [P_a, -R_a s_a~] and [-P_b, R_b s_b~] */
-      sunrealtype S[2][9], RS[2][9], s[9], R[9];
-      for (side = 0; side < 2; side++) {
-        const sunrealtype sign = side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0);
-        for (i = 0; i < 3; i++)
-          for (j = 0; j < 3; j++) R[i + 3 * j] = P[side].R[3 * i + j];
-        Skew(side == 0 ? p->u : p->w, s);
-        Mul3(R, s, RS[side]);
-        for (i = 0; i < 9; i++) {
-          RS[side][i] *= -sign;
-          S[side][i] = sign * (P[side].se3 ? R[i] : (i % 4 == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0)));
-        }
-      }
+      sunrealtype blk[2][18];
+      for (side = 0; side < 2; side++)
+        if (!P[side].ground)
+          PointBlock(&P[side], side == 0 ? p->u : p->w,
+                     side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0), blk[side]);
       for (i = 0; i < 3; i++)
         for (side = 0; side < 2; side++) {
           const int o = order[side];
-          if (P[o].ground) continue;
-          for (j = 0; j < 3; j++) TRIP(p->row + i, P[o].voff + j, S[o][i + 3 * j]);
-          for (j = 0; j < 3; j++) TRIP(p->row + i, P[o].voff + 3 + j, RS[o][i + 3 * j]);
+          if (!P[o].ground) PutRow(s, p->row + i, P[o].voff, blk[o] + 6 * i, 6);
         }
     } else {
-      /* (e x R_a^T R_b c)^T and (c x R_b^T R_a e)^T on the rotations */
-      sunrealtype g[2][3], t1[3], t2[3];
-      RotApply(P[1].R, p->w, t1);
-      RotApplyT(P[0].R, t1, t2);
-      Cross(p->u, t2, g[0]);
-      RotApply(P[0].R, p->u, t1);
-      RotApplyT(P[1].R, t1, t2);
-      Cross(p->w, t2, g[1]);
+      sunrealtype g[2][3];
+      PerpRows(&P[0], &P[1], p->u, p->w, g);
       for (side = 0; side < 2; side++) {
         const int o = order[side];
-        if (P[o].ground) continue;
-        for (j = 0; j < 3; j++) TRIP(p->row, P[o].voff + 3 + j, g[o][j]);
+        if (!P[o].ground) PutRow(s, p->row, P[o].voff + 3, g[o], 3);
       }
     }
   }
-  return nt;
 }
-#undef TRIP
 
-sunindextype LGNJoints_JacobianNnz(LGNJoints J)
+/* Compress nnz entries (key, other) into n lists by key: ptr (n + 1), ind
+ * and, for entry k, its position pos[k]. A stable counting sort, so the
+ * entries of each list keep their order. next: n scratch. */
+static void CountingSort(sunindextype nnz, const sunindextype *key,
+                         const sunindextype *other, sunindextype n,
+                         sunindextype *ptr, sunindextype *ind,
+                         sunindextype *pos, sunindextype *next)
 {
-  sunindextype nnz = 0;
-  int k;
-  if (J == NULL) return 0;
-  for (k = 0; k < J->nprim; k++) {
-    const Primitive *p = J->prim + k;
-    const int nbod = (p->a != LGN_GROUND) + (p->b != LGN_GROUND);
-    nnz += p->kind == PRIM_POINT ? 18 * nbod : 3 * nbod;
+  sunindextype k;
+  memset(ptr, 0, (size_t)(n + 1) * sizeof *ptr);
+  for (k = 0; k < nnz; k++) ptr[key[k] + 1]++;
+  for (k = 0; k < n; k++) ptr[k + 1] += ptr[k];
+  memcpy(next, ptr, (size_t)n * sizeof *next);
+  for (k = 0; k < nnz; k++) {
+    const sunindextype d = next[key[k]]++;
+    ind[d] = other[k];
+    pos[k] = d;
   }
-  return nnz;
 }
+
+/* Build and keep the pattern of the sparse B in format fmt (CSC_MAT: by
+ * column, rows ascending; CSR_MAT: by row, columns ascending) and the
+ * positions of the generated entries. Needs the rotations (the values are
+ * generated along, unused). */
+static int BuildJacobianPattern(struct LGNJointsRec *J, const sunrealtype *qd, int fmt)
+{
+  const sunindextype nnz = J->nnzB, n = fmt == CSC_MAT ? J->G->nv : J->m;
+  const size_t len = (size_t)(nnz > 0 ? nnz : 1) * sizeof(sunindextype);
+  Sink s = {SINK_PATTERN, 0, NULL, NULL, NULL, NULL, NULL};
+  sunindextype *next;
+  FreeJacobianPattern(J);
+  J->bptr = (sunindextype *)malloc((size_t)(n + 1) * sizeof(sunindextype));
+  J->bind = (sunindextype *)malloc(len);
+  J->bpos = (sunindextype *)malloc(len);
+  s.row   = (sunindextype *)malloc(len);
+  s.col   = (sunindextype *)malloc(len);
+  next    = (sunindextype *)malloc((size_t)(n + 1) * sizeof(sunindextype));
+  if (J->bptr != NULL && J->bind != NULL && J->bpos != NULL && s.row != NULL &&
+      s.col != NULL && next != NULL) {
+    JacobianEntries(J, qd, &s);
+    if (fmt == CSC_MAT) CountingSort(nnz, s.col, s.row, n, J->bptr, J->bind, J->bpos, next);
+    else CountingSort(nnz, s.row, s.col, n, J->bptr, J->bind, J->bpos, next);
+    J->bfmt = fmt;
+  }
+  free(s.row);
+  free(s.col);
+  free(next);
+  if (J->bfmt != fmt) {
+    FreeJacobianPattern(J);
+    return LGN_MEM_FAIL;
+  }
+  return LGN_SUCCESS;
+}
+
+/* Sparse B: the kept pattern, copied in whole (the caller may have cleared
+ * B, as Lignum does before an LGNConstrJacFn), and the values written
+ * straight to their positions. */
+static int SparseJacobian(struct LGNJointsRec *J, const sunrealtype *qd, SUNMatrix B)
+{
+  const int fmt = SUNSparseMatrix_SparseType(B);
+  const sunindextype n = fmt == CSC_MAT ? J->G->nv : J->m;
+  Sink s = {SINK_VALUES, 0, NULL, NULL, NULL, NULL, NULL};
+  if ((J->bfmt != fmt && BuildJacobianPattern(J, qd, fmt) != LGN_SUCCESS) ||
+      (SUNSparseMatrix_NNZ(B) < J->nnzB && SUNSparseMatrix_Reallocate(B, J->nnzB) != 0)) {
+    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  memcpy(SUNSparseMatrix_IndexPointers(B), J->bptr, (size_t)(n + 1) * sizeof *J->bptr);
+  memcpy(SUNSparseMatrix_IndexValues(B), J->bind, (size_t)J->nnzB * sizeof *J->bind);
+  s.val = SUNSparseMatrix_Data(B);
+  s.pos = J->bpos;
+  JacobianEntries(J, qd, &s);
+  return LGN_SUCCESS;
+}
+
+sunindextype LGNJoints_JacobianNnz(LGNJoints J) { return J != NULL ? J->nnzB : 0; }
 
 int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
 {
   const sunindextype nv = J != NULL ? J->G->nv : 0;
-  sunindextype nnz, nt, k;
+  const sunrealtype *qd;
   int flag;
   if (J == NULL) return LGN_ILL_INPUT;
   flag = CheckVec(J, q, J->G->nq, "q", __func__);
@@ -463,58 +620,15 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
          __func__, (long long)J->m, (long long)nv);
     return LGN_ILL_INPUT;
   }
-  nnz = LGNJoints_JacobianNnz(J);
-  if (nnz > J->tcap) {
-    sunindextype *r = (sunindextype *)realloc(J->trow, (size_t)nnz * sizeof *r);
-    sunindextype *c = r != NULL ? (sunindextype *)realloc(J->tcol, (size_t)nnz * sizeof *c) : NULL;
-    sunrealtype *v  = c != NULL ? (sunrealtype *)realloc(J->tval, (size_t)nnz * sizeof *v) : NULL;
-    if (r != NULL) J->trow = r;
-    if (c != NULL) J->tcol = c;
-    if (v != NULL) J->tval = v;
-    if (v == NULL) {
-      JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
-      return LGN_MEM_FAIL;
-    }
-    J->tcap = nnz;
-  }
-  nt = Triplets(J, N_VGetArrayPointer(q));
-
+  qd = N_VGetArrayPointer(q);
+  FillRotations(J, qd);
   if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
-    for (k = 0; k < nt; k++) SM_ELEMENT_D(B, J->trow[k], J->tcol[k]) = J->tval[k];
+    Sink s = {SINK_DENSE, 0, NULL, NULL, NULL, NULL, NULL};
+    s.B = B;
+    JacobianEntries(J, qd, &s);
     return LGN_SUCCESS;
   }
-  if (SUNSparseMatrix_NNZ(B) < nt && SUNSparseMatrix_Reallocate(B, nt) != 0) {
-    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
-    return LGN_MEM_FAIL;
-  }
-  {
-    sunindextype *ptr = SUNSparseMatrix_IndexPointers(B);
-    sunindextype *ind = SUNSparseMatrix_IndexValues(B);
-    sunrealtype *val  = SUNSparseMatrix_Data(B);
-    if (SUNSparseMatrix_SparseType(B) == CSR_MAT) {
-      /* triplets are in row order already */
-      memset(ptr, 0, (size_t)(J->m + 1) * sizeof *ptr);
-      for (k = 0; k < nt; k++) {
-        ptr[J->trow[k] + 1]++;
-        ind[k] = J->tcol[k];
-        val[k] = J->tval[k];
-      }
-      for (k = 0; k < J->m; k++) ptr[k + 1] += ptr[k];
-    } else {
-      /* stable counting sort by column keeps rows ascending */
-      sunindextype *next = J->colcount;
-      memset(ptr, 0, (size_t)(nv + 1) * sizeof *ptr);
-      for (k = 0; k < nt; k++) ptr[J->tcol[k] + 1]++;
-      for (k = 0; k < nv; k++) ptr[k + 1] += ptr[k];
-      memcpy(next, ptr, (size_t)nv * sizeof *next);
-      for (k = 0; k < nt; k++) {
-        sunindextype d = next[J->tcol[k]]++;
-        ind[d] = J->trow[k];
-        val[d] = J->tval[k];
-      }
-    }
-  }
-  return LGN_SUCCESS;
+  return SparseJacobian(J, qd, B);
 }
 
 /* Second time derivative of R y along constant body velocities:
@@ -545,6 +659,7 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
   zd = N_VGetArrayPointer(z);
+  FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, vd, &A);
@@ -752,6 +867,7 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
   if (J->m == 0) return LGN_SUCCESS;
   qd = N_VGetArrayPointer(q);
   ld = N_VGetArrayPointer(lambda);
+  FillRotations(J, qd);
   memset(J->kblk, 0, (size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
   for (k = 0; k < J->nprim; k++) PrimitiveStiffness(J, J->prim + k, qd, ld + J->prim[k].row);
 

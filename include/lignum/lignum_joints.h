@@ -19,6 +19,9 @@
  *   revolute:   spherical and (R_a e_i) . (R_b c) = 0, i = 1, 2, with
  *               e_1, e_2 perpendicular to axis_a, c = axis_b          (5 rows)
  *   universal:  spherical and (R_a axis_a) . (R_b axis_b) = 0         (4 rows)
+ *
+ * A joint set keeps workspace for its evaluations (the bodies' rotations, the
+ * pattern of the sparse B): evaluate one set from one thread at a time.
  * ---------------------------------------------------------------------------*/
 
 #ifndef LIGNUM_JOINTS_H
@@ -93,7 +96,10 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
  * the joints' columns are left alone, so zero it first: Lignum does before
  * calling an LGNConstrJacFn). A sparse B (CSC or CSR) is overwritten with
  * the whole pattern, reallocated if it has fewer than
- * LGNJoints_JacobianNnz(J) entries.
+ * LGNJoints_JacobianNnz(J) entries. The pattern is built on the first sparse
+ * call and kept in J (built again after a joint is added or when B's format
+ * differs from the last one); every call copies it into B and writes the
+ * values in place.
  */
 int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
 

@@ -10,6 +10,10 @@
  *   Z(q)(v, v)   = d/de B(q o exp(e v)) v
  *   K w          = d/de B(q o exp(e w))^T lambda
  * and the sparse B and K (CSC and CSR) against the dense ones, entry by entry.
+ * The sparse B keeps its pattern between calls: it is checked at new
+ * configurations on matrices left empty and garbled between calls, CSC and
+ * CSR in turn with the same joints, after joints are added, and on
+ * matrices too small for it.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -32,6 +36,18 @@ static void Check(const char *what, double err, double tol)
 
 static double Rand(void) { return 2.0 * rand() / (double)RAND_MAX - 1.0; }
 
+/* Random positions and unit quaternions of nb bodies (7 coordinates each). */
+static void RandomConfiguration(int nb, double *qd)
+{
+  int k, i;
+  for (k = 0; k < nb; k++) {
+    double p[4], n = 0;
+    for (i = 0; i < 3; i++) qd[7 * k + i] = Rand();
+    for (i = 0; i < 4; i++) { p[i] = Rand(); n += p[i] * p[i]; }
+    for (i = 0; i < 4; i++) qd[7 * k + 3 + i] = p[i] / sqrt(n);
+  }
+}
+
 /* y = A x for dense A, or A^T x. */
 static void DenseApply(SUNMatrix A, const double *x, double *y, int transpose)
 {
@@ -44,7 +60,7 @@ static void DenseApply(SUNMatrix A, const double *x, double *y, int transpose)
     }
 }
 
-/* max |S - D| over all entries, S sparse. */
+/* max |S - D| over all entries, S sparse (a NaN counts as infinite). */
 static double SparseVsDense(SUNMatrix S, SUNMatrix D)
 {
   sunindextype k, p, n;
@@ -58,10 +74,50 @@ static double SparseVsDense(SUNMatrix S, SUNMatrix D)
       sunindextype o = SUNSparseMatrix_IndexValues(S)[p];
       SM_ELEMENT_D(T, csc ? o : k, csc ? k : o) += SUNSparseMatrix_Data(S)[p];
     }
-  for (k = 0; k < SM_ROWS_D(D) * SM_COLUMNS_D(D); k++)
-    err = fmax(err, fabs(SM_DATA_D(T)[k] - SM_DATA_D(D)[k]));
+  for (k = 0; k < SM_ROWS_D(D) * SM_COLUMNS_D(D); k++) {
+    const double e = fabs(SM_DATA_D(T)[k] - SM_DATA_D(D)[k]);
+    err = fmax(err, isnan(e) ? HUGE_VAL : e);
+  }
   SUNMatDestroy(T);
   return err;
+}
+
+/* Leave a sparse matrix as a caller may between calls: no entries (index
+ * pointers zeroed, as Lignum does before an LGNConstrJacFn), wrong but
+ * valid indices and NaN data in all of its capacity. */
+static void Garble(SUNMatrix S)
+{
+  const sunindextype n = SUNSparseMatrix_SparseType(S) == CSC_MAT
+                             ? SUNSparseMatrix_Rows(S) : SUNSparseMatrix_Columns(S);
+  sunindextype k;
+  for (k = 0; k <= SUNSparseMatrix_NP(S); k++) SUNSparseMatrix_IndexPointers(S)[k] = 0;
+  for (k = 0; k < SUNSparseMatrix_NNZ(S); k++) {
+    SUNSparseMatrix_IndexValues(S)[k] = (7 * k + 3) % n;
+    SUNSparseMatrix_Data(S)[k] = NAN;
+  }
+}
+
+/* max |S - D| of the sparse B of J at q against the dense one D, S first
+ * garbled; -1 if S does not hold exactly LGNJoints_JacobianNnz(J) entries
+ * or has less room. */
+static double SparseJacobianError(LGNJoints J, N_Vector q, SUNMatrix S, SUNMatrix D)
+{
+  const sunindextype nnz = LGNJoints_JacobianNnz(J);
+  SUNMatZero(D);
+  if (LGNJoints_Jacobian(J, q, D) != LGN_SUCCESS) return -1;
+  Garble(S);
+  if (LGNJoints_Jacobian(J, q, S) != LGN_SUCCESS ||
+      SUNSparseMatrix_IndexPointers(S)[SUNSparseMatrix_NP(S)] != nnz ||
+      SUNSparseMatrix_NNZ(S) < nnz)
+    return -1;
+  return SparseVsDense(S, D);
+}
+
+/* Check("...", err, 0) of a SparseJacobianError maximum, failing on -1. */
+static void CheckExact(const char *what, double err, int bad)
+{
+  if (bad) printf("%s: wrong number of entries or call failed\n", what);
+  Check(what, bad ? HUGE_VAL : err, 0.0);
 }
 
 int main(void)
@@ -118,12 +174,7 @@ int main(void)
   srand(12345);
   for (trial = 0; trial < 5; trial++) {
     double *qd = N_VGetArrayPointer(q);
-    for (k = 0; k < 4; k++) {
-      double p[4], n = 0;
-      for (i = 0; i < 3; i++) qd[7 * k + i] = Rand();
-      for (i = 0; i < 4; i++) { p[i] = Rand(); n += p[i] * p[i]; }
-      for (i = 0; i < 4; i++) qd[7 * k + 3 + i] = p[i] / sqrt(n);
-    }
+    RandomConfiguration(4, qd);
     for (i = 0; i < nv; i++) { N_VGetArrayPointer(v)[i] = 3 * Rand(); w[i] = Rand(); }
     for (i = 0; i < m; i++) N_VGetArrayPointer(lam)[i] = 10 * Rand();
 
@@ -190,6 +241,65 @@ int main(void)
     Check(type == 0 ? "sparse CSC K = dense K" : "sparse CSR K = dense K",
           SparseVsDense(S, K), 0.0);
     SUNMatDestroy(S);
+  }
+
+  /* The kept pattern: CSC and CSR in turn with the same joints, at new
+   * configurations, each call on a garbled matrix (the first ones with
+   * room for one entry). */
+  {
+    SUNMatrix Sc = SUNSparseMatrix(m, nv, 1, CSC_MAT, ctx);
+    SUNMatrix Sr = SUNSparseMatrix(m, nv, 1, CSR_MAT, ctx);
+    double errc = 0, errr = 0, e;
+    int bad = 0;
+    for (trial = 0; trial < 4; trial++) {
+      RandomConfiguration(4, N_VGetArrayPointer(q));
+      e = SparseJacobianError(J, q, Sc, B);
+      bad += e < 0;
+      errc = fmax(errc, e);
+      e = SparseJacobianError(J, q, Sr, B);
+      bad += e < 0;
+      errr = fmax(errr, e);
+    }
+    CheckExact("kept CSC B = dense B (4 q, garbled)", errc, bad);
+    CheckExact("kept CSR B = dense B (4 q, garbled)", errr, bad);
+    SUNMatDestroy(Sc);
+    SUNMatDestroy(Sr);
+  }
+
+  /* Joints added after a sparse B: the next B has the new pattern, in a
+   * matrix with room for the old one only. */
+  for (type = 0; type < 2; type++) {
+    const int st = type == 0 ? CSC_MAT : CSR_MAT;
+    LGNJoints J2 = LGNJoints_Create(NULL, G);
+    SUNMatrix S2, D2;
+    sunindextype m2, nnz2;
+    double err, e;
+    int bad = 0;
+    LGNJoints_AddRevolute(J2, 0, pa, axy, 1, pb, ax);
+    LGNJoints_AddSpherical(J2, 2, pb, 3, pa);
+    m2   = LGNJoints_NumConstraints(J2);
+    nnz2 = LGNJoints_JacobianNnz(J2);
+    S2 = SUNSparseMatrix(m2, nv, nnz2, st, ctx);
+    D2 = SUNDenseMatrix(m2, nv, ctx);
+    err = SparseJacobianError(J2, q, S2, D2);
+    bad += err < 0;
+    SUNMatDestroy(S2);
+    SUNMatDestroy(D2);
+    /* new rows, and columns of body 2 between those of 1 and 3 */
+    LGNJoints_AddUniversal(J2, 3, pa, ax, 1, pb, ay);
+    LGNJoints_AddSpherical(J2, LGN_GROUND, pb, 2, pa);
+    m2 = LGNJoints_NumConstraints(J2);
+    S2 = SUNSparseMatrix(m2, nv, nnz2, st, ctx);
+    D2 = SUNDenseMatrix(m2, nv, ctx);
+    RandomConfiguration(4, N_VGetArrayPointer(q));
+    e = SparseJacobianError(J2, q, S2, D2);
+    bad += e < 0 || LGNJoints_JacobianNnz(J2) != nnz2 + (36 + 6) + 18;
+    err = fmax(err, e);
+    CheckExact(type == 0 ? "CSC B after adding joints = dense B"
+                         : "CSR B after adding joints = dense B", err, bad);
+    SUNMatDestroy(S2);
+    SUNMatDestroy(D2);
+    LGNJoints_Destroy(&J2);
   }
 
   LGNJoints_Destroy(&J);
