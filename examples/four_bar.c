@@ -126,7 +126,7 @@ int main(int argc, char **argv)
   RigidRunResult res[3] = {{0}, {0}, {0}};
   RigidSystem *sys;
   SUNContext ctx;
-  double len[3], angle0, same_tol;
+  double len[3], angle0, same_tol, phi_tol;
   int i, s, status = 0, index3;
 
   rigid_default_run_options(&opt);
@@ -148,6 +148,12 @@ int main(int argc, char **argv)
    * quotient taken column by column (dense) or by column colours (sparse):
    * then the solutions agree to the Newton tolerance. */
   index3   = opt.constraints == LGN_CONSTR_INDEX3;
+  /* |Phi| at index 3: full Newton ends far inside its tolerance (quadratic
+   * convergence), so Phi is at round-off. Modified Newton's last correction
+   * only satisfies the stop test, |delta sigma| <= h (atol + rtol |v|)
+   * ~ 1e-11 (defaults 1e-8, |v| < 1 m/s or rad/s here); B has entries of
+   * order 1, so Phi is of that order. Index 2 lets Phi drift. */
+  phi_tol = !index3 ? 1e-4 : (opt.newton == LGN_NEWTON_MODIFIED ? 1e-10 : 1e-12);
   same_tol = index3 ? 1e-10 : 1e-8;
 
   printf("four-bar (RRSU) on %s, %s, index %d, h = %g, t in [0, %g], %d constraints\n",
@@ -169,7 +175,7 @@ int main(int argc, char **argv)
            plane, turn, res[s].energy0, res[s].energy,
            res[s].max_drift / fabs(res[s].energy0));
     /* index 2 lets Phi drift (only B v = 0 is enforced) */
-    if (flag != LGN_SUCCESS || !(res[s].max_phi < (index3 ? 1e-12 : 1e-4)) || !(plane < 1e-10) ||
+    if (flag != LGN_SUCCESS || !(res[s].max_phi < phi_tol) || !(plane < 1e-10) ||
         !(fabs(turn) > 1e-3 * fmin(1.0, opt.t_end)) ||
         (opt.method == 0 && !(res[s].max_drift < 1e-3 * fabs(res[s].energy0))))
       status = 1;
