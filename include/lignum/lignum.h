@@ -368,7 +368,8 @@ int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
 int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
 /** Number of steps whose Newton iteration was accepted with the
  *  configuration converged and the multiplier corrections stalled at
- *  roundoff level (no longer contracting; see doc/user-guide.md). */
+ *  roundoff level (no longer contracting, or within the level of the last
+ *  such stall at this step size; see doc/user-guide.md). */
 int LGNGetNumNewtonStalls(void *lgn_mem, long int *nstalls);
 /** Number of patterns of the sparse iteration matrix built (each followed
  *  by a symbolic analysis in KLU); 0 for dense matrices. */
