@@ -165,7 +165,9 @@ static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
 /* Weighted RMS norm of the Newton correction in the variables of the spec's
  * stop test (numerics.md §2): xi = (sigma/h, h lambda), weights
  * 1/(atol + rtol |xi_i| + floor_i). The multiplier part of the correction
- * arrives scaled, dmu = beta h^2 dlambda.
+ * arrives scaled, dmu = beta h^2 dlambda. The configuration and multiplier
+ * parts (same normalisation, norm^2 = sigma part^2 + lambda part^2) go to
+ * *norm_sigma and *norm_lambda.
  * The floors are the roundoff level of the iteration: the configuration is
  * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
  * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
@@ -174,14 +176,15 @@ static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
 static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
                                   const sunrealtype *delta,
                                   const sunrealtype *dmu,
-                                  sunrealtype *norm_sigma)
+                                  sunrealtype *norm_sigma,
+                                  sunrealtype *norm_lambda)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype *q1 = lgnData(mem->q1);
   sunrealtype qscale = SUN_RCONST(1.0), roundoff, floor_sigma, floor_lambda;
-  sunrealtype sum = SUN_RCONST(0.0), w;
+  sunrealtype sum = SUN_RCONST(0.0), sum_lambda = SUN_RCONST(0.0), w;
 
   for (i = 0; i < mem->nq; i++) qscale = SUNMAX(qscale, fabs(q1[i]));
   roundoff     = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
@@ -196,9 +199,10 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
   for (i = 0; i < m; i++) {
     w = (h * dmu[i] / c->scale) /
         (atol + rtol * fabs(h * lambda1[i]) + floor_lambda);
-    sum += w * w;
+    sum_lambda += w * w;
   }
-  return sqrt(sum / (sunrealtype)(nv + m));
+  *norm_lambda = sqrt(sum_lambda / (sunrealtype)(nv + m));
+  return sqrt((sum + sum_lambda) / (sunrealtype)(nv + m));
 }
 
 /* Apply a Newton correction: sigma += delta, sigma_dot += gamma' delta,
@@ -309,7 +313,7 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
     setup = !modified;
 
     sol  = lgnData(mem->sol); /* (delta, dmu) */
-    norm = CorrectionNorm(mem, c, sol, sol + nv, &norm_sigma);
+    norm = CorrectionNorm(mem, c, sol, sol + nv, &norm_sigma, &norm_lambda);
     if (!isfinite(norm)) break;
     /* stalled multipliers: the configuration has converged but the
      * multiplier corrections have stopped contracting. At index 3 the
@@ -322,7 +326,6 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
               norm > SUN_RCONST(1.0) && norm > SUN_RCONST(0.5) * norm_prev;
     /* ... or, from the second iteration on, they are already down to the
      * noise level of the last stall at this step size */
-    norm_lambda = sqrt(SUNMAX(norm * norm - norm_sigma * norm_sigma, SUN_RCONST(0.0)));
     if (stalled) {
       mem->lambda_noise   = norm_lambda;
       mem->lambda_noise_h = c->h;
