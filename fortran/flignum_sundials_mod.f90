@@ -259,6 +259,16 @@ module flignum_sundials_mod
       type(c_ptr), value :: y, A, sunctx
     end function SUNLinSol_KLU
 
+    !> KLU's fill-reducing ordering: 0 AMD, 1 COLAMD (SUNDIALS' default),
+    !! 2 natural. AMD suits Lignum's iteration matrices, whose pattern is
+    !! symmetric.
+    integer(c_int) function SUNLinSol_KLUSetOrdering(S, ordering_choice) &
+        bind(c, name="SUNLinSol_KLUSetOrdering")
+      import :: c_ptr, c_int
+      type(c_ptr), value :: S
+      integer(c_int), value :: ordering_choice
+    end function SUNLinSol_KLUSetOrdering
+
     !> Re-initialise KLU after the sparsity pattern changed.
     integer(c_int) function SUNLinSol_KLUReInit(S, A, nnz, reinit_type) &
         bind(c, name="SUNLinSol_KLUReInit")

@@ -8,9 +8,10 @@
  *   [[ cM M Ta + cC C Tv + cK K T ,  B^T ],  [ B T_c (+ f D_q(Bv) T) , 0 ]]
  *
  * T, Tv, Ta are block diagonal (lgn_tangent.c), so column j of X T combines
- * the columns of X in j's block only. The pattern of A is the union of the
- * block-closed patterns of M, K, C and B (every block column of a
- * non-identity block gets the rows of all columns of its block) and B^T. It
+ * the columns of X in j's block only (lgnTangentColumnRange: in R^3 x SO(3)
+ * only those of its translation or its rotation part). The pattern of A is
+ * the union of the closed patterns of M, K, C and B (column j gets the rows
+ * of all the columns it combines) and B^T. It
  * is built at the first assembly and then fixed, so KLU refactors with the
  * symbolic analysis of the first factorisation. An entry outside the pattern
  * (a model whose pattern grows) extends it and triggers a new analysis, as
@@ -29,22 +30,10 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
-/* The column range whose entries column j of X T collects. */
-static void ClosureRange(LGNMem mem, sunindextype j, sunindextype *k0,
-                         sunindextype *k1)
-{
-  const int b = (int)mem->blk_of[j];
-  if (lgnBlockIsIdentity(mem, b)) {
-    *k0 = j;
-    *k1 = j + 1;
-  } else {
-    *k0 = mem->blk_voff[b];
-    *k1 = mem->blk_voff[b + 1];
-  }
-}
-
 /* Views of M, B and B^T as evaluated at the current iterate, and the
- * patterns of the difference-quotient tangents (built once). */
+ * patterns and colourings of the difference quotients (built once): for
+ * K_t or C_t when the model gives none, and at index 2 for D_q(B v), whose
+ * quotients use the colouring of K_t's pattern. */
 static int RefreshViews(LGNMem mem)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
@@ -55,7 +44,9 @@ static int RefreshViews(LGNMem mem)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return flag;
   }
-  if (!sp->have_dq_patterns && (mem->stiffness == NULL || mem->damping == NULL))
+  if (!sp->have_dq_patterns &&
+      (mem->stiffness == NULL || mem->damping == NULL ||
+       (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX2)))
     return lgnBuildDQPatterns(mem);
   return LGN_SUCCESS;
 }
@@ -101,7 +92,7 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
     cb.col = j;
     cb.cnt = 0;
     if (j < nv) {
-      ClosureRange(mem, j, &k0, &k1);
+      lgnTangentColumnRange(mem, j, &k0, &k1);
       for (k = k0; k < k1; k++) {
         for (s = 0; s < 3; s++)
           if (src[s]->colptr != NULL && src[s]->ncols == nv)
@@ -191,8 +182,7 @@ static void AddTimesTangent(LGNMem mem, Column *col, const LGNCsc *X,
   if (xval == NULL) xval = X->val;
   if (Tb != NULL && !lgnBlockIsIdentity(mem, b)) {
     Tb += mem->blk_toff[b];
-    k0 = o;
-    k1 = o + nb;
+    lgnTangentColumnRange(mem, j, &k0, &k1);
   } else {
     Tb = NULL;
   }

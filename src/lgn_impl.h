@@ -281,6 +281,30 @@ static inline sunbooleantype lgnBlockIsIdentity(const struct LGNMemRec *mem, int
   return mem->blk_group[b]->kind == LGN_GROUP_RN;
 }
 
+/* The columns k0 <= k < k1 of X whose entries column j of X T combines,
+ * for T (and Tv, Ta) block diagonal by leaves (lgn_tangent.c): j alone in
+ * an R^n leaf, where T = I, and in the translation part of an R^3 x SO(3)
+ * leaf, where T = diag(I3, T_SO3); the rotation part of that leaf; the
+ * whole leaf otherwise. */
+static inline void lgnTangentColumnRange(const struct LGNMemRec *mem,
+                                         sunindextype j, sunindextype *k0,
+                                         sunindextype *k1)
+{
+  const int b = (int)mem->blk_of[j];
+  const sunindextype o = mem->blk_voff[b];
+  if (lgnBlockIsIdentity(mem, b) ||
+      (mem->blk_group[b]->kind == LGN_GROUP_R3XSO3 && j < o + 3)) {
+    *k0 = j;
+    *k1 = j + 1;
+  } else if (mem->blk_group[b]->kind == LGN_GROUP_R3XSO3) {
+    *k0 = o + 3;
+    *k1 = o + 6;
+  } else {
+    *k0 = o;
+    *k1 = mem->blk_voff[b + 1];
+  }
+}
+
 static inline sunrealtype *lgnData(N_Vector x)
 {
   return N_VGetArrayPointer(x);

@@ -292,8 +292,11 @@ static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
   memcpy(p->w, w, sizeof p->w);
   p->row   = J->m;
   J->m    += kind == PRIM_POINT ? 3 : 1;
-  /* per body in B: 3 rows x 6 columns (POINT), 1 row x 3 columns (PERP) */
-  J->nnzB += (kind == PRIM_POINT ? 18 : 3) * ((a != LGN_GROUND) + (b != LGN_GROUND));
+  /* per body in B: 3 rows x 6 columns (POINT at an SE(3) body), 3 rows x
+   * (1 + 3) columns (POINT at an R^3 x SO(3) body, whose translation part
+   * is +-I), 1 row x 3 columns (PERP) */
+  if (a != LGN_GROUND) J->nnzB += kind == PRIM_PERP ? 3 : (J->se3[a] ? 18 : 12);
+  if (b != LGN_GROUND) J->nnzB += kind == PRIM_PERP ? 3 : (J->se3[b] ? 18 : 12);
   if (a != LGN_GROUND) J->injoint[a] = SUNTRUE;
   if (b != LGN_GROUND) J->injoint[b] = SUNTRUE;
   FreeJacobianPattern(J);    /* the pattern of B changed */
@@ -512,7 +515,13 @@ static void JacobianEntries(const struct LGNJointsRec *J, const sunrealtype *qd,
       for (i = 0; i < 3; i++)
         for (side = 0; side < 2; side++) {
           const int o = order[side];
-          if (!P[o].ground) PutRow(s, p->row + i, P[o].voff, blk[o] + 6 * i, 6);
+          if (P[o].ground) continue;
+          if (P[o].se3 || s->kind == SINK_DENSE) {
+            PutRow(s, p->row + i, P[o].voff, blk[o] + 6 * i, 6);
+          } else { /* R^3 x SO(3): the translation part is +-I */
+            PutRow(s, p->row + i, P[o].voff + i, blk[o] + 7 * i, 1);
+            PutRow(s, p->row + i, P[o].voff + 3, blk[o] + 6 * i + 3, 3);
+          }
         }
     } else {
       sunrealtype g[2][3];
@@ -829,14 +838,25 @@ static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
   }
 }
 
+/* The first row of block (row body r, column body c) in the sparse K. Only
+ * the rotation columns 3..5 of a block are nonzero (B^T lambda does not
+ * depend on the translations), and only its rows 3..5, except in an SE(3)
+ * body's own block, where the point rows' R^T lambda adds rows 0..2. */
+static int StiffnessFirstRow(const struct LGNJointsRec *J, int r, int c)
+{
+  return r == c && J->se3[r] ? 0 : 3;
+}
+
 sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
 {
   if (J == NULL) return 0;
   if (J->kptr == NULL && BuildStiffnessStructure(J) != LGN_SUCCESS) return 0;
   {
     sunindextype n = 0;
-    int i;
-    for (i = 0; i < J->kptr[J->nb]; i++) n += J->kbody[i] >= 0 ? 36 : 0;
+    int b, i;
+    for (b = 0; b < J->nb; b++)
+      for (i = J->kptr[b]; i < J->kptr[b + 1] && J->kbody[i] >= 0; i++)
+        n += 3 * (6 - StiffnessFirstRow(J, J->kbody[i], b));
     return n;
   }
 }
@@ -886,9 +906,10 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
     return LGN_MEM_FAIL;
   }
   {
-    /* the block structure is symmetric: CSC columns of body b list the
-     * coupled bodies' rows; CSR rows of body b list their columns, with the
-     * transposed block values. Bodies are in offset order, so sorted. */
+    /* the block structure is symmetric: CSC column c of body b lists the
+     * coupled bodies' rows; CSR row c of body b lists their columns, with
+     * the transposed block values. Bodies are in offset order, so sorted.
+     * Within a block, the pattern of StiffnessFirstRow. */
     const sunbooleantype csc = SUNSparseMatrix_SparseType(K) == CSC_MAT;
     sunindextype *ptr = SUNSparseMatrix_IndexPointers(K);
     sunindextype *ind = SUNSparseMatrix_IndexValues(K);
@@ -900,7 +921,9 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
           const int o = J->kbody[i];
           const sunrealtype *blk_bo = J->kblk + 36 * (size_t)i; /* (row o, col b) */
           const sunrealtype *blk_ob = Block(J, b, o);           /* (row b, col o) */
-          for (r = 0; r < 6; r++) {
+          const int r0 = csc ? StiffnessFirstRow(J, o, b) : 3;
+          if (csc ? c < 3 : c < StiffnessFirstRow(J, b, o)) continue;
+          for (r = r0; r < 6; r++) {
             ind[pos] = J->voff[o] + r;
             val[pos] = csc ? blk_bo[r + 6 * c] : blk_ob[c + 6 * r];
             pos++;

@@ -79,6 +79,10 @@ program chain_f
   y = N_VNew_Serial(nsys, ctx)      ! template of the (nv + m) unknowns
   A = SUNSparseMatrix(nsys, nsys, 30 * nsys, merge(CSR_MAT, CSC_MAT, csr), ctx)
   LS = SUNLinSol_KLU(y, A, ctx)
+  ! AMD ordering, as the C example: the iteration matrix's pattern is symmetric
+  if (c_associated(LS)) then
+    if (SUNLinSol_KLUSetOrdering(LS, 0_c_int) /= 0) call check(LGN_MEM_FAIL, "KLU ordering")
+  end if
   call N_VDestroy(y)
   if (.not. (c_associated(mem) .and. c_associated(qv) .and. c_associated(vv) .and. &
              c_associated(phiv) .and. c_associated(A) .and. c_associated(LS))) &

@@ -20,8 +20,8 @@
 ! joint helpers (flignum_joints_mod). With KLU Lignum hands M and C_t to the
 ! callbacks as empty sparse matrices (CSC or CSR, as A): they are written
 ! through the pointer views of flignum_klu_mod, M with its 6 N diagonal
-! entries, C_t with full 6x6 blocks (36 N entries, zeros included), exactly
-! the patterns of the C model.
+! entries, C_t with the 3x3 Omega blocks (9 N entries, zeros included),
+! exactly the patterns of the C model.
 !
 ! The arithmetic follows the C model operation by operation, so that both
 ! produce the same numbers (the tests example_fortran_chain_* compare).
@@ -296,7 +296,8 @@ contains
   end function damping_block
 
   !> Write a block-diagonal matrix with 6x6 blocks into the empty sparse A
-  !! (CSC or CSR): all 36 entries of each block, or only its diagonal.
+  !! (CSC or CSR): the 9 entries of each block's Omega part, or only its
+  !! diagonal.
   !! @param v velocities (for the damping blocks; unused for the mass)
   !! @return  0, or -1 if A is not sparse or cannot be enlarged
   function write_block_diagonal(sys, A, damping, v) result(ierr)
@@ -314,9 +315,9 @@ contains
 
     ierr = -1
     if (SUNMatGetID(A) /= SUNMATRIX_SPARSE) return
-    per = merge(6, 1, damping)
+    per = merge(9, 6, damping)                         ! entries per body
     csc = SUNSparseMatrix_SparseType(A) == CSC_MAT
-    if (FSUNSparseMatrix_Reserve(A, int(per * 6 * sys%n, c_int64_t)) /= 0) return
+    if (FSUNSparseMatrix_Reserve(A, int(per * sys%n, c_int64_t)) /= 0) return
     val => FSUNSparseMatrix_Data(A)
     ind => FSUNSparseMatrix_IndexValues(A)
     ptr => FSUNSparseMatrix_IndexPointers(A)
@@ -331,6 +332,7 @@ contains
       do c = 1, 6
         do r = 1, 6
           if (.not. damping .and. r /= c) cycle
+          if (damping .and. (r <= 3 .or. c <= 3)) cycle
           p = p + 1
           ind(p) = 6 * (k - 1) + r - 1                 ! 0-based row (CSC) / column (CSR)
           val(p) = merge(blk(r, c), blk(c, r), csc)

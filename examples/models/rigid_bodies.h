@@ -58,6 +58,7 @@ typedef struct {
   int newton;               /* LGN_NEWTON_* (default full)                  */
   long int msbp;            /* modified Newton: steps between setups (0: default) */
   int predictor;            /* LGN_PREDICTOR_* (default zero)               */
+  int klu_ordering;         /* KLU ordering: 0 AMD (default), 1 COLAMD, 2 natural */
   int time_linear_algebra;  /* 1: time one solve and one setup after the run */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */

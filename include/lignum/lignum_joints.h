@@ -82,7 +82,9 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
 sunindextype LGNJoints_NumConstraints(LGNJoints J);
 
 /** Number of stored entries of the sparse B written by LGNJoints_Jacobian
- *  (explicit zeros included; the pattern does not depend on q). */
+ *  (explicit zeros included; the pattern does not depend on q). A point
+ *  row stores 6 entries at an SE(3) body and 4 at an R^3 x SO(3) body,
+ *  whose translation part is +-I. */
 sunindextype LGNJoints_JacobianNnz(LGNJoints J);
 
 /** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
@@ -110,9 +112,11 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
 /**
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
  * stiffness K_t (the geometric stiffness). A dense K gets the term added;
- * a sparse K is overwritten with its pattern (6x6 blocks of the bodies and
- * of pairs coupled by a revolute or universal joint; combine it with other
- * terms with SUNMatScaleAdd).
+ * a sparse K is overwritten with its pattern: the blocks of the bodies and
+ * of pairs coupled by a revolute or universal joint, in their rotation
+ * columns only (B^T lambda does not depend on the translations) and their
+ * rotation rows, plus the translation rows of an SE(3) body's own block.
+ * Combine it with other terms with SUNMatScaleAdd.
  */
 int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K);
 

@@ -4,7 +4,7 @@
 !
 !  - a 2-body spherical chain on (R^3 x SO(3))^2 (ground - rod 0 - rod 1):
 !    NumBodies, NumConstraints, JacobianNnz and StiffnessNnz (counted from
-!    the joint rows and the body blocks), Phi = 0 at a closed configuration
+!    the joint rows and the bodies' rotation blocks), Phi = 0 at a closed configuration
 !    and nonzero when a body is moved, the known translation columns of B
 !    (+I, -I, none for the ground);
 !  - on R^3 x SO(3) x SE(3) with a revolute and a universal joint: B, the
@@ -78,10 +78,11 @@ contains
     call expect_flag(LGNJoints_AddSpherical(J, 0_c_int, bottom, 1_c_int, top), &
                      LGN_SUCCESS, "LGN_SUCCESS", "AddSpherical(0, 1)")
     call expect(LGNJoints_NumConstraints(J) == 6, "two spherical joints: m = 6")
-    ! B: 3 rows x 6 columns per body a joint touches (1 + 2 bodies)
-    call expect(LGNJoints_JacobianNnz(J) == 3 * 6 * (1 + 2), "JacobianNnz = 54")
-    ! K: the 6x6 diagonal block of each body (no revolute/universal coupling)
-    call expect(LGNJoints_StiffnessNnz(J) == 2 * 36, "StiffnessNnz = 72")
+    ! B: 3 rows x (1 translation + 3 rotation) columns per body a joint
+    ! touches (1 + 2 bodies)
+    call expect(LGNJoints_JacobianNnz(J) == 3 * 4 * (1 + 2), "JacobianNnz = 36")
+    ! K: the 3x3 rotation block of each body (no revolute/universal coupling)
+    call expect(LGNJoints_StiffnessNnz(J) == 2 * 9, "StiffnessNnz = 18")
 
     ! closed configuration: rod k hangs from the previous joint, rotated
     qv = N_VNew_Serial(14_c_int64_t, ctx)
@@ -165,11 +166,13 @@ contains
                 == LGN_SUCCESS, "AddUniversal(ground, 1)")
     m = LGNJoints_NumConstraints(J)
     call expect(m == 5 + 4, "revolute (5) + universal (4): m = 9")
-    ! B: point rows 3 x 6 and perpendicularity rows 1 x 3 (rotations) per body
-    call expect(LGNJoints_JacobianNnz(J) == (18 + 3 + 3) * 2 + (18 + 3) * 1, &
+    ! B per body: point rows 3 x 4 (R^3 x SO(3): translation +-I) or 3 x 6
+    ! (SE(3)), perpendicularity rows 1 x 3 (rotations)
+    call expect(LGNJoints_JacobianNnz(J) == (12 + 3 + 3) + (18 + 3 + 3) + (18 + 3), &
                 "JacobianNnz of a revolute and a universal joint")
-    ! K: diagonal blocks, and the blocks (0,1), (1,0) of the revolute's coupling
-    call expect(LGNJoints_StiffnessNnz(J) == 4 * 36, "StiffnessNnz with a coupling = 144")
+    ! K, rotation columns: diagonal blocks (3 x 3 for R^3 x SO(3), 6 x 3 for
+    ! SE(3)) and the 3 x 3 blocks (0,1), (1,0) of the revolute's coupling
+    call expect(LGNJoints_StiffnessNnz(J) == 9 + 18 + 2 * 9, "StiffnessNnz with a coupling = 45")
 
     qv = N_VNew_Serial(14_c_int64_t, ctx)
     qpv = N_VNew_Serial(14_c_int64_t, ctx)
