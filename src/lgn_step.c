@@ -270,8 +270,9 @@ static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
  * stopped contracting (stalled multipliers, counted by LGNGetNumNewtonStalls);
  * the multiplier part of that correction is kept as the noise level of the
  * step size, and from the second iteration on a correction whose
- * configuration part is <= 1 and whose multiplier part is within that level
- * stops the iteration too.
+ * configuration part is <= 1 and whose multiplier error left (its
+ * multiplier part; with a reused matrix r/(1-r) times it) is within that
+ * level stops the iteration too.
  * *used_old tells whether a matrix of an earlier step was used: the caller
  * may then retry a failure with a fresh one.
  * Returns LGN_CONV_FAILURE without a message (the caller reports it). */
@@ -324,15 +325,22 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
      * same noise) would only stir it. */
     stalled = iter >= 2 && norm_sigma <= SUN_RCONST(1.0) &&
               norm > SUN_RCONST(1.0) && norm > SUN_RCONST(0.5) * norm_prev;
-    /* ... or, from the second iteration on, they are already down to the
-     * noise level of the last stall at this step size */
+    /* ... or, from the second iteration on, the multiplier error left is
+     * already down to the noise level of the last stall at this step size.
+     * After a Newton correction (fresh matrix) that error is taken as the
+     * correction's multiplier part; with a reused matrix contracting at
+     * the rate r of this step, it is at most r/(1-r) times that part. */
     if (stalled) {
       mem->lambda_noise   = norm_lambda;
       mem->lambda_noise_h = c->h;
-    } else {
-      stalled = iter >= 1 && norm_sigma <= SUN_RCONST(1.0) && norm > SUN_RCONST(1.0) &&
+    } else if (iter >= 1) {
+      const sunrealtype r = norm / norm_prev;
+      const sunrealtype left = fresh ? norm_lambda
+                             : (r < SUN_RCONST(1.0) ? r / (SUN_RCONST(1.0) - r) * norm_lambda
+                                                    : SUN_BIG_REAL);
+      stalled = norm_sigma <= SUN_RCONST(1.0) && norm > SUN_RCONST(1.0) &&
                 fabs(c->h - mem->lambda_noise_h) <= REUSE_H_TOL * c->h &&
-                norm_lambda <= mem->lambda_noise;
+                left <= mem->lambda_noise;
     }
     if (fresh) {
       /* divergence: from the third iteration on, a Newton correction ten
