@@ -640,6 +640,59 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
   return SparseJacobian(J, qd, B);
 }
 
+/* ---------------------------------------------------------------------------
+ * Constraint forces B(q)^T lambda, from the blocks of B transposed, with
+ * l the primitive's multipliers and, at a body with point s, sign = 1 for
+ * body a and -1 for body b:
+ *   POINT:  translation += sign P^T l,
+ *           rotation    += (-sign R s~)^T l = sign s x (R^T l);
+ *   PERP:   rotation    += l g (g of PerpRows).
+ * ------------------------------------------------------------------------ */
+
+int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector f)
+{
+  const sunrealtype *qd, *ld;
+  sunrealtype *fd, mu[3], t[3], g[2][3];
+  Pose P[2];
+  int k, i, side, flag;
+  if (J == NULL) return LGN_ILL_INPUT;
+  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  /* no joints: lambda has no entries (and may have no data) */
+  if (flag == LGN_SUCCESS && J->m > 0) flag = CheckVec(J, lambda, J->m, "lambda", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckVec(J, f, J->G->nv, "f", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  N_VConst(SUN_RCONST(0.0), f);
+  if (J->m == 0) return LGN_SUCCESS;
+  qd = N_VGetArrayPointer(q);
+  ld = N_VGetArrayPointer(lambda);
+  fd = N_VGetArrayPointer(f);
+  FillRotations(J, qd);
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    const sunrealtype *l = ld + p->row;
+    GetPose(J, p->a, qd, NULL, &P[0]);
+    GetPose(J, p->b, qd, NULL, &P[1]);
+    if (p->kind == PRIM_PERP) PerpRows(&P[0], &P[1], p->u, p->w, g);
+    for (side = 0; side < 2; side++) {
+      const sunrealtype sign = side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0);
+      sunrealtype *fb;
+      if (P[side].ground) continue;
+      fb = fd + P[side].voff;
+      if (p->kind == PRIM_PERP) {
+        for (i = 0; i < 3; i++) fb[3 + i] += l[0] * g[side][i];
+        continue;
+      }
+      RotApplyT(P[side].R, l, mu);
+      Cross(side == 0 ? p->u : p->w, mu, t);
+      for (i = 0; i < 3; i++) {
+        fb[i]     += sign * (P[side].se3 ? mu[i] : l[i]);
+        fb[3 + i] += sign * t[i];
+      }
+    }
+  }
+  return LGN_SUCCESS;
+}
+
 /* Second time derivative of R y along constant body velocities:
  * d/dt (R y) = R (Omega x y), d2/dt2 = R (Omega x (Omega x y)). */
 static void Accel(const Pose *P, const sunrealtype *y, sunrealtype *out)

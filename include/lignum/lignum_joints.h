@@ -4,8 +4,9 @@
  * -----------------------------------------------------------------------------
  * Joint constraints between rigid bodies, ready to call from the constraint
  * callbacks: Phi(q), B(q) (dense or sparse, with its pattern), the
- * curvature term Z(q)(v, v) of the consistent initial values, and the
- * geometric stiffness d/dq (B(q)^T lambda) for an analytic K_t.
+ * constraint forces B(q)^T lambda, the curvature term Z(q)(v, v) of the
+ * consistent initial values, and the geometric stiffness
+ * d/dq (B(q)^T lambda) for an analytic K_t.
  *
  * The bodies are the leaves of the configuration group: a single R^3 x SO(3)
  * or SE(3) factor, or a product of them (body k = factor k, products of
@@ -104,6 +105,15 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
  * values in place.
  */
 int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
+
+/**
+ * f = B(q)^T lambda, length nv: the joints' constraint forces, without
+ * forming B. For use in an LGNConstrForceFn. f is overwritten entirely:
+ * the entries of bodies in no joint become 0. Equals B(q)^T lambda of
+ * LGNJoints_Jacobian to round-off. With no joints (m = 0), lambda is not
+ * read and f = 0.
+ */
+int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector f);
 
 /** z = Z(q)(v, v) = D_q(B(q) v).(q v~) (spec numerics.md §1), length m: the
  *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */

@@ -10,6 +10,9 @@
  *   Z(q)(v, v)   = d/de B(q o exp(e v)) v
  *   K w          = d/de B(q o exp(e w))^T lambda
  * and the sparse B and K (CSC and CSR) against the dense ones, entry by entry.
+ * The constraint forces f = B^T lambda, computed without B, are checked
+ * against the dense B times lambda to round-off, on f garbled before each
+ * call, also with bodies in no joint (f = 0 there) and no joints at all.
  * The sparse B keeps its pattern between calls: it is checked at new
  * configurations on matrices left empty and garbled between calls, CSC and
  * CSR in turn with the same joints, after joints are added, and on
@@ -302,6 +305,80 @@ int main(void)
     SUNMatDestroy(S2);
     SUNMatDestroy(D2);
     LGNJoints_Destroy(&J2);
+  }
+
+  /* f = B^T lambda without forming B, against the dense B times lambda,
+   * relative to max |B^T lambda|: J at new configurations and multipliers;
+   * J3 with bodies 0 and 2 in no joint, whose entries must become 0; J4
+   * without joints (m = 0), where f = 0. f is NaN before each call. */
+  {
+    LGNJoints J3 = LGNJoints_Create(NULL, G), J4 = LGNJoints_Create(NULL, G);
+    N_Vector f = N_VNew_Serial(nv, ctx), lam3, lam0 = N_VNew_Serial(0, ctx);
+    SUNMatrix B3;
+    double btl[24], errF = 0, errF3 = 0, free0 = 0, e;
+    int bad = 0;
+    for (trial = 0; trial < 20; trial++) {
+      RandomConfiguration(4, N_VGetArrayPointer(q));
+      for (i = 0; i < m; i++) N_VGetArrayPointer(lam)[i] = 10 * Rand();
+      SUNMatZero(B);
+      bad += LGNJoints_Jacobian(J, q, B) != LGN_SUCCESS;
+      DenseApply(B, N_VGetArrayPointer(lam), btl, 1);
+      N_VConst(NAN, f);
+      bad += LGNJoints_ConstraintForce(J, q, lam, f) != LGN_SUCCESS;
+      scale = 0;
+      for (i = 0; i < nv; i++) scale = fmax(scale, fabs(btl[i]));
+      for (i = 0; i < nv; i++) {
+        e    = fabs(N_VGetArrayPointer(f)[i] - btl[i]) / scale;
+        errF = fmax(errF, isnan(e) ? HUGE_VAL : e);
+      }
+    }
+    Check("f = B^T lambda, no B (rel., 20 q, garbled)", bad ? HUGE_VAL : errF, 1e-14);
+
+    LGNJoints_AddRevolute(J3, 1, pa, ax, LGN_GROUND, pb, ay);
+    LGNJoints_AddSpherical(J3, 1, pb, 3, pa);
+    lam3 = N_VNew_Serial(LGNJoints_NumConstraints(J3), ctx);
+    B3   = SUNDenseMatrix(LGNJoints_NumConstraints(J3), nv, ctx);
+    for (i = 0; i < LGNJoints_NumConstraints(J3); i++) N_VGetArrayPointer(lam3)[i] = 10 * Rand();
+    SUNMatZero(B3);
+    LGNJoints_Jacobian(J3, q, B3);
+    DenseApply(B3, N_VGetArrayPointer(lam3), btl, 1);
+    N_VConst(NAN, f);
+    bad = LGNJoints_ConstraintForce(J3, q, lam3, f) != LGN_SUCCESS;
+    scale = 0;
+    for (i = 0; i < nv; i++) scale = fmax(scale, fabs(btl[i]));
+    for (i = 0; i < nv; i++) {
+      const sunindextype bk = i / 6; /* every body has 6 velocity entries */
+      e = fabs(N_VGetArrayPointer(f)[i] - (bk == 0 || bk == 2 ? 0.0 : btl[i]));
+      if (isnan(e)) e = HUGE_VAL;
+      if (bk == 0 || bk == 2) free0 = fmax(free0, e);
+      else errF3 = fmax(errF3, e / scale);
+    }
+    Check("f = B^T lambda, bodies 1, 3 only (rel.)", bad ? HUGE_VAL : errF3, 1e-14);
+    Check("f = 0 at bodies 0, 2 (in no joint)", bad ? HUGE_VAL : free0, 0.0);
+    N_VConst(NAN, f);
+    bad = LGNJoints_ConstraintForce(J4, q, lam0, f) != LGN_SUCCESS;
+    e   = 0;
+    for (i = 0; i < nv; i++) e = fmax(e, isnan(N_VGetArrayPointer(f)[i]) ? HUGE_VAL : fabs(N_VGetArrayPointer(f)[i]));
+    Check("f = 0 without joints (m = 0)", bad ? HUGE_VAL : e, 0.0);
+
+    /* bad input: no joint set, q, lambda or f of the wrong length or NULL */
+    if (LGNJoints_ConstraintForce(NULL, q, lam, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, lam, lam, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, q, v, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, q, lam3, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, q, lam, lam) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, q, NULL, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, q, lam, NULL) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, NULL, lam, f) != LGN_ILL_INPUT) {
+      printf("bad ConstraintForce input accepted\n");
+      failures++;
+    }
+    N_VDestroy(f);
+    N_VDestroy(lam3);
+    N_VDestroy(lam0);
+    SUNMatDestroy(B3);
+    LGNJoints_Destroy(&J3);
+    LGNJoints_Destroy(&J4);
   }
 
   LGNJoints_Destroy(&J);
