@@ -5,8 +5,9 @@
 ! flignum_joints_mod: hand-written ISO_C_BINDING interface to the joint
 ! helpers of include/lignum/lignum_joints.h (spherical, revolute and
 ! universal joints between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
-! configuration group: Phi, B, the curvature Z(q)(v, v) and the geometric
-! stiffness d/dq (B^T lambda), ready to call from the constraint callbacks).
+! configuration group: Phi, B, the constraint forces B^T lambda, the
+! curvature Z(q)(v, v) and the geometric stiffness d/dq (B^T lambda), ready
+! to call from the constraint callbacks).
 !
 ! Names are the C names, types as in flignum_mod:
 !   LGNJoints, LGNGroup, N_Vector, SUNMatrix, void *lgn_mem
@@ -134,6 +135,16 @@ module flignum_joints_mod
       import :: c_int, c_ptr
       type(c_ptr), value :: J, q, B
     end function LGNJoints_Jacobian
+
+    !> f = B(q)^T lambda, length nv: the joints' constraint forces, without
+    !! forming B (for an LGNConstrForceFn). f is overwritten entirely: the
+    !! entries of bodies in no joint become 0. Equals B(q)^T lambda of
+    !! LGNJoints_Jacobian to round-off; with no joints (m = 0), f = 0.
+    integer(c_int) function LGNJoints_ConstraintForce(J, q, lambda, f) &
+        bind(c, name="LGNJoints_ConstraintForce")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, q, lambda, f
+    end function LGNJoints_ConstraintForce
 
     !> z = Z(q)(v, v), length m: the curvature term of the consistent
     !! initial accelerations (for an LGNCurvatureFn).

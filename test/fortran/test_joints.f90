@@ -13,6 +13,8 @@
 !      B w        = d/de Phi(q o exp(e w))
 !      Z(q)(v, v) = d/de B(q o exp(e v)) v
 !      K w        = d/de B(q o exp(e w))^T lambda
+!    and the constraint forces f = B^T lambda (computed without B) against
+!    the dense B as a Fortran array, to round-off;
 !  - bad input: an out-of-range body, a == b, a zero axis, vectors and
 !    matrices of the wrong size, a group without rigid bodies; each returns
 !    LGN_ILL_INPUT (or c_null_ptr) and is reported to the error handler of
@@ -147,9 +149,9 @@ contains
     real(c_double), parameter :: pb(3) = [-0.3_c_double, 0.2_c_double, -0.4_c_double]
     real(c_double), parameter :: ax(3) = [0.0_c_double, 0.0_c_double, 1.0_c_double]
     real(c_double), parameter :: axy(3) = [1.0_c_double, 1.0_c_double, 0.5_c_double]
-    type(c_ptr) :: b1, b2, G, J, qv, qpv, qmv, vv, lv, zv, phipv, phimv, B, Bp, Bm, K
+    type(c_ptr) :: b1, b2, G, J, qv, qpv, qmv, vv, lv, zv, phipv, phimv, fv, B, Bp, Bm, K
     type(c_ptr) :: factors(2)
-    real(c_double), pointer :: q(:), qp(:), qm(:), v(:), lam(:), z(:), phip(:), phim(:)
+    real(c_double), pointer :: q(:), qp(:), qm(:), v(:), lam(:), z(:), phip(:), phim(:), f(:)
     real(c_double), pointer :: Ba(:, :), Bpa(:, :), Bma(:, :), Ka(:, :)
     real(c_double) :: w(12), scale
     integer(c_int64_t) :: m
@@ -182,6 +184,7 @@ contains
     zv = N_VNew_Serial(m, ctx)
     phipv = N_VNew_Serial(m, ctx)
     phimv = N_VNew_Serial(m, ctx)
+    fv = N_VNew_Serial(12_c_int64_t, ctx)
     q => FN_VGetArray(qv)
     qp => FN_VGetArray(qpv)
     qm => FN_VGetArray(qmv)
@@ -190,6 +193,7 @@ contains
     z => FN_VGetArray(zv)
     phip => FN_VGetArray(phipv)
     phim => FN_VGetArray(phimv)
+    f => FN_VGetArray(fv)
     B = SUNDenseMatrix(m, 12_c_int64_t, ctx)
     Bp = SUNDenseMatrix(m, 12_c_int64_t, ctx)
     Bm = SUNDenseMatrix(m, 12_c_int64_t, ctx)
@@ -221,6 +225,15 @@ contains
     call expect(LGNJoints_Residual(J, qmv, phimv) == LGN_SUCCESS, "Residual at q-")
     call expect_near(maxval(abs(matmul(Ba, w) - (phip - phim) / (2 * eps))), &
                      0.0_c_double, 1.0e-8_c_double, "max |B w - central difference of Phi|")
+
+    ! f = B^T lambda without B (f is overwritten entirely: garble it first)
+    f = huge(1.0_c_double)
+    call expect_flag(LGNJoints_ConstraintForce(J, qv, lv, fv), LGN_SUCCESS, "LGN_SUCCESS", &
+                     "ConstraintForce at q")
+    scale = maxval(abs(matmul(lam, Ba)))
+    call expect(scale > 1, "B^T lambda is not small")
+    call expect_near(maxval(abs(f - matmul(lam, Ba))) / scale, 0.0_c_double, 1.0e-14_c_double, &
+                     "max |f - B^T lambda of the dense B| (relative)")
 
     ! K w = d/de B(q o exp(e w))^T lambda (K gets the term added: zero it)
     Ka = 0
@@ -261,6 +274,7 @@ contains
     call N_VDestroy(zv)
     call N_VDestroy(phipv)
     call N_VDestroy(phimv)
+    call N_VDestroy(fv)
     call LGNJoints_Destroy(J)
     call LGNGroup_Destroy(G)
     call LGNGroup_Destroy(b1)
@@ -272,7 +286,7 @@ contains
     real(c_double), parameter :: s(3) = [0.0_c_double, 0.0_c_double, 0.5_c_double]
     real(c_double), parameter :: zero(3) = 0.0_c_double
     type(error_record), target :: rec
-    type(c_ptr) :: mem, body, Rn, G, J, JR, qv, phiv, B
+    type(c_ptr) :: mem, body, Rn, G, J, JR, qv, phiv, lv, B
     type(c_ptr) :: factors(2)
     integer :: nerr
 
@@ -321,6 +335,13 @@ contains
                      "Stiffness with lambda of length 4 /= m = 3")
     call expect_flag(LGNJoints_Residual(c_null_ptr, qv, phiv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "Residual of c_null_ptr")
+    lv = N_VNew_Serial(3_c_int64_t, ctx)
+    call expect_flag(LGNJoints_ConstraintForce(J, qv, phiv, qv), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "ConstraintForce with lambda of length 4 /= m = 3")
+    call expect_flag(LGNJoints_ConstraintForce(J, qv, lv, qv), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "ConstraintForce into f of length 14 /= nv = 12")
+    call expect_flag(LGNJoints_ConstraintForce(c_null_ptr, qv, lv, qv), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "ConstraintForce of c_null_ptr")
     call expect(LGNJoints_NumBodies(c_null_ptr) == 0, "NumBodies(c_null_ptr) = 0")
     call expect(LGNJoints_NumConstraints(c_null_ptr) == 0, "NumConstraints(c_null_ptr) = 0")
     call expect(LGNJoints_JacobianNnz(c_null_ptr) == 0, "JacobianNnz(c_null_ptr) = 0")
@@ -339,6 +360,7 @@ contains
     call SUNMatDestroy(B)
     call N_VDestroy(qv)
     call N_VDestroy(phiv)
+    call N_VDestroy(lv)
     call LGNJoints_Destroy(J)
     call LGNFree(mem)
     call LGNGroup_Destroy(Rn)
