@@ -179,6 +179,13 @@ module flignum_mod
       type(c_ptr), value :: q, v, z, user_data
     end function LGNCurvatureFn
 
+    !> Constraint forces f = B(q)^T lambda (length nv), without forming B.
+    integer(c_int) function LGNConstrForceFn(t, q, lambda, f, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, lambda, f, user_data
+    end function LGNConstrForceFn
+
     !> Error handler; module, function and msg are NUL-terminated C strings
     !! (convert with FLGNString). Valid only during the call.
     subroutine LGNErrHandlerFn(error_code, module_name, function_name, msg, eh_data) &
@@ -337,6 +344,24 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       type(c_funptr), value :: Z
     end function LGNSetCurvatureFn
+
+    !> Constraint forces f = B(q)^T lambda (LGNConstrForceFn); c_null_funptr:
+    !! from B.
+    integer(c_int) function LGNSetConstraintForceFn(lgn_mem, F) &
+        bind(c, name="LGNSetConstraintForceFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: F
+    end function LGNSetConstraintForceFn
+
+    !> Declare the mass matrix constant (independent of q and t): evaluated
+    !! once per LGNInit / LGNReInit. constant: 0 or 1 (sunbooleantype).
+    integer(c_int) function LGNSetMassConstant(lgn_mem, constant) &
+        bind(c, name="LGNSetMassConstant")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: constant
+    end function LGNSetMassConstant
 
     ! =========================================================================
     ! lignum.h: method and solver settings

@@ -102,6 +102,7 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->sol);
   DestroyVector(&mem->dq_g);
   DestroyVector(&mem->dq_r);
+  DestroyVector(&mem->cforce);
   DestroyVector(&mem->dq_z);
   free(mem->sigma);
   mem->sigma = NULL;
@@ -156,10 +157,12 @@ int lgnAllocWork(LGNMem mem)
     mem->rdyn = N_VNew_Serial(nv, ctx);
     mem->dq_g = N_VNew_Serial(nv, ctx);
     mem->dq_r = N_VNew_Serial(nv, ctx);
+    mem->cforce = N_VNew_Serial(nv, ctx);
     mem->rhs  = N_VNew_Serial(nv + m, ctx);
     mem->sol  = N_VNew_Serial(nv + m, ctx);
     fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
-            mem->dq_r == NULL || mem->rhs == NULL || mem->sol == NULL);
+            mem->dq_r == NULL || mem->cforce == NULL || mem->rhs == NULL ||
+            mem->sol == NULL);
   }
   if (m > 0 && !fail) {
     mem->lambda  = N_VNew_Serial(m, ctx);
@@ -222,6 +225,7 @@ int lgnAllocMatrices(LGNMem mem)
   int b, fail;
 
   lgnFreeMatrices(mem);
+  mem->mass_current = SUNFALSE;
   mem->sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
   if (mem->sparse) mem->sparsetype = (int)SUNSparseMatrix_SparseType(mem->A);
   for (b = 0; b < mem->nblk; b++) {
@@ -273,7 +277,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   long int rw = 0, iw = 0;
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
   if (mem->work_done) {
-    rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
+    rw += 5 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
     rw += 7 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
@@ -368,6 +372,7 @@ static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
   mem->ic_done    = SUNFALSE;
   mem->user_vdot0 = SUNFALSE;
   mem->user_a0    = SUNFALSE;
+  mem->mass_current = SUNFALSE;
   lgnInvalidateMatrix(mem);
   ResetCounters(mem);
   return LGN_SUCCESS;

@@ -21,14 +21,18 @@
 
 #include "lgn_impl.h"
 
-/* r(q) = M(q) vdot1 + g(q, v1, t) + B(q)^T lambda1 at q = dq_q, into dq_r. */
+/* r(q) = M(q) vdot1 + g(q, v1, t) + B(q)^T lambda1 at q = dq_q, into dq_r
+ * (B only for B^T lambda1, so not evaluated with an LGNConstrForceFn). */
 int lgnDQResidualAt(LGNMem mem, sunrealtype t)
 {
   int flag;
+  SUNMatrix M = mem->mass_constant ? mem->Mmat : mem->Mdq;
   mem->ndq++;
-  flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, mem->Mdq, mem->dq_g, mem->Bdq);
+  flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, M, mem->dq_g, mem->Bdq,
+                        mem->m > 0 && mem->constr_force == NULL);
   if (flag == LGN_SUCCESS)
-    lgnDynamicResidual(mem, mem->Mdq, mem->dq_g, mem->Bdq, lgnData(mem->dq_r));
+    flag = lgnDynamicResidual(mem, t, mem->dq_q, M, mem->dq_g, mem->Bdq,
+                              lgnData(mem->dq_r));
   return flag;
 }
 

@@ -53,7 +53,7 @@ static const char *CallbackName(LGNCallbackId cb)
 {
   static const char *names[LGN_CB_COUNT] = {
     "mass matrix", "force", "constraint", "constraint Jacobian",
-    "stiffness", "damping", "curvature", "Lie group"};
+    "stiffness", "damping", "curvature", "constraint force", "Lie group"};
   return names[cb];
 }
 
@@ -63,7 +63,8 @@ static int UnrecoverableFlag(LGNCallbackId cb)
   case LGN_CB_MASS:       return LGN_MASS_FAIL;
   case LGN_CB_FORCE:      return LGN_FORCE_FAIL;
   case LGN_CB_CONSTR:     return LGN_CONSTR_FAIL;
-  case LGN_CB_CONSTR_JAC: return LGN_CONSTR_JAC_FAIL;
+  case LGN_CB_CONSTR_JAC:
+  case LGN_CB_CONSTR_FORCE: return LGN_CONSTR_JAC_FAIL;
   case LGN_CB_GROUP:      return LGN_GROUP_FAIL;
   default:                return LGN_TANGENT_FAIL;
   }

@@ -27,7 +27,7 @@ static int SolveIndex1System(LGNMem mem)
   N_VConst(SUN_RCONST(0.0), mem->vdot1);
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda1);
 
-  flag = lgnEvalModel(mem, mem->tn);
+  flag = lgnEvalModel(mem, mem->tn, SUNTRUE); /* B: the matrix below */
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < nv; i++) rhs[i] = -g[i];
   if (m > 0) {

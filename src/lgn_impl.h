@@ -39,6 +39,7 @@ typedef enum {
   LGN_CB_STIFFNESS,
   LGN_CB_DAMPING,
   LGN_CB_CURVATURE,
+  LGN_CB_CONSTR_FORCE,
   LGN_CB_GROUP,
   LGN_CB_COUNT
 } LGNCallbackId;
@@ -73,6 +74,9 @@ typedef struct LGNMemRec {
   LGNStiffnessFn stiffness; /* NULL: difference quotients                 */
   LGNDampingFn damping;     /* NULL: difference quotients                 */
   LGNCurvatureFn curvature; /* NULL: difference quotients                 */
+  LGNConstrForceFn constr_force; /* NULL: B^T lambda from B                */
+  sunbooleantype mass_constant;  /* LGNSetMassConstant                     */
+  sunbooleantype mass_current;   /* Mmat holds the constant M              */
 
   /* ---- method ---- */
   sunrealtype alpha_m, alpha_f, beta, gamma; /* Chung-Hulbert convention  */
@@ -120,6 +124,7 @@ typedef struct LGNMemRec {
 
   /* ---- difference quotient scratch ---- */
   N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
+  N_Vector cforce;          /* B^T lambda from the LGNConstrForceFn       */
 
   /* ---- diagonal blocks of T: the leaves of the group (lgn_tangent.c) ---- */
   int nblk;
@@ -219,13 +224,14 @@ int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
 int lgnStep(LGNMem mem, sunrealtype h);
 
 /* lgn_residual.c */
+sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix);
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
-                   SUNMatrix M, N_Vector g, SUNMatrix B);
-int lgnEvalModel(LGNMem mem, sunrealtype t);
-void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
-                        sunrealtype *r);
+                   SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B);
+int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B);
+int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
+                       N_Vector g, SUNMatrix B, sunrealtype *r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
-                      sunrealtype cv);
+                      sunrealtype cv, sunbooleantype for_matrix);
 void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                sunbooleantype add);
 void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,

@@ -76,6 +76,7 @@ int LGNSetMassFn(void *lgn_mem, LGNMassFn mass)
     return LGN_ILL_INPUT;
   }
   mem->mass = mass;
+  mem->mass_current = SUNFALSE;
   lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
@@ -142,6 +143,24 @@ int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->curvature = Z;
+  lgnInvalidateMatrix(mem);
+  return LGN_SUCCESS;
+}
+
+int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->constr_force = F;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->mass_constant = constant ? SUNTRUE : SUNFALSE;
+  mem->mass_current  = SUNFALSE;
   lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }

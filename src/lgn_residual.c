@@ -114,18 +114,31 @@ void lgnMatClear(SUNMatrix A)
   }
 }
 
-/* M(q), g(q, v, t) and, when m > 0, B(q) into the given storage. */
+/* Is B(q) needed? For the iteration matrix (for_matrix), for B v at index
+ * 2, and for B^T lambda unless an LGNConstrForceFn gives it. */
+sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
+{
+  return mem->m > 0 && (for_matrix || mem->constr_force == NULL ||
+                        mem->constr_index == LGN_CONSTR_INDEX2);
+}
+
+/* M(q), g(q, v, t) and, when with_B, B(q) into the given storage. A
+ * constant mass matrix (LGNSetMassConstant) is evaluated once, into
+ * mem->Mmat, and kept: callers pass mem->Mmat as M then. */
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
-                   SUNMatrix M, N_Vector g, SUNMatrix B)
+                   SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B)
 {
   int ret;
-  lgnMatClear(M);
-  ret = mem->mass(t, q, M, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
+  if (!(mem->mass_constant && mem->mass_current && M == mem->Mmat)) {
+    lgnMatClear(M);
+    ret = mem->mass(t, q, M, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
+    mem->mass_current = mem->mass_constant && M == mem->Mmat;
+  }
   memset(lgnData(g), 0, (size_t)mem->nv * sizeof(sunrealtype));
   ret = mem->force(t, q, v, g, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
-  if (mem->m > 0) {
+  if (with_B && mem->m > 0) {
     lgnMatClear(B);
     ret = mem->constr_jac(t, q, B, mem->user_data);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
@@ -133,37 +146,53 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   return LGN_SUCCESS;
 }
 
-/* M(q1), g(q1, v1, t) and B(q1): one "residual evaluation". */
-int lgnEvalModel(LGNMem mem, sunrealtype t)
+/* M(q1), g(q1, v1, t) and (with_B) B(q1): one "residual evaluation". */
+int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B)
 {
   mem->nre++;
-  return lgnEvalModelAt(mem, t, mem->q1, mem->v1, mem->Mmat, mem->g, mem->Bmat);
+  return lgnEvalModelAt(mem, t, mem->q1, mem->v1, mem->Mmat, mem->g, mem->Bmat,
+                        with_B);
 }
 
-/* r = M vdot1 + g + B^T lambda1, the unscaled dynamic residual. */
-void lgnDynamicResidual(LGNMem mem, SUNMatrix M, N_Vector g, SUNMatrix B,
-                        sunrealtype *r)
+/* r = M vdot1 + g + B(q)^T lambda1, the unscaled dynamic residual, with
+ * B^T lambda1 from the LGNConstrForceFn if there is one (else from B). */
+int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
+                       N_Vector g, SUNMatrix B, sunrealtype *r)
 {
   sunindextype i, nv = mem->nv;
   const sunrealtype *gd = lgnData(g);
+  int ret;
   lgnMatvec(M, lgnData(mem->vdot1), r, SUNFALSE);
   for (i = 0; i < nv; i++) r[i] += gd[i];
-  if (mem->m > 0) lgnMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
+  if (mem->m == 0) return LGN_SUCCESS;
+  if (mem->constr_force == NULL) {
+    lgnMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
+    return LGN_SUCCESS;
+  }
+  N_VConst(SUN_RCONST(0.0), mem->cforce);
+  ret = mem->constr_force(t, q, mem->lambda1, mem->cforce, mem->user_data);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_FORCE, ret, __func__);
+  {
+    const sunrealtype *f = lgnData(mem->cforce);
+    for (i = 0; i < nv; i++) r[i] += f[i];
+  }
+  return LGN_SUCCESS;
 }
 
 /* The scaled residual into mem->rhs, negated (the Newton right-hand side);
- * the unscaled dynamic residual stays in mem->rdyn for difference quotients. */
+ * the unscaled dynamic residual stays in mem->rdyn for difference quotients.
+ * for_matrix: the iteration matrix is built next (B is needed). */
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
-                      sunrealtype cv)
+                      sunrealtype cv, sunbooleantype for_matrix)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *rdyn = lgnData(mem->rdyn), *rhs = lgnData(mem->rhs);
   int ret, flag;
 
-  flag = lgnEvalModel(mem, t);
+  flag = lgnEvalModel(mem, t, lgnNeedsConstraintJacobian(mem, for_matrix));
+  if (flag == LGN_SUCCESS)
+    flag = lgnDynamicResidual(mem, t, mem->q1, mem->Mmat, mem->g, mem->Bmat, rdyn);
   if (flag != LGN_SUCCESS) return flag;
-
-  lgnDynamicResidual(mem, mem->Mmat, mem->g, mem->Bmat, rdyn);
   if (m > 0) {
     sunrealtype *phi = lgnData(mem->phi);
     if (mem->constr_index == LGN_CONSTR_INDEX3) {

@@ -294,7 +294,7 @@ static int Newton(LGNMem mem, const StepCoeffs *c, sunbooleantype force_setup,
     flag = Kinematics(mem, setup);
     if (flag == LGN_SUCCESS && setup && mem->kinematics == LGN_KINEMATICS_EXACT)
       flag = lgnExactKinematicsDerivatives(mem, c->gamma_p, c->beta_p);
-    if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv);
+    if (flag == LGN_SUCCESS) flag = lgnNewtonResidual(mem, c->t1, c->scale, cv, setup);
     if (flag == LGN_SUCCESS && setup) {
       lgnInvalidateMatrix(mem); /* A is overwritten */
       flag = lgnAssembleAndFactor(mem, c->t1, c->scale * c->beta_p,

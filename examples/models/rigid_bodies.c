@@ -357,6 +357,12 @@ static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   return LGNJoints_Jacobian(((RigidSystem *)ud)->joints, q, B) == 0 ? 0 : -1;
 }
 
+static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
+{
+  (void)t;
+  return LGNJoints_ConstraintForce(((RigidSystem *)ud)->joints, q, lambda, f) == 0 ? 0 : -1;
+}
+
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
   (void)t;
@@ -489,6 +495,10 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   if (flag == 0) flag = LGNSetMassFn(mem, Mass);
   if (flag == 0) flag = LGNSetForceFn(mem, Force);
   if (flag == 0) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  /* M = diag(m I, J) in body-fixed velocities: constant; B^T lambda from
+   * the joints without forming B (both optional, see plain_residual) */
+  if (flag == 0 && !opt->plain_residual) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (flag == 0 && !opt->plain_residual) flag = LGNSetConstraintForceFn(mem, ConstrForce);
   if (flag == 0 && opt->analytic) {
     flag = LGNSetStiffnessFn(mem, Stiffness);
     if (flag == 0) flag = LGNSetDampingFn(mem, Damping);
@@ -568,6 +578,7 @@ void rigid_print_usage(FILE *out)
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
           "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
           "          [--predictor zero|extrapolate] [--ordering amd|colamd|natural]\n"
+          "          [--residual shortcuts|plain]\n"
           "          [--csv FILE]\n");
 }
 
@@ -615,6 +626,10 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
   } else if (IS("--predictor")) {
     if (VAL("zero")) opt->predictor = LGN_PREDICTOR_ZERO;
     else if (VAL("extrapolate")) opt->predictor = LGN_PREDICTOR_EXTRAPOLATE;
+    else return -1;
+  } else if (IS("--residual")) {
+    if (VAL("shortcuts")) opt->plain_residual = 0;
+    else if (VAL("plain")) opt->plain_residual = 1;
     else return -1;
   } else if (IS("--ordering")) {
     if (VAL("amd")) opt->klu_ordering = 0;

@@ -59,6 +59,9 @@ typedef struct {
   long int msbp;            /* modified Newton: steps between setups (0: default) */
   int predictor;            /* LGN_PREDICTOR_* (default zero)               */
   int klu_ordering;         /* KLU ordering: 0 AMD (default), 1 COLAMD, 2 natural */
+  int plain_residual;       /* 1: M evaluated every iteration and B^T lambda
+                               from B (no LGNSetMassConstant,
+                               LGNSetConstraintForceFn); 0 (default): both */
   int time_linear_algebra;  /* 1: time one solve and one setup after the run */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */

@@ -151,6 +151,11 @@ typedef int (*LGNStiffnessFn)(sunrealtype t, N_Vector q, N_Vector v,
 typedef int (*LGNDampingFn)(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C,
                             void *user_data);
 
+/** Constraint forces f = B(q)^T lambda (length nv), without forming B: an
+ *  optional shortcut for the residual (LGNSetConstraintForceFn). */
+typedef int (*LGNConstrForceFn)(sunrealtype t, N_Vector q, N_Vector lambda,
+                                N_Vector f, void *user_data);
+
 /** Constraint curvature z = Z(q)(v, v), with d/dt(B v) = B vdot + Z(q)(v, v). */
 typedef int (*LGNCurvatureFn)(sunrealtype t, N_Vector q, N_Vector v,
                               N_Vector z, void *user_data);
@@ -235,6 +240,22 @@ int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C);
 /** Set the constraint curvature callback Z(q)(v,v). NULL (default):
  *  difference quotients of B(q exp(eps v)) v. */
 int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z);
+
+/** Set a callback for the constraint forces f = B(q)^T lambda. With it, the
+ *  Newton residual at index 3 needs no B: the constraint Jacobian is then
+ *  evaluated only when the iteration matrix is built (every iteration with
+ *  full Newton, at the setups of modified Newton) and for the initial
+ *  values. It must equal B(q)^T lambda of the LGNConstrJacFn to round-off
+ *  (LGNJoints_ConstraintForce does). NULL (default): f from B. A failure
+ *  is reported as LGN_CONSTR_JAC_FAIL. */
+int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F);
+
+/** Declare the mass matrix constant: M depends on neither q nor t, as for
+ *  rigid bodies on R^3 x SO(3) or SE(3) with body-fixed angular velocities
+ *  (and a body-fixed reference point at the centre of mass for SE(3)).
+ *  The LGNMassFn is then called once after each LGNInit / LGNReInit (or a
+ *  change of the linear solver) and M is kept. Default: SUNFALSE. */
+int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
 
 /* =============================================================================
  * Method and solver settings (zero restores a default where stated)

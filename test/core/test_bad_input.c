@@ -26,16 +26,21 @@ static void Capture(int code, const char *mod, const char *fn, const char *msg, 
 }
 
 /* ---- the pendulum, with failure injection ---- */
-typedef enum { OK = 0, FORCE_FATAL, FORCE_RECOV, FORCE_NAN, CONSTR_FATAL, MASS_FATAL } Fault;
+typedef enum {
+  OK = 0, FORCE_FATAL, FORCE_RECOV, FORCE_NAN, CONSTR_FATAL, MASS_FATAL, CFORCE_FATAL
+} Fault;
 typedef struct {
   Fault fault;
   double fault_after; /* inject only for t > fault_after */
+  int with_cforce;    /* Configure sets LGNSetConstraintForceFn */
+  long int nmass;     /* mass matrix evaluations */
 } Model;
 
 static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
 {
   Model *md = (Model *)ud;
   (void)q;
+  md->nmass++;
   if (md->fault == MASS_FATAL && t > md->fault_after) return -3;
   SM_ELEMENT_D(M, 0, 0) = 1.0;
   SM_ELEMENT_D(M, 1, 1) = 1.0;
@@ -71,6 +76,17 @@ static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   (void)t; (void)ud;
   SM_ELEMENT_D(B, 0, 0) = x[0];
   SM_ELEMENT_D(B, 0, 1) = x[1];
+  return 0;
+}
+
+/* f = B^T lambda = lambda x */
+static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
+{
+  Model *md = (Model *)ud;
+  const double *x = N_VGetArrayPointer(q), l = N_VGetArrayPointer(lambda)[0];
+  if (md->fault == CFORCE_FATAL && t > md->fault_after) return -5;
+  N_VGetArrayPointer(f)[0] = l * x[0];
+  N_VGetArrayPointer(f)[1] = l * x[1];
   return 0;
 }
 
@@ -129,6 +145,7 @@ static int Configure(Fixture *f)
   if (!flag) flag = LGNSetMassFn(f->mem, Mass);
   if (!flag) flag = LGNSetForceFn(f->mem, Force);
   if (!flag) flag = LGNSetConstraints(f->mem, 1, Constr, ConstrJac);
+  if (!flag && f->md.with_cforce) flag = LGNSetConstraintForceFn(f->mem, ConstrForce);
   if (!flag) flag = LGNInit(f->mem, 0.0, f->q, f->v);
   if (!flag) flag = LGNSetLinearSolver(f->mem, f->LS, f->A);
   if (!flag) flag = LGNSetStepSize(f->mem, 0.01);
@@ -152,6 +169,8 @@ static void NullMemory(void)
   CHECK(LGNSetStiffnessFn(NULL, NULL) == LGN_MEM_NULL, "LGNSetStiffnessFn(NULL)");
   CHECK(LGNSetDampingFn(NULL, NULL) == LGN_MEM_NULL, "LGNSetDampingFn(NULL)");
   CHECK(LGNSetCurvatureFn(NULL, NULL) == LGN_MEM_NULL, "LGNSetCurvatureFn(NULL)");
+  CHECK(LGNSetConstraintForceFn(NULL, NULL) == LGN_MEM_NULL, "LGNSetConstraintForceFn(NULL)");
+  CHECK(LGNSetMassConstant(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetMassConstant(NULL)");
   CHECK(LGNSetLinearSolver(NULL, NULL, NULL) == LGN_MEM_NULL, "LGNSetLinearSolver(NULL)");
   CHECK(LGNSetStepSize(NULL, 0.1) == LGN_MEM_NULL, "LGNSetStepSize(NULL)");
   CHECK(LGNSetNewmark(NULL, 0.25, 0.5) == LGN_MEM_NULL, "LGNSetNewmark(NULL)");
@@ -268,6 +287,7 @@ static void FailingCallback(Fault fault, int expected_flag, const char *name)
 
   Setup(&f);
   Setup(&g);
+  f.md.with_cforce = g.md.with_cforce = fault == CFORCE_FATAL;
   CHECK(Configure(&f) == 0 && Configure(&g) == 0, "configure (%s)", name);
   flag = LGNSolve(f.mem, 0.1, &t, f.q, f.v, LGN_NORMAL);
   memcpy(q_before, N_VGetArrayPointer(f.q), sizeof q_before);
@@ -290,6 +310,40 @@ static void FailingCallback(Fault fault, int expected_flag, const char *name)
   CHECK(N_VGetArrayPointer(f.q)[0] == N_VGetArrayPointer(g.q)[0] &&
             N_VGetArrayPointer(f.q)[1] == N_VGetArrayPointer(g.q)[1],
         "%s: the continued run equals the uninterrupted one", name);
+  Teardown(&f);
+  Teardown(&g);
+}
+
+/* The residual shortcuts: a constant mass matrix is evaluated once per
+ * LGNInit / LGNReInit, and B^T lambda from an LGNConstrForceFn; both give
+ * the iterates of the plain residual (bit for bit here: the same M, and
+ * lambda x rounds as B^T lambda does). */
+static void ResidualShortcuts(void)
+{
+  Fixture f, g;
+  sunrealtype t, tg;
+  long int nmass_plain;
+  int flag;
+
+  Setup(&f);
+  Setup(&g);
+  f.md.with_cforce = 1;
+  CHECK(Configure(&f) == 0 && Configure(&g) == 0, "configure (shortcuts)");
+  CHECK(LGNSetMassConstant(f.mem, SUNTRUE) == LGN_SUCCESS, "LGNSetMassConstant");
+  flag = LGNSolve(f.mem, 0.3, &t, f.q, f.v, LGN_NORMAL);
+  LGNSolve(g.mem, 0.3, &tg, g.q, g.v, LGN_NORMAL);
+  nmass_plain = g.md.nmass;
+  CHECK(flag == LGN_SUCCESS && f.md.nmass == 1,
+        "constant M: 1 mass evaluation in 30 steps (%ld; plain residual %ld)",
+        f.md.nmass, nmass_plain);
+  CHECK(N_VGetArrayPointer(f.q)[0] == N_VGetArrayPointer(g.q)[0] &&
+            N_VGetArrayPointer(f.q)[1] == N_VGetArrayPointer(g.q)[1],
+        "shortcuts: q equals the plain residual's bit for bit");
+  Initial(&f);
+  flag = LGNReInit(f.mem, 0.0, f.q, f.v);
+  if (flag == LGN_SUCCESS) flag = LGNSolve(f.mem, 0.1, &t, f.q, f.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && f.md.nmass == 2, "LGNReInit evaluates M again (%ld)",
+        f.md.nmass);
   Teardown(&f);
   Teardown(&g);
 }
@@ -349,6 +403,8 @@ int main(void)
   FailingCallback(FORCE_NAN, LGN_NONFINITE, "force returns NaN");
   FailingCallback(CONSTR_FATAL, LGN_CONSTR_FAIL, "constraint returns -7");
   FailingCallback(MASS_FATAL, LGN_MASS_FAIL, "mass returns -3");
+  FailingCallback(CFORCE_FATAL, LGN_CONSTR_JAC_FAIL, "constraint force returns -5");
+  ResidualShortcuts();
   NewtonFailureAndStats();
   return test_summary("test_bad_input");
 }

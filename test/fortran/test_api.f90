@@ -400,6 +400,8 @@ contains
     call expect(LGNSetStiffnessFn(mem, c_null_funptr) == 0, "LGNSetStiffnessFn(NULL)")
     call expect(LGNSetDampingFn(mem, c_null_funptr) == 0, "LGNSetDampingFn(NULL)")
     call expect(LGNSetCurvatureFn(mem, c_null_funptr) == 0, "LGNSetCurvatureFn(NULL)")
+    call expect(LGNSetConstraintForceFn(mem, c_null_funptr) == 0, "LGNSetConstraintForceFn(NULL)")
+    call expect(LGNSetMassConstant(mem, 0_c_int) == 0, "LGNSetMassConstant(0)")
     call expect(LGNInit(mem, 0.0_c_double, q, v) == 0, "LGNInit")
     call expect(LGNSetLinearSolver(mem, LS, A1) == 0, "LGNSetLinearSolver")
     call expect(LGNSetGenAlphaParams(mem, 0.0_c_double, 0.0_c_double, 0.3_c_double, &
