@@ -64,11 +64,33 @@ static double MaxDiff(const double *a, const double *b, long int n)
   return d;
 }
 
+/* Run the chain with opt and compare with the reference run ref (labelled
+ * `label`): the run must succeed, its configuration agree to tol and, with
+ * same_newton, its Newton iteration count be ref's. Returns 1 on failure. */
+static int CompareRun(RigidSystem *sys, const RigidRunOptions *opt,
+                      const RigidRunResult *ref, const char *label, double tol,
+                      int same_newton)
+{
+  RigidRunResult other;
+  const int flag = rigid_run(sys, opt, &other);
+  double d;
+  int fail;
+  Report(sys, opt, &other);
+  d    = MaxDiff(ref->q, other.q, 7L * sys->n);
+  fail = flag != LGN_SUCCESS || !(d < tol) || (same_newton && other.nni != ref->nni);
+  printf("         |q - q(%s)|_max = %.3e (must be < %.0e)", label, d, tol);
+  if (same_newton)
+    printf(", Newton iterations %ld (must be %ld)", other.nni, ref->nni);
+  printf("\n");
+  rigid_result_free(&other);
+  return fail;
+}
+
 int main(int argc, char **argv)
 {
   RigidRunOptions opt;
   RigidFormulation formulation = RB_R3XSO3;
-  RigidRunResult res, other;
+  RigidRunResult res;
   RigidSystem *sys;
   SUNContext ctx;
   int n = 10, compare = 0, i, flag, status = 0, s;
@@ -119,57 +141,38 @@ int main(int argc, char **argv)
   }
 
   if (compare && status == 0) {
-    const long int nq = 7L * n;
     const RigidSolver solvers[3] = {RB_DENSE, RB_KLU_CSC, RB_KLU_CSR};
     const RigidSolver mine = opt.solver;
+    char label[64];
     /* the same iteration matrix gives the same iterates to round-off, at
      * index 2 too: D_q(B v) is a difference quotient by columns (dense) or
      * by column colours (sparse), with the same increments, and a colour's
-     * columns touch disjoint rows */
+     * columns touch disjoint rows. The same matrices, so the same
+     * iterations too: a term missing from one matrix costs iterations
+     * before it shows in q. */
     const double same_tol = 1e-10;
     for (s = 0; s < 3; s++) {
       if (solvers[s] == mine || (solvers[s] == RB_DENSE && n > 200) ||
           !rigid_solver_available(solvers[s]))
         continue;
       opt.solver = solvers[s];
-      flag = rigid_run(sys, &opt, &other);
-      Report(sys, &opt, &other);
-      {
-        double d = MaxDiff(res.q, other.q, nq);
-        printf("         |q - q(%s)|_max = %.3e (must be < %.0e), Newton iterations %ld "
-               "(must be %ld)\n",
-               rigid_solver_name(mine), d, same_tol, other.nni, res.nni);
-        /* the same matrices, so the same iterations too: a term missing from
-         * one matrix costs iterations before it shows in q */
-        if (flag != LGN_SUCCESS || !(d < same_tol) || other.nni != res.nni) status = 1;
-      }
-      rigid_result_free(&other);
+      status |= CompareRun(sys, &opt, &res, rigid_solver_name(mine), same_tol, 1);
     }
-    opt.solver   = mine;
+    opt.solver = mine;
+
+    /* difference-quotient tangents: the same solution to the Newton tolerance */
     opt.analytic = !opt.analytic;
-    flag = rigid_run(sys, &opt, &other);
-    Report(sys, &opt, &other);
-    {
-      double d = MaxDiff(res.q, other.q, nq);
-      printf("         |q - q(%s)|_max = %.3e (Newton tolerance: must be < 1e-5)\n",
-             opt.analytic ? "dq" : "analytic", d);
-      if (flag != LGN_SUCCESS || !(d < 1e-5)) status = 1;
-    }
-    rigid_result_free(&other);
+    snprintf(label, sizeof label, "%s; Newton tolerance", opt.analytic ? "dq" : "analytic");
+    status |= CompareRun(sys, &opt, &res, label, 1e-5, 0);
     opt.analytic = !opt.analytic;
 
     /* the residual shortcuts (constant M, B^T lambda without B) change
      * only the rounding of the residual */
     opt.plain_residual = !opt.plain_residual;
-    flag = rigid_run(sys, &opt, &other);
-    Report(sys, &opt, &other);
-    {
-      double d = MaxDiff(res.q, other.q, nq);
-      printf("         |q - q(%s residual)|_max = %.3e (must be < %.0e)\n",
-             opt.plain_residual ? "shortcut" : "plain", d, same_tol);
-      if (flag != LGN_SUCCESS || !(d < same_tol)) status = 1;
-    }
-    rigid_result_free(&other);
+    status |= CompareRun(sys, &opt, &res,
+                         opt.plain_residual ? "shortcut residual" : "plain residual",
+                         same_tol, 0);
+    opt.plain_residual = !opt.plain_residual;
   }
   printf("%s\n", status == 0 ? "PASSED" : "FAILED");
   rigid_result_free(&res);

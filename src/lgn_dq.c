@@ -29,7 +29,7 @@ int lgnDQResidualAt(LGNMem mem, sunrealtype t)
   SUNMatrix M = mem->mass_constant ? mem->Mmat : mem->Mdq;
   mem->ndq++;
   flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, M, mem->dq_g, mem->Bdq,
-                        mem->m > 0 && mem->constr_force == NULL);
+                        mem->constr_force == NULL);
   if (flag == LGN_SUCCESS)
     flag = lgnDynamicResidual(mem, t, mem->dq_q, M, mem->dq_g, mem->Bdq,
                               lgnData(mem->dq_r));

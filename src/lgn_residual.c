@@ -122,9 +122,9 @@ sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
                         mem->constr_index == LGN_CONSTR_INDEX2);
 }
 
-/* M(q), g(q, v, t) and, when with_B, B(q) into the given storage. A
- * constant mass matrix (LGNSetMassConstant) is evaluated once, into
- * mem->Mmat, and kept: callers pass mem->Mmat as M then. */
+/* M(q), g(q, v, t) and, when with_B and m > 0, B(q) into the given
+ * storage. A constant mass matrix (LGNSetMassConstant) is evaluated once,
+ * into mem->Mmat, and kept: callers pass mem->Mmat as M then. */
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B)
 {
