@@ -11,7 +11,8 @@
  * N <= 200) and with difference-quotient tangents, and fails unless the
  * dense and sparse solutions agree to round-off (1e-10) with the same number
  * of Newton iterations, and
- * the DQ solution agrees to the Newton tolerance. The exit status is 0 only if every run succeeded
+ * the DQ solution agrees to the Newton tolerance. The exit status is 0 only
+ * if every run succeeded
  * and its constraint violation is at round-off level.
  * ---------------------------------------------------------------------------*/
 
@@ -162,7 +163,8 @@ int main(int argc, char **argv)
 
     /* difference-quotient tangents: the same solution to the Newton tolerance */
     opt.analytic = !opt.analytic;
-    snprintf(label, sizeof label, "%s; Newton tolerance", opt.analytic ? "dq" : "analytic");
+    snprintf(label, sizeof label, "%s; Newton tolerance",
+             opt.analytic ? "dq" : "analytic");
     status |= CompareRun(sys, &opt, &res, label, 1e-5, 0);
     opt.analytic = !opt.analytic;
 
