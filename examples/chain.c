@@ -8,12 +8,12 @@
  * the energy drift max |E(t) - E(0)|, the largest constraint violation, the
  * work counters and the position of the free end. With --compare it also
  * solves the same problem with the other linear solvers (dense only for
- * N <= 200) and with difference-quotient tangents, and fails unless the
- * dense and sparse solutions agree to round-off (1e-10) with the same number
- * of Newton iterations, and
- * the DQ solution agrees to the Newton tolerance. The exit status is 0 only
- * if every run succeeded
- * and its constraint violation is at round-off level.
+ * N <= 200), with difference-quotient tangents and with the plain residual
+ * (--residual plain), and fails unless the dense and sparse solutions agree
+ * to round-off (1e-10) with the same number of Newton iterations, the DQ
+ * solution agrees to the Newton tolerance and the plain residual's to
+ * round-off. The exit status is 0 only if every run succeeded and its
+ * constraint violation is at round-off level.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
