@@ -273,13 +273,22 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
 
 void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
 {
-  /* expq(x) = (cos(phi/2), sin(phi/2)/phi x); sin(h)/phi = sinc(h)/2 with
-   * h = phi/2, series of the sin(phi)/phi row of the §4.1 table */
-  const sunrealtype phi = lgnSO3_Norm(x), h = HALF * phi, h2 = h * h;
-  const sunrealtype k = (h < LGN_SO3_THR_SINC)
-    ? HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 / 5040)))
-    : sin(h) / phi;
-  p[0] = cos(h);
+  /* expq(x) = (cos(h), sin(h)/phi x), h = phi/2. Below the threshold both
+   * come from series in h^2 (no square root, sine or cosine): sin(h)/phi =
+   * sinc(h)/2 (the sin(phi)/phi row of the §4.1 table) and cos(h) to h^8,
+   * whose first omitted term, h^10/10!, is below 3e-20 there. The step
+   * increments and Newton corrections of a time integration are this small. */
+  const sunrealtype h2 = Dot(x, x) / 4;
+  sunrealtype k, c;
+  if (h2 < LGN_SO3_THR_SINC * LGN_SO3_THR_SINC) {
+    k = HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 / 5040)));
+    c = ONE + h2 * (-HALF + h2 * (ONE / 24 + h2 * (-ONE / 720 + h2 / 40320)));
+  } else {
+    const sunrealtype h = sqrt(h2);
+    k = sin(h) / (2 * h);
+    c = cos(h);
+  }
+  p[0] = c;
   p[1] = k * x[0];
   p[2] = k * x[1];
   p[3] = k * x[2];
@@ -287,12 +296,16 @@ void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
 
 void lgnSO3_QuatNormalize(sunrealtype p[4])
 {
-  const sunrealtype n = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]
-                             + p[3] * p[3]);
-  if (n > 0) {
-    const sunrealtype r = ONE / n;
-    p[0] *= r; p[1] *= r; p[2] *= r; p[3] *= r;
-  }
+  /* 1/|p|: for |p|^2 = 1 + d with |d| <= 1e-8, as after composing unit
+   * quaternions, 1 - d/2 is 1/sqrt(1 + d) to 3 d^2/8 < 4e-17, so neither
+   * a square root nor a division is needed. */
+  const sunrealtype n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+  const sunrealtype d  = n2 - ONE;
+  sunrealtype r;
+  if (fabs(d) <= SUN_RCONST(1.0e-8)) r = ONE - HALF * d;
+  else if (n2 > 0) r = ONE / sqrt(n2);
+  else return;
+  p[0] *= r; p[1] *= r; p[2] *= r; p[3] *= r;
 }
 
 void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
