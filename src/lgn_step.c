@@ -35,10 +35,13 @@ typedef struct {
   sunrealtype beta_p;  /* beta'  = (1-am)/(h^2 beta (1-af)): d sigma_ddot / d sigma */
   sunrealtype gamma_p; /* gamma' = gamma/(h beta):           d sigma_dot  / d sigma */
   sunrealtype scale;   /* beta h^2: scaling of the dynamic rows (spec §2)         */
+  sunrealtype qscale;  /* max(1, |q_n|_max): size of the configuration         */
 } StepCoeffs;
 
 static StepCoeffs SetCoeffs(LGNMem mem, sunrealtype h)
 {
+  const sunrealtype *q = lgnData(mem->q);
+  sunindextype i;
   StepCoeffs c;
   c.h       = h;
   c.t1      = mem->tn + h;
@@ -46,6 +49,8 @@ static StepCoeffs SetCoeffs(LGNMem mem, sunrealtype h)
               (h * h * mem->beta * (SUN_RCONST(1.0) - mem->alpha_f));
   c.gamma_p = mem->gamma / (h * mem->beta);
   c.scale   = mem->beta * h * h;
+  c.qscale  = SUN_RCONST(1.0);
+  for (i = 0; i < mem->nq; i++) c.qscale = SUNMAX(c.qscale, fabs(q[i]));
   return c;
 }
 
@@ -172,7 +177,7 @@ static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
  * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
  * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
  * tight tolerance at small h asks Newton to resolve noise (it stalls at a
- * constant correction). */
+ * constant correction). |q| is taken at t_n (c->qscale), once per step. */
 static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
                                   const sunrealtype *delta,
                                   const sunrealtype *dmu,
@@ -182,23 +187,22 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
-  const sunrealtype *q1 = lgnData(mem->q1);
-  sunrealtype qscale = SUN_RCONST(1.0), roundoff, floor_sigma, floor_lambda;
+  const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;
+  /* w_i = (delta_i / h) / (atol + rtol |sigma_i / h| + roundoff / h) and
+   * w_i = (h dmu_i / scale) / (atol + rtol |h lambda_i| + roundoff / (beta h)),
+   * each with one division */
+  const sunrealtype sigma_atol  = atol * h + roundoff;
+  const sunrealtype lambda_unit = c->scale / h;
+  const sunrealtype lambda_atol = atol + roundoff / (mem->beta * h);
   sunrealtype sum = SUN_RCONST(0.0), sum_lambda = SUN_RCONST(0.0), w;
 
-  for (i = 0; i < mem->nq; i++) qscale = SUNMAX(qscale, fabs(q1[i]));
-  roundoff     = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
-  floor_sigma  = roundoff / h;
-  floor_lambda = roundoff / (mem->beta * h);
-
   for (i = 0; i < nv; i++) {
-    w = (delta[i] / h) / (atol + rtol * fabs(mem->sigma[i] / h) + floor_sigma);
+    w = delta[i] / (sigma_atol + rtol * fabs(mem->sigma[i]));
     sum += w * w;
   }
   *norm_sigma = sqrt(sum / (sunrealtype)(nv + m));
   for (i = 0; i < m; i++) {
-    w = (h * dmu[i] / c->scale) /
-        (atol + rtol * fabs(h * lambda1[i]) + floor_lambda);
+    w = dmu[i] / (lambda_unit * (lambda_atol + rtol * fabs(h * lambda1[i])));
     sum_lambda += w * w;
   }
   *norm_lambda = sqrt(sum_lambda / (sunrealtype)(nv + m));
