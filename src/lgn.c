@@ -102,7 +102,6 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->sol);
   DestroyVector(&mem->dq_g);
   DestroyVector(&mem->dq_r);
-  DestroyVector(&mem->cforce);
   DestroyVector(&mem->dq_z);
   free(mem->sigma);
   mem->sigma = NULL;
@@ -157,11 +156,10 @@ int lgnAllocWork(LGNMem mem)
     mem->rdyn = N_VNew_Serial(nv, ctx);
     mem->dq_g = N_VNew_Serial(nv, ctx);
     mem->dq_r = N_VNew_Serial(nv, ctx);
-    mem->cforce = N_VNew_Serial(nv, ctx);
     mem->rhs  = N_VNew_Serial(nv + m, ctx);
     mem->sol  = N_VNew_Serial(nv + m, ctx);
     fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
-            mem->dq_r == NULL || mem->cforce == NULL || mem->rhs == NULL ||
+            mem->dq_r == NULL || mem->rhs == NULL ||
             mem->sol == NULL);
   }
   if (m > 0 && !fail) {
@@ -277,7 +275,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   long int rw = 0, iw = 0;
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
   if (mem->work_done) {
-    rw += 5 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
+    rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
     rw += 7 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }

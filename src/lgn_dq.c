@@ -31,8 +31,7 @@ int lgnDQResidualAt(LGNMem mem, sunrealtype t)
   flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, M, mem->dq_g, mem->Bdq,
                         mem->constr_force == NULL);
   if (flag == LGN_SUCCESS)
-    flag = lgnDynamicResidual(mem, t, mem->dq_q, M, mem->dq_g, mem->Bdq,
-                              lgnData(mem->dq_r));
+    flag = lgnDynamicResidual(mem, t, mem->dq_q, M, mem->dq_g, mem->Bdq, mem->dq_r);
   return flag;
 }
 

@@ -124,7 +124,6 @@ typedef struct LGNMemRec {
 
   /* ---- difference quotient scratch ---- */
   N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
-  N_Vector cforce;          /* B^T lambda from the LGNConstrForceFn       */
 
   /* ---- diagonal blocks of T: the leaves of the group (lgn_tangent.c) ---- */
   int nblk;
@@ -229,7 +228,7 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B);
 int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B);
 int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
-                       N_Vector g, SUNMatrix B, sunrealtype *r);
+                       N_Vector g, SUNMatrix B, N_Vector r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
                       sunrealtype cv, sunbooleantype for_matrix);
 void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,

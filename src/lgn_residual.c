@@ -154,28 +154,26 @@ int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B)
                         with_B);
 }
 
-/* r = M vdot1 + g + B(q)^T lambda1, the unscaled dynamic residual, with
- * B^T lambda1 from the LGNConstrForceFn if there is one (else from B). */
+/* r = B(q)^T lambda1 + M vdot1 + g, the unscaled dynamic residual, with
+ * B^T lambda1 from the LGNConstrForceFn if there is one (else from B).
+ * The constraint force goes first, so that the callback writes straight
+ * into r (no extra vector) and both ways sum in the same order. */
 int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
-                       N_Vector g, SUNMatrix B, sunrealtype *r)
+                       N_Vector g, SUNMatrix B, N_Vector r)
 {
   sunindextype i, nv = mem->nv;
   const sunrealtype *gd = lgnData(g);
+  sunrealtype *rd = lgnData(r);
   int ret;
-  lgnMatvec(M, lgnData(mem->vdot1), r, SUNFALSE);
-  for (i = 0; i < nv; i++) r[i] += gd[i];
-  if (mem->m == 0) return LGN_SUCCESS;
-  if (mem->constr_force == NULL) {
-    lgnMatTvec(B, lgnData(mem->lambda1), r, SUNTRUE);
-    return LGN_SUCCESS;
+  if (mem->m > 0 && mem->constr_force != NULL) {
+    memset(rd, 0, (size_t)nv * sizeof(sunrealtype));
+    ret = mem->constr_force(t, q, mem->lambda1, r, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_FORCE, ret, __func__);
+  } else if (mem->m > 0) {
+    lgnMatTvec(B, lgnData(mem->lambda1), rd, SUNFALSE);
   }
-  N_VConst(SUN_RCONST(0.0), mem->cforce);
-  ret = mem->constr_force(t, q, mem->lambda1, mem->cforce, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_FORCE, ret, __func__);
-  {
-    const sunrealtype *f = lgnData(mem->cforce);
-    for (i = 0; i < nv; i++) r[i] += f[i];
-  }
+  lgnMatvec(M, lgnData(mem->vdot1), rd, mem->m > 0);
+  for (i = 0; i < nv; i++) rd[i] += gd[i];
   return LGN_SUCCESS;
 }
 
@@ -191,7 +189,7 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
 
   flag = lgnEvalModel(mem, t, lgnNeedsConstraintJacobian(mem, for_matrix));
   if (flag == LGN_SUCCESS)
-    flag = lgnDynamicResidual(mem, t, mem->q1, mem->Mmat, mem->g, mem->Bmat, rdyn);
+    flag = lgnDynamicResidual(mem, t, mem->q1, mem->Mmat, mem->g, mem->Bmat, mem->rdyn);
   if (flag != LGN_SUCCESS) return flag;
   if (m > 0) {
     sunrealtype *phi = lgnData(mem->phi);
