@@ -525,6 +525,10 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     const double tout = opt->t_end * k / opt->outputs, t0 = CpuSeconds();
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
     res->cpu_seconds += CpuSeconds() - t0;
+    if (k == 1) {
+      res->cpu_first_seconds = res->cpu_seconds;
+      LGNGetNumSteps(mem, &res->nsteps_first);
+    }
     if (flag != 0) break;
     res->energy    = rigid_energy(sys, q, v);
     res->max_drift = fmax(res->max_drift, fabs(res->energy - res->energy0));

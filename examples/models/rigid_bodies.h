@@ -77,6 +77,10 @@ typedef struct {
   long int nnz, lenrw, leniw;
   double klu_peak_bytes;             /* KLU's peak memory (0 for dense)     */
   double cpu_seconds;                /* process CPU time in LGNSolve only    */
+  double cpu_first_seconds;          /* ... of the first LGNSolve call (to the
+                                        first output): set-up, KLU analysis,
+                                        initial values and its steps        */
+  long int nsteps_first;             /* steps of that first call             */
   double solve_seconds;              /* one linear solve with the last matrix */
   double setup_seconds;              /* one factorisation of the last matrix  */
   double *q, *v;                     /* final state (nq, nv), malloc'ed      */
