@@ -835,6 +835,28 @@ static void RunQuaternions(void)
       Check("R(quat(phi)) = expm(phi~) [long double]", MaxDiffL(A, R, 9),
             ldx ? 1e-15 : 2e-14, ctx);
     }
+  /* renormalisation: the cheap branch (|p|^2 within 1e-8 of 1) and the
+   * exact one agree with p/|p| in long double; zero stays zero */
+  {
+    static const double scale[] = {1, 1 + 1e-16, 1 - 3e-13, 1 + 4.9e-9, 1 - 4.9e-9,
+                                   1 + 5.1e-9, 1 + 1e-6, 0.25, 3.5};
+    for (k = 0; k < (int)(sizeof scale / sizeof scale[0]); k++)
+      for (m = 0; m < 4; m++) {
+        LD n2 = 0, pr[4];
+        RandDir(d);
+        LGNQuaternionFromRotationVector(d, p);
+        for (i = 0; i < 4; i++) { p[i] *= scale[k]; n2 += (LD)p[i] * p[i]; }
+        for (i = 0; i < 4; i++) pr[i] = p[i] / sqrtl(n2);
+        lgnSO3_QuatNormalize(p);
+        snprintf(ctx, sizeof ctx, "|p| = %.17g", scale[k]);
+        Check("quaternion renormalisation vs p/|p| [long double]", MaxDiffL(pr, p, 4),
+              ldx ? 3e-16 : 5e-16, ctx);
+      }
+    for (i = 0; i < 4; i++) p[i] = 0;
+    lgnSO3_QuatNormalize(p);
+    Check("renormalising the zero quaternion leaves it zero",
+          fabs(p[0]) + fabs(p[1]) + fabs(p[2]) + fabs(p[3]), 0, "zero");
+  }
   /* just beyond pi: the log picks the equivalent vector of angle 2pi - |phi| */
   for (m = 0; m < 4; m++) {
     double a = PI + (m == 0 ? 1e-9 : m == 1 ? 1e-6 : m == 2 ? 1e-3 : 1.0);
