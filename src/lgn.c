@@ -171,7 +171,8 @@ int lgnAllocWork(LGNMem mem)
             mem->dq_z == NULL);
   }
   if (!fail) {
-    /* sigma, sigma_dot, sigma_ddot, a_pred, work_nv, work2_nv, vdot_prev
+    /* sigma, sigma_dot and sigma_ddot of the exact variant (BindIncrement
+     * in lgn_step.c), a_pred, work_nv, work2_nv, vdot_prev
      * (nv each), lambda_prev and work_m (m each) in one block */
     mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + 2 * m), sizeof(sunrealtype));
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */

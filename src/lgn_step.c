@@ -72,6 +72,22 @@ static void FormIncrement(LGNMem mem, const StepCoeffs *c)
   }
 }
 
+/* Where sigma_dot and sigma_ddot live. In the simplified and sigma variants
+ * v1 = sigma_dot and vdot1 = sigma_ddot, so the increments are kept in v1
+ * and vdot1 themselves (nothing to copy per iteration); the exact variant
+ * has its own arrays (lgnAllocWork). Bound at the start of every step
+ * attempt, since Complete swaps v with v1 and vdot with vdot1. */
+static void BindIncrement(LGNMem mem)
+{
+  if (mem->kinematics == LGN_KINEMATICS_EXACT) {
+    mem->sigma_dot  = mem->sigma + mem->nv;
+    mem->sigma_ddot = mem->sigma + 2 * mem->nv;
+  } else {
+    mem->sigma_dot  = lgnData(mem->v1);
+    mem->sigma_ddot = lgnData(mem->vdot1);
+  }
+}
+
 /* Predictor. LGN_PREDICTOR_ZERO is the spec's (numerics.md §2 step 1,
  * modified-kinematics.md §2 step 1): sigma_ddot = 0, lambda = lambda_n.
  * LGN_PREDICTOR_EXTRAPOLATE guesses vdot_{n+1} and lambda_{n+1} by linear
@@ -94,6 +110,7 @@ static int Predict(LGNMem mem, const StepCoeffs *c)
   sunrealtype *acc = mem->work2_nv; /* guess of vdot_{n+1} */
   int ret = 0;
 
+  BindIncrement(mem);
   for (i = 0; i < nv; i++) {
     mem->a_pred[i] = (af * vdot[i] - am * a[i]) / (SUN_RCONST(1.0) - am);
     acc[i] = extrapolate ? vdot[i] + r * (vdot[i] - mem->vdot_prev[i]) : SUN_RCONST(0.0);
@@ -160,10 +177,8 @@ static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
                                      mem->sigma_dot, mem->work_nv);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
     for (i = 0; i < nv; i++) vdot1[i] += mem->work_nv[i];
-  } else {
-    memcpy(v1, mem->sigma_dot, (size_t)nv * sizeof(sunrealtype));
-    memcpy(vdot1, mem->sigma_ddot, (size_t)nv * sizeof(sunrealtype));
   }
+  /* otherwise v1 and vdot1 are sigma_dot and sigma_ddot (BindIncrement) */
   return LGN_SUCCESS;
 }
 
