@@ -48,7 +48,8 @@ struct LGNJointsRec {
   sunindextype *qoff, *voff;  /* offsets of each body                      */
   sunbooleantype *se3;        /* body on SE(3) (else R^3 x SO(3))          */
   sunbooleantype *injoint;    /* body appears in a primitive               */
-  sunrealtype *rot;           /* 9 per body: R(q) of the current call      */
+  sunrealtype *rot;           /* ROT_STRIDE per body: R(p) (9, row-major)
+                                 and the quaternion p it is of (4)        */
   Primitive *prim;
   int nprim, cap;
   sunindextype m;
@@ -64,6 +65,7 @@ struct LGNJointsRec {
 };
 
 #define NO_PATTERN (-1) /* bfmt before the first sparse B and after an Add */
+#define ROT_STRIDE 13   /* R(p) and p per body in rot                       */
 
 #define JERR(J, code, ...)                                                  \
   do {                                                                      \
@@ -116,12 +118,21 @@ static void Mul3(const sunrealtype *A, const sunrealtype *B, sunrealtype *C)
 }
 
 /* R(q) of every body that appears in a joint, once per evaluation: a chain
- * body is in two joints, and each joint reads it in several primitives. */
+ * body is in two joints, and each joint reads it in several primitives.
+ * A rotation whose quaternion is bit for bit the one of the last call is
+ * kept (the residual, the constraint forces and B are evaluated at the
+ * same iterate); the stored quaternions start as NaN, equal to nothing. */
 static void FillRotations(struct LGNJointsRec *J, const sunrealtype *q)
 {
   int k;
-  for (k = 0; k < J->nb; k++)
-    if (J->injoint[k]) LGNQuaternionToRotation(q + J->qoff[k] + 3, J->rot + 9 * (size_t)k);
+  for (k = 0; k < J->nb; k++) {
+    const sunrealtype *p = q + J->qoff[k] + 3;
+    sunrealtype *R = J->rot + ROT_STRIDE * (size_t)k, *pR = R + 9;
+    if (!J->injoint[k]) continue;
+    if (p[0] == pR[0] && p[1] == pR[1] && p[2] == pR[2] && p[3] == pR[3]) continue;
+    LGNQuaternionToRotation(p, R);
+    pR[0] = p[0]; pR[1] = p[1]; pR[2] = p[2]; pR[3] = p[3];
+  }
 }
 
 /* Position and rotation of a body (identity for the ground), pointing into
@@ -149,7 +160,7 @@ static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
     return;
   }
   P->x    = q + J->qoff[k];
-  P->R    = J->rot + 9 * (size_t)k;
+  P->R    = J->rot + ROT_STRIDE * (size_t)k;
   P->v    = v != NULL ? v + J->voff[k] : NULL;
   P->se3  = J->se3[k];
   P->voff = J->voff[k];
@@ -182,6 +193,7 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
 {
   struct LGNJointsRec *J;
   LGNMem mem = (LGNMem)lgn_mem;
+  size_t k;
   int nb;
   if (G == NULL) {
     if (mem != NULL) LGN_ERROR(mem, LGN_ILL_INPUT, "G = NULL illegal.");
@@ -204,7 +216,7 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
   J->voff = (sunindextype *)malloc((size_t)nb * sizeof *J->voff);
   J->se3  = (sunbooleantype *)malloc((size_t)nb * sizeof *J->se3);
   J->injoint  = (sunbooleantype *)calloc((size_t)nb, sizeof *J->injoint);
-  J->rot      = (sunrealtype *)malloc((size_t)nb * 9 * sizeof *J->rot);
+  J->rot      = (sunrealtype *)malloc((size_t)nb * ROT_STRIDE * sizeof *J->rot);
   J->bfmt     = NO_PATTERN;
   if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->injoint == NULL ||
       J->rot == NULL) {
@@ -212,6 +224,7 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
     return NULL;
   }
   CountBodies(G, 0, 0, J, 0);
+  for (k = 0; k < (size_t)nb * ROT_STRIDE; k++) J->rot[k] = NAN;
   return J;
 }
 
