@@ -381,6 +381,34 @@ int main(void)
     LGNJoints_Destroy(&J4);
   }
 
+  /* the rotations kept between calls: change one quaternion component at
+   * a time in place (the others bit for bit the same) and compare Phi with
+   * a fresh helper, which has nothing kept */
+  {
+    LGNJoints Jf;
+    double *qd = N_VGetArrayPointer(q), err = 0;
+    int c;
+    RandomConfiguration(4, qd);
+    LGNJoints_Residual(J, q, phi_p);
+    for (k = 0; k < 4; k++)
+      for (c = 0; c < 4; c++) {
+        double *p = qd + 7 * k + 3; /* both body types: (x, p), nq = 7 */
+        p[c] = -p[c];
+        Jf = LGNJoints_Create(NULL, G);
+        LGNJoints_AddSpherical(Jf, LGN_GROUND, pa, 0, pb);
+        LGNJoints_AddRevolute(Jf, 0, pa, axy, 1, pb, ax);
+        LGNJoints_AddUniversal(Jf, 1, pb, ay, 2, pa, axy);
+        LGNJoints_AddRevolute(Jf, 3, pa, ax, LGN_GROUND, pb, ay);
+        LGNJoints_AddSpherical(Jf, 2, pb, 3, pa);
+        LGNJoints_Residual(J, q, phi_p);
+        LGNJoints_Residual(Jf, q, phi_m);
+        for (i = 0; i < m; i++)
+          err = fmax(err, fabs(N_VGetArrayPointer(phi_p)[i] - N_VGetArrayPointer(phi_m)[i]));
+        LGNJoints_Destroy(&Jf);
+      }
+    Check("Phi after one quaternion component changed in place = fresh helper's", err, 0);
+  }
+
   LGNJoints_Destroy(&J);
   if (J != NULL) failures++;
   N_VDestroy(q); N_VDestroy(qp); N_VDestroy(qm); N_VDestroy(v); N_VDestroy(lam);
