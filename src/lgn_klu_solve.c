@@ -138,34 +138,38 @@ static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
  * (U) the entry in row k + next of column k comes first: the column solves
  * then carry that row's value to the next column in a register. (Each
  * entry of a column updates another row, so their order does not change
- * the result; in the transposed solves it is the order of a sum, kept.) */
-static void CompactFactor(int32_t n, const int64_t *Tp, const int64_t *Ti,
-                          double *x, int32_t *p32, int32_t *i32, double *diag,
-                          int next)
+ * the result; in the transposed solves it is the order of a sum, kept.)
+ * Returns 0, or -1 if a column has no diagonal entry. */
+static int CompactFactor(int32_t n, const int64_t *Tp, const int64_t *Ti,
+                         double *x, int32_t *p32, int32_t *i32, double *diag,
+                         int next)
 {
-  int32_t k, cnt = 0, first;
-  int64_t p;
+  int32_t k, cnt = 0, first, q, t;
+  int64_t p, d;
   double v;
   for (k = 0; k < n; k++) {
     p32[k] = first = cnt;
-    for (p = Tp[k]; p < Tp[k + 1]; p++) {
-      if (Ti[p] == k) {
-        if (diag != NULL) diag[k] = x[p];
-        continue;
-      }
+    for (d = Tp[k]; d < Tp[k + 1] && Ti[d] != k; d++) {}
+    if (d == Tp[k + 1]) return -1;
+    if (diag != NULL) diag[k] = x[d];
+    q = -1;
+    for (p = Tp[k]; p < Tp[k + 1]; p++) { /* cnt <= p: in place is safe */
+      if (p == d) continue;
+      if (Ti[p] == k + next) q = cnt;
       i32[cnt] = (int32_t)Ti[p];
-      x[cnt]   = x[p]; /* cnt <= p: compacting in place is safe */
-      if (next != 0 && Ti[p] == k + next && cnt > first) { /* to the front */
-        i32[cnt]   = i32[first];
-        i32[first] = (int32_t)Ti[p];
-        v          = x[cnt];
-        x[cnt]     = x[first];
-        x[first]   = v;
-      }
-      cnt++;
+      x[cnt++] = x[p];
+    }
+    if (next != 0 && q > first) { /* to the front */
+      t          = i32[q];
+      i32[q]     = i32[first];
+      i32[first] = t;
+      v          = x[q];
+      x[q]       = x[first];
+      x[first]   = v;
     }
   }
   p32[n] = cnt;
+  return 0;
 }
 
 /* Which solve SUNLinSolSolve calls: klu_l_solve (A CSC: KLU has A) or
@@ -234,11 +238,15 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
   if (!klu_l_extract(N, S, tmp, tmp + n + 1, c->Lx, NULL, NULL, NULL, NULL,
                      NULL, NULL, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
-  CompactFactor(c->n, tmp, tmp + n + 1, c->Lx, c->Lp, c->Li, NULL, transpose ? 0 : 1);
+  if (CompactFactor(c->n, tmp, tmp + n + 1, c->Lx, c->Lp, c->Li, NULL,
+                    transpose ? 0 : 1) != 0)
+    return LGN_KLU_NO_COPY;
   if (!klu_l_extract(N, S, NULL, NULL, NULL, tmp, tmp + n + 1, c->Ux, NULL,
                      NULL, NULL, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
-  CompactFactor(c->n, tmp, tmp + n + 1, c->Ux, c->Up, c->Ui, c->Udiag, transpose ? 0 : -1);
+  if (CompactFactor(c->n, tmp, tmp + n + 1, c->Ux, c->Up, c->Ui, c->Udiag,
+                    transpose ? 0 : -1) != 0)
+    return LGN_KLU_NO_COPY;
   if (!klu_l_extract(N, S, NULL, NULL, NULL, NULL, NULL, NULL, tmp,
                      tmp + n + 1, c->Fx, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
