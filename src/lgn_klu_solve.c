@@ -28,9 +28,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <sunlinsol/sunlinsol_klu.h>
-
 #include "lgn_klu_solve.h"
+
+#if defined(LGN_KLU_COPY) /* else the stubs of lgn_klu_solve.h */
+
+#include <sunlinsol/sunlinsol_klu.h>
 
 /* =============================================================================
  * Storage
@@ -424,3 +426,7 @@ void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x)
   if (c->transpose) SolveTransposed(c, b, x);
   else Solve(c, b, x);
 }
+
+#else
+typedef int lgnKluCopyUnavailable; /* ISO C: no empty translation unit */
+#endif

@@ -3,7 +3,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Private header: Lignum's own solves with a compact copy of the factors of
- * SUNLinSol_KLU (lgn_klu_solve.c, built with LGN_HAVE_KLU). Without KLU the
+ * SUNLinSol_KLU (lgn_klu_solve.c, built with LGN_HAVE_KLU, for SUNDIALS with
+ * 64-bit indices, whose KLU interface calls klu_l_*). Otherwise the
  * functions are stubs: no copy is ever made, so lgnLsSolve always calls
  * SUNLinSolSolve.
  * ---------------------------------------------------------------------------*/
@@ -46,7 +47,8 @@ typedef struct LGNKluCopyRec {
 /* Return values of lgnKluCopyRefresh besides LGN_SUCCESS and LGN_MEM_FAIL. */
 #define LGN_KLU_NO_COPY 1 /* no factors, sizes beyond 32 bits, or unknown */
 
-#if defined(LGN_HAVE_KLU)
+#if defined(LGN_HAVE_KLU) && defined(SUNDIALS_INT64_T)
+#define LGN_KLU_COPY
 
 int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS);
 void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x);
