@@ -9,11 +9,13 @@
  * work counters and the position of the free end. With --compare it also
  * solves the same problem with the other linear solvers (dense only for
  * N <= 200), with difference-quotient tangents and with the plain residual
- * (--residual plain), and fails unless the dense and sparse solutions agree
- * to round-off (1e-10) with the same number of Newton iterations, the DQ
- * solution agrees to the Newton tolerance and the plain residual's to
- * round-off. The exit status is 0 only if every run succeeded and its
- * constraint violation is at round-off level.
+ * (--residual plain) and, with KLU, with the other of Lignum's and KLU's
+ * solves (--klu-solve), and fails unless the dense and sparse solutions
+ * agree to round-off (1e-10) with the same number of Newton iterations, the
+ * DQ solution agrees to the Newton tolerance, the plain residual's to
+ * round-off and the other solves' to round-off with the same iterations.
+ * The exit status is 0 only if every run succeeded and its constraint
+ * violation is at round-off level.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -38,12 +40,13 @@ static void Report(const RigidSystem *sys, const RigidRunOptions *opt,
   LGNQuaternionToRotation(q + 3, R);
   for (i = 0; i < 3; i++) tip[i] = q[i] - 0.5 * R[3 * i + 2]; /* x - (L/2) R e3 */
   printf("%-8s %-9s t = %.3f  steps %ld  Newton/step %.2f  DQ evals %ld  "
-         "analyses %ld  nnz %ld  cpu %.3f s (%.3g ms/step)%s\n",
+         "analyses %ld  nnz %ld  cpu %.3f s (%.3g ms/step)%s%s\n",
          rigid_solver_name(opt->solver), opt->analytic ? "analytic" : "dq", r->t,
          r->nsteps, r->nsteps > 0 ? (double)r->nni / r->nsteps : 0.0, r->ndq,
          r->nanalyses, r->nnz, r->cpu_seconds,
          r->nsteps > 0 ? 1e3 * r->cpu_seconds / r->nsteps : 0.0,
-         opt->plain_residual ? "  plain residual" : "");
+         opt->plain_residual ? "  plain residual" : "",
+         opt->solver != RB_DENSE && opt->klu_solve_sundials ? "  KLU's solves" : "");
   printf("         energy E0 = %.10g  E(t_end) = %.10g  max |E - E0| = %.3e "
          "(relative to the potential scale N^2 m g L/2: %.3e)\n",
          r->energy0, r->energy, r->max_drift,
@@ -175,6 +178,16 @@ int main(int argc, char **argv)
                          opt.plain_residual ? "shortcut residual" : "plain residual",
                          same_tol, 0);
     opt.plain_residual = !opt.plain_residual;
+
+    /* Lignum's solves on a copy of KLU's factors do KLU's operations in
+     * KLU's order: the same iterates (to the last bit without FMA) */
+    if (opt.solver != RB_DENSE) {
+      opt.klu_solve_sundials = !opt.klu_solve_sundials;
+      status |= CompareRun(sys, &opt, &res,
+                           opt.klu_solve_sundials ? "Lignum's solves" : "KLU's solves",
+                           same_tol, 1);
+      opt.klu_solve_sundials = !opt.klu_solve_sundials;
+    }
   }
   printf("%s\n", status == 0 ? "PASSED" : "FAILED");
   rigid_result_free(&res);

@@ -374,6 +374,16 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem, LS, A
     end function LGNSetLinearSolver
 
+    !> With SUNLinSol_KLU: solve with Lignum's own triangular solves on a
+    !! copy of KLU's factors (own = 1, default) or with SUNLinSolSolve
+    !! (own = 0). own: 0 or 1 (sunbooleantype).
+    integer(c_int) function LGNSetOwnKLUSolves(lgn_mem, own) &
+        bind(c, name="LGNSetOwnKLUSolves")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: own
+    end function LGNSetOwnKLUSolves
+
     !> Fixed step size h > 0 (required).
     integer(c_int) function LGNSetStepSize(lgn_mem, h) bind(c, name="LGNSetStepSize")
       import :: c_int, c_double, c_ptr

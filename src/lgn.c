@@ -16,6 +16,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
 
 /* =============================================================================
@@ -46,6 +47,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->msbp         = LGN_MSBP_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
+  mem->own_klu_solves = SUNTRUE;
   mem->errfp        = stderr;
   return mem;
 }
@@ -87,6 +89,8 @@ void lgnFreeMatrices(LGNMem mem)
   free(mem->Bvq);
   mem->Bvq = NULL;
   lgnSparseWorkFree(mem);
+  lgnKluCopyFree(&mem->klu);
+  mem->klu_valid = SUNFALSE;
   mem->mat_done = SUNFALSE;
 }
 
@@ -289,6 +293,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     MatrixSpace(mem->Bdq, &rw, &iw);
     if (mem->Bvq != NULL) rw += m * nv;
     lgnSparseWorkSpace(mem, &rw, &iw);
+    lgnKluCopySpace(mem->klu, &rw, &iw);
   }
   *lenrw = rw;
   *leniw = iw;

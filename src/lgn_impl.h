@@ -152,6 +152,12 @@ typedef struct LGNMemRec {
   sunbooleantype ls_initialized;
   long int last_lin_flag;
 
+  /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
+  sunbooleantype own_klu_solves; /* LGNSetOwnKLUSolves (default SUNTRUE)   */
+  sunbooleantype klu_valid;      /* klu holds the factors now in LS         */
+  long int klu_nsolve;           /* solves with LS's factors since its setup */
+  struct LGNKluCopyRec *klu;     /* the copy (NULL: none)                   */
+
   /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
   sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
   sunrealtype lu_h;         /* the step size it was built with             */
@@ -276,7 +282,8 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
  * step of a modified Newton iteration rebuilds it. */
 static inline void lgnInvalidateMatrix(struct LGNMemRec *mem)
 {
-  mem->lu_valid = SUNFALSE;
+  mem->lu_valid  = SUNFALSE;
+  mem->klu_valid = SUNFALSE; /* copied again after the next setup */
 }
 
 /* helpers */

@@ -2,16 +2,19 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * The bridge to SUNDIALS' SUNLinearSolver: LGNSetLinearSolver, the check of
- * matrix and solver against the problem size, setup (factorisation) and solve.
- * The iteration matrix is filled by lgn_assemble.c (dense) or
- * lgn_assemble_sparse.c (SUNSparseMatrix, CSC or CSR, with SUNLinSol_KLU).
+ * The bridge to SUNDIALS' SUNLinearSolver: LGNSetLinearSolver,
+ * LGNSetOwnKLUSolves, the check of matrix and solver against the problem
+ * size, setup (factorisation) and solve. The iteration matrix is filled by
+ * lgn_assemble.c (dense) or lgn_assemble_sparse.c (SUNSparseMatrix, CSC or
+ * CSR, with SUNLinSol_KLU). With KLU, the solves use a copy of KLU's
+ * factors (lgn_klu_solve.c), made when a factorisation is solved with a
+ * second time, unless switched off.
  * ---------------------------------------------------------------------------*/
 
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "lgn_impl.h"
+#include "lgn_klu_solve.h"
 
 int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
 {
@@ -59,7 +62,21 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
   mem->A              = A;
   mem->ls_initialized = SUNFALSE;
   lgnInvalidateMatrix(mem);
-  lgnFreeMatrices(mem); /* reallocated for A's type at the next solve */
+  lgnFreeMatrices(mem); /* reallocated for A's type at the next solve; frees
+                           the copy of the old solver's factors */
+  return LGN_SUCCESS;
+}
+
+int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  mem->own_klu_solves = own ? SUNTRUE : SUNFALSE;
+  if (!mem->own_klu_solves) { /* SUNLinSolSolve from now on */
+    mem->klu_valid = SUNFALSE;
+    lgnKluCopyFree(&mem->klu);
+  } /* else the copy is made at the second solve after the next setup */
   return LGN_SUCCESS;
 }
 
@@ -92,9 +109,30 @@ int lgnLsCheck(LGNMem mem)
   return LGN_SUCCESS;
 }
 
+/* Copy the factors of SUNLinSol_KLU for lgnLsSolve, at the second solve
+ * with them: copying costs about half a refactorisation (klu_l_extract and
+ * the conversion), more than one solve saves, so factors solved with once
+ * (full Newton, the initial values) are not copied. When they cannot be
+ * copied (indices beyond 32 bits, or memory refused), the solves fall back
+ * to SUNLinSolSolve, which gives the same results: the integration goes
+ * on, only slower, and the copy's memory is released. */
+static void CopyKLUFactors(LGNMem mem)
+{
+  int flag;
+  if (!mem->own_klu_solves || mem->klu_nsolve != 1 ||
+      SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
+    return;
+  flag = lgnKluCopyRefresh(&mem->klu, mem->LS);
+  mem->klu_valid = flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
+  if (flag != LGN_SUCCESS) lgnKluCopyFree(&mem->klu);
+}
+
 int lgnLsSetup(LGNMem mem)
 {
-  int ret = SUNLinSolSetup(mem->LS, mem->A);
+  int ret;
+  mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
+  mem->klu_nsolve = 0;
+  ret = SUNLinSolSetup(mem->LS, mem->A);
   mem->nlsetup++;
   mem->last_lin_flag = ret;
   if (ret != 0) {
@@ -109,8 +147,16 @@ int lgnLsSetup(LGNMem mem)
 
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
-  int ret = SUNLinSolSolve(mem->LS, mem->A, x, b, SUN_RCONST(0.0));
+  int ret;
+  if (!mem->klu_valid) CopyKLUFactors(mem);
+  mem->klu_nsolve++;
   mem->nlsolve++;
+  if (mem->klu_valid) { /* the same operations as KLU's solve */
+    lgnKluCopySolve(mem->klu, lgnData(b), lgnData(x));
+    mem->last_lin_flag = 0;
+    return LGN_SUCCESS;
+  }
+  ret = SUNLinSolSolve(mem->LS, mem->A, x, b, SUN_RCONST(0.0));
   mem->last_lin_flag = ret;
   if (ret != 0) {
     LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the linear solve failed (%d).",

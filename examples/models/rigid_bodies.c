@@ -505,6 +505,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     if (flag == 0) flag = LGNSetCurvatureFn(mem, Curvature);
   }
   if (flag == 0) flag = LGNSetLinearSolver(mem, LS, A);
+  if (flag == 0) flag = LGNSetOwnKLUSolves(mem, !opt->klu_solve_sundials);
   if (flag == 0) flag = LGNSetStepSize(mem, opt->h);
   if (flag == 0)
     flag = opt->method == 1 ? LGNSetGenAlpha(mem, opt->rho_inf)
@@ -582,6 +583,7 @@ void rigid_print_usage(FILE *out)
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
           "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
           "          [--predictor zero|extrapolate] [--ordering amd|colamd|natural]\n"
+          "          [--klu-solve lignum|klu]\n"
           "          [--residual shortcuts|plain]\n"
           "          [--csv FILE]\n");
 }
@@ -639,6 +641,10 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     if (VAL("amd")) opt->klu_ordering = 0;
     else if (VAL("colamd")) opt->klu_ordering = 1;
     else if (VAL("natural")) opt->klu_ordering = 2;
+    else return -1;
+  } else if (IS("--klu-solve")) {
+    if (VAL("lignum")) opt->klu_solve_sundials = 0;
+    else if (VAL("klu")) opt->klu_solve_sundials = 1;
     else return -1;
   } else if (IS("--msbp")) opt->msbp = atol(val);
   else if (IS("--rho-inf")) opt->rho_inf = atof(val);

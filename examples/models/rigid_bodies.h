@@ -59,6 +59,9 @@ typedef struct {
   long int msbp;            /* modified Newton: steps between setups (0: default) */
   int predictor;            /* LGN_PREDICTOR_* (default zero)               */
   int klu_ordering;         /* KLU ordering: 0 AMD (default), 1 COLAMD, 2 natural */
+  int klu_solve_sundials;   /* 1: solves by SUNLinSolSolve (KLU's own);
+                               0 (default): Lignum's on a copy of the
+                               factors (LGNSetOwnKLUSolves)              */
   int plain_residual;       /* 1: M evaluated every iteration and B^T lambda
                                from B (no LGNSetMassConstant,
                                LGNSetConstraintForceFn); 0 (default): both */

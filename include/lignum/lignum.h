@@ -266,6 +266,29 @@ int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
  *  on a dense matrix). Lignum does not take ownership. */
 int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A);
 
+/** Solve with Lignum's own triangular solves on a copy of KLU's factors
+ *  (SUNLinSol_KLU only). When a factorisation is solved with a second time
+ *  (modified Newton reuses it), Lignum copies L, U, the off-diagonal BTF
+ *  blocks, the permutations and the row scaling out of KLU
+ *  (klu_l_extract) into compressed columns with 32-bit indices and from
+ *  then on solves with the copy instead of calling SUNLinSolSolve: 12
+ *  instead of 16 bytes per entry to read, and a shorter chain of
+ *  dependences, make a solve about twice as fast (CSC; 1.6 times for CSR).
+ *  Copying costs about half a refactorisation, so factorisations solved
+ *  with once (full Newton) are not copied. The solves do KLU's operations
+ *  in KLU's order: the results agree with SUNLinSolSolve to round-off (to
+ *  the last bit without fused multiply-add). The copy takes 12 bytes per
+ *  entry of L + U, 48 per row, and 8 per entry of the larger factor for
+ *  the extraction (counted in LGNGetWorkSpace; doc/user-guide.md, section
+ *  7). Factors beyond 32-bit indices, or memory refused, make Lignum fall
+ *  back to SUNLinSolSolve.
+ *  @param lgn_mem memory block
+ *  @param own     SUNTRUE (default): Lignum's solves; SUNFALSE:
+ *                 SUNLinSolSolve, and the copy is freed. Without KLU
+ *                 (LGN_ENABLE_KLU=OFF) the setting is only recorded.
+ *  @return LGN_SUCCESS or LGN_MEM_NULL. */
+int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own);
+
 /** Fixed step size h > 0 (required). */
 int LGNSetStepSize(void *lgn_mem, sunrealtype h);
 

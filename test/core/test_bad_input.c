@@ -172,6 +172,7 @@ static void NullMemory(void)
   CHECK(LGNSetConstraintForceFn(NULL, NULL) == LGN_MEM_NULL, "LGNSetConstraintForceFn(NULL)");
   CHECK(LGNSetMassConstant(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetMassConstant(NULL)");
   CHECK(LGNSetLinearSolver(NULL, NULL, NULL) == LGN_MEM_NULL, "LGNSetLinearSolver(NULL)");
+  CHECK(LGNSetOwnKLUSolves(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetOwnKLUSolves(NULL)");
   CHECK(LGNSetStepSize(NULL, 0.1) == LGN_MEM_NULL, "LGNSetStepSize(NULL)");
   CHECK(LGNSetNewmark(NULL, 0.25, 0.5) == LGN_MEM_NULL, "LGNSetNewmark(NULL)");
   CHECK(LGNSetGenAlpha(NULL, 0.9) == LGN_MEM_NULL, "LGNSetGenAlpha(NULL)");

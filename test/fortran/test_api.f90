@@ -196,6 +196,8 @@ contains
     ! NULL memory block (message on stderr, as documented)
     call expect_flag(LGNSetStepSize(c_null_ptr, 1.0e-3_c_double), LGN_MEM_NULL, &
                      "LGN_MEM_NULL", "LGNSetStepSize(NULL)")
+    call expect_flag(LGNSetOwnKLUSolves(c_null_ptr, 1_c_int), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNSetOwnKLUSolves(NULL)")
 
     mem = LGNCreate(ctx)
     call expect(c_associated(mem), "LGNCreate")
@@ -404,6 +406,8 @@ contains
     call expect(LGNSetMassConstant(mem, 0_c_int) == 0, "LGNSetMassConstant(0)")
     call expect(LGNInit(mem, 0.0_c_double, q, v) == 0, "LGNInit")
     call expect(LGNSetLinearSolver(mem, LS, A1) == 0, "LGNSetLinearSolver")
+    ! with a dense solver the switch is only recorded
+    call expect(LGNSetOwnKLUSolves(mem, 1_c_int) == 0, "LGNSetOwnKLUSolves(1)")
     call expect(LGNSetGenAlphaParams(mem, 0.0_c_double, 0.0_c_double, 0.3_c_double, &
                                      0.6_c_double) == 0, "LGNSetGenAlphaParams")
     call expect(LGNGetMethodParams(mem, am, af, beta, gamma) == 0, "LGNGetMethodParams")

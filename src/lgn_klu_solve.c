@@ -1,0 +1,432 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Lignum's own solves with KLU's factors (LGNSetOwnKLUSolves). When a
+ * factorisation by SUNLinSol_KLU is solved with a second time (lgn_ls.c),
+ * lgnKluCopyRefresh copies the factors out of KLU's Numeric object
+ * (klu_l_extract) into compressed columns with 32-bit indices, and
+ * lgnKluCopySolve solves with them. KLU keeps its
+ * factors in one packed array per block, with 64-bit indices: 16 bytes per
+ * entry against 12 here. The column solves also carry the new value of the
+ * next row from one column to the next in a register (LowerColumns), which
+ * shortens the chain of dependences that limits a sparse triangular solve
+ * on a banded matrix. On the 10000-body chain of the examples (n = 90000,
+ * 1.06 M entries in L + U) a solve takes about half of klu_l_solve's time
+ * (see doc/user-guide.md, section 7).
+ *
+ * The solves do the operations of klu_l_solve / klu_l_tsolve (one
+ * right-hand side) on each entry in the same order, so they give the same
+ * result to the last bit when both are compiled without contractions
+ * (fused multiply-add).
+ *
+ *   lgnKluCopyRefresh  copy the factors now in a SUNLinSol_KLU
+ *   lgnKluCopySolve    solve A x = b with the copy
+ *   lgnKluCopyFree, lgnKluCopySpace
+ * ---------------------------------------------------------------------------*/
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "lgn_klu_solve.h"
+
+#if defined(LGN_KLU_COPY) /* else the stubs of lgn_klu_solve.h */
+
+#include <sunlinsol/sunlinsol_klu.h>
+
+/* =============================================================================
+ * Storage
+ * ===========================================================================*/
+
+void lgnKluCopyFree(LGNKluCopy **copy)
+{
+  LGNKluCopy *c = *copy;
+  if (c == NULL) return;
+  free(c->Lp); free(c->Li); free(c->Lx);
+  free(c->Up); free(c->Ui); free(c->Ux);
+  free(c->Fp); free(c->Fi); free(c->Fx);
+  free(c->P);  free(c->Q);  free(c->R);
+  free(c->Udiag); free(c->Rs); free(c->X);
+  free(c->tmp);
+  free(c);
+  *copy = NULL;
+}
+
+/* Reals and integers held (32-bit indices count as half an integer of
+ * sunindextype, the unit of LGNGetWorkSpace). */
+void lgnKluCopySpace(const LGNKluCopy *c, long int *rw, long int *iw)
+{
+  size_t i32;
+  if (c == NULL) return;
+  *rw += (long int)(c->cap_l + c->cap_u + c->cap_f + 3 * c->cap_n);
+  i32 = 6 * c->cap_n + 4 + c->cap_l + c->cap_u + c->cap_f;
+  *iw += (long int)((i32 + 1) / 2 + c->cap_tmp);
+}
+
+/* A new array of count items of `size` bytes in place of p (its contents
+ * are not needed: cheaper than realloc). */
+static void *Renew(void *p, size_t count, size_t size)
+{
+  free(p);
+  return malloc((count > 0 ? count : 1) * size);
+}
+
+#define RENEW(a, count) (((a) = Renew((a), (count), sizeof *(a))) != NULL)
+
+/* The capacity for `need` entries: as it is, or need + 1/8 when it grows
+ * (a factorisation with new pivots usually changes the fill a little). */
+static size_t NewCap(size_t cap, size_t need)
+{
+  if (need <= cap) return cap;
+  return cap == 0 ? need : need + need / 8;
+}
+
+/* Arrays for n rows (and up to n blocks) and lnz, unz, nzoff entries
+ * (klu_l_extract's sizes: L and U with their diagonals), kept while they
+ * are large enough. On failure some arrays may be gone: free the copy. */
+static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
+                   size_t nzoff)
+{
+  size_t cap, ntmp;
+  if (n > c->cap_n || c->P == NULL) {
+    cap      = NewCap(c->cap_n, n);
+    c->cap_n = 0;
+    if (!(RENEW(c->Lp, cap + 1) && RENEW(c->Up, cap + 1) &&
+          RENEW(c->Fp, cap + 1) && RENEW(c->P, cap) && RENEW(c->Q, cap) &&
+          RENEW(c->R, cap + 1) && RENEW(c->Udiag, cap) && RENEW(c->Rs, cap) &&
+          RENEW(c->X, cap)))
+      return LGN_MEM_FAIL;
+    c->cap_n = cap;
+  }
+  /* L and U: the values are extracted in place, diagonals included, and
+   * then compacted; the indices go through tmp */
+  if (lnz > c->cap_l || c->Lx == NULL) {
+    cap      = NewCap(c->cap_l, lnz);
+    c->cap_l = 0;
+    if (!(RENEW(c->Lx, cap) && RENEW(c->Li, cap))) return LGN_MEM_FAIL;
+    c->cap_l = cap;
+  }
+  if (unz > c->cap_u || c->Ux == NULL) {
+    cap      = NewCap(c->cap_u, unz);
+    c->cap_u = 0;
+    if (!(RENEW(c->Ux, cap) && RENEW(c->Ui, cap))) return LGN_MEM_FAIL;
+    c->cap_u = cap;
+  }
+  if (nzoff > c->cap_f || c->Fx == NULL) {
+    cap      = NewCap(c->cap_f, nzoff);
+    c->cap_f = 0;
+    if (!(RENEW(c->Fx, cap) && RENEW(c->Fi, cap))) return LGN_MEM_FAIL;
+    c->cap_f = cap;
+  }
+  /* tmp: pointers and indices of one of L, U, F; or P, Q and R */
+  ntmp = SUNMAX(n + 1 + SUNMAX(SUNMAX(lnz, unz), nzoff), 3 * n + 1);
+  if (ntmp > c->cap_tmp || c->tmp == NULL) {
+    cap        = NewCap(c->cap_tmp, ntmp);
+    c->cap_tmp = 0;
+    if (!RENEW(c->tmp, cap)) return LGN_MEM_FAIL;
+    c->cap_tmp = cap;
+  }
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * The copy
+ * ===========================================================================*/
+
+/* Column pointers and indices of an extracted triangular factor, as 32-bit
+ * integers without the diagonal entries; the values x are compacted in
+ * place (the diagonal of U goes to diag, that of L, all ones, is dropped).
+ * The other entries keep KLU's order, except that with next = +1 (L) or -1
+ * (U) the entry in row k + next of column k comes first: the column solves
+ * then carry that row's value to the next column in a register. (Each
+ * entry of a column updates another row, so their order does not change
+ * the result; in the transposed solves it is the order of a sum, kept.)
+ * Returns 0, or -1 if a column has no diagonal entry. */
+static int CompactFactor(int32_t n, const int64_t *Tp, const int64_t *Ti,
+                         double *x, int32_t *p32, int32_t *i32, double *diag,
+                         int next)
+{
+  int32_t k, cnt = 0, first, q, t;
+  int64_t p, d;
+  double v;
+  for (k = 0; k < n; k++) {
+    p32[k] = first = cnt;
+    for (d = Tp[k]; d < Tp[k + 1] && Ti[d] != k; d++) {}
+    if (d == Tp[k + 1]) return -1;
+    if (diag != NULL) diag[k] = x[d];
+    q = -1;
+    for (p = Tp[k]; p < Tp[k + 1]; p++) { /* cnt <= p: in place is safe */
+      if (p == d) continue;
+      if (Ti[p] == k + next) q = cnt;
+      i32[cnt] = (int32_t)Ti[p];
+      x[cnt++] = x[p];
+    }
+    if (next != 0 && q > first) { /* to the front */
+      t          = i32[q];
+      i32[q]     = i32[first];
+      i32[first] = t;
+      v          = x[q];
+      x[q]       = x[first];
+      x[first]   = v;
+    }
+  }
+  p32[n] = cnt;
+  return 0;
+}
+
+/* Which solve SUNLinSolSolve calls: klu_l_solve (A CSC: KLU has A) or
+ * klu_l_tsolve (A CSR: KLU has A^T); -1 if neither. */
+static int SundialsTranspose(SUNLinearSolver LS)
+{
+  const KLUSolveFn f = ((SUNLinearSolverContent_KLU)LS->content)->klu_solver;
+  if (f == (KLUSolveFn)klu_l_solve) return 0;
+  if (f == (KLUSolveFn)klu_l_tsolve) return 1;
+  return -1;
+}
+
+/* Copy the factors now in the SUNLinSol_KLU LS (again after every
+ * SUNLinSolSetup: KLU refactors in place, and SUNDIALS replaces the
+ * Numeric object when it factors with new pivots). Returns LGN_SUCCESS,
+ * LGN_KLU_NO_COPY (no factors, sizes beyond 32-bit indices, an unknown
+ * solve function: *copy is left as it is, to be used no more), or
+ * LGN_MEM_FAIL (*copy freed). */
+int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
+{
+  klu_l_symbolic *S = SUNLinSol_KLUGetSymbolic(LS);
+  klu_l_numeric *N  = SUNLinSol_KLUGetNumeric(LS);
+  klu_l_common *Cm  = SUNLinSol_KLUGetCommon(LS);
+  const int transpose = SundialsTranspose(LS);
+  LGNKluCopy *c = *copy;
+  int64_t *tmp, n, nb, lnz, unz, nzoff, k;
+  int flag;
+
+  if (S == NULL || N == NULL || transpose < 0) return LGN_KLU_NO_COPY;
+  n     = S->n;
+  nb    = S->nblocks;
+  lnz   = N->lnz;
+  unz   = N->unz;
+  nzoff = N->nzoff;
+  if (n < 1 || nb < 1 || nb > n || lnz < n || unz < n || nzoff < 0 ||
+      n >= INT32_MAX || lnz > INT32_MAX || unz > INT32_MAX || nzoff > INT32_MAX)
+    return LGN_KLU_NO_COPY;
+
+  if (c == NULL) {
+    c = (LGNKluCopy *)calloc(1, sizeof *c);
+    if (c == NULL) return LGN_MEM_FAIL;
+    *copy = c;
+  }
+  flag = Reserve(c, (size_t)n, (size_t)lnz, (size_t)unz, (size_t)nzoff);
+  if (flag != LGN_SUCCESS) {
+    lgnKluCopyFree(copy);
+    return LGN_MEM_FAIL;
+  }
+  tmp          = c->tmp;
+  c->n         = (int32_t)n;
+  c->nblocks   = (int32_t)nb;
+  c->transpose = transpose ? SUNTRUE : SUNFALSE;
+  c->scaled    = N->Rs != NULL; /* else klu_l_extract gives ones */
+
+  /* permutations, scale factors, block boundaries */
+  if (!klu_l_extract(N, S, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL,
+                     NULL, tmp, tmp + n, c->Rs, tmp + 2 * n, Cm))
+    return LGN_KLU_NO_COPY;
+  for (k = 0; k < n; k++) {
+    c->P[k] = (int32_t)tmp[k];
+    c->Q[k] = (int32_t)tmp[n + k];
+  }
+  for (k = 0; k <= nb; k++) c->R[k] = (int32_t)tmp[2 * n + k];
+
+  /* L, U and F, one at a time through tmp */
+  if (!klu_l_extract(N, S, tmp, tmp + n + 1, c->Lx, NULL, NULL, NULL, NULL,
+                     NULL, NULL, NULL, NULL, NULL, NULL, Cm))
+    return LGN_KLU_NO_COPY;
+  if (CompactFactor(c->n, tmp, tmp + n + 1, c->Lx, c->Lp, c->Li, NULL,
+                    transpose ? 0 : 1) != 0)
+    return LGN_KLU_NO_COPY;
+  if (!klu_l_extract(N, S, NULL, NULL, NULL, tmp, tmp + n + 1, c->Ux, NULL,
+                     NULL, NULL, NULL, NULL, NULL, NULL, Cm))
+    return LGN_KLU_NO_COPY;
+  if (CompactFactor(c->n, tmp, tmp + n + 1, c->Ux, c->Up, c->Ui, c->Udiag,
+                    transpose ? 0 : -1) != 0)
+    return LGN_KLU_NO_COPY;
+  if (!klu_l_extract(N, S, NULL, NULL, NULL, NULL, NULL, NULL, tmp,
+                     tmp + n + 1, c->Fx, NULL, NULL, NULL, NULL, Cm))
+    return LGN_KLU_NO_COPY;
+  for (k = 0; k <= n; k++) c->Fp[k] = (int32_t)tmp[k];
+  for (k = 0; k < nzoff; k++) c->Fi[k] = (int32_t)tmp[n + 1 + k];
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * The solves: klu_l_solve and klu_l_tsolve for one right-hand side
+ * ===========================================================================*/
+
+/* Each kernel works on the columns k1 <= k < k2 of one factor; kept out of
+ * line so that the few pointers of its loop stay in registers. */
+#if defined(__GNUC__)
+#define LGN_NOINLINE __attribute__((noinline))
+#else
+#define LGN_NOINLINE
+#endif
+
+/* X(Fi(:, k)) -= F(:, k) X[k], for k = k1, ..., k2 - 1: the columns of a
+ * block of F into the rows of earlier blocks. */
+static LGN_NOINLINE void ScatterColumns(int32_t k1, int32_t k2,
+                                        const int32_t *restrict Tp,
+                                        const int32_t *restrict Ti,
+                                        const double *restrict Tx,
+                                        double *restrict X)
+{
+  int32_t k, p;
+  double xk;
+  for (k = k1; k < k2; k++) {
+    xk = X[k];
+    for (p = Tp[k]; p < Tp[k + 1]; p++) X[Ti[p]] -= Tx[p] * xk;
+  }
+}
+
+/* L by columns (no diagonal stored): X(Li(:, k)) -= L(:, k) X[k] for
+ * k = k1, ..., k2 - 1. When row k + 1 is the first of column k, its new
+ * value is carried to the next column in a register, not through memory:
+ * on a banded matrix this is the chain of dependences of the solve. */
+static LGN_NOINLINE void LowerColumns(int32_t k1, int32_t k2,
+                                      const int32_t *restrict Lp,
+                                      const int32_t *restrict Li,
+                                      const double *restrict Lx,
+                                      double *restrict X)
+{
+  int32_t k, p, pend;
+  double xk = X[k1], next;
+  for (k = k1; k < k2; k++) {
+    p    = Lp[k];
+    pend = Lp[k + 1];
+    if (p < pend && Li[p] == k + 1) {
+      next     = X[k + 1] - Lx[p] * xk;
+      X[k + 1] = next;
+      for (p++; p < pend; p++) X[Li[p]] -= Lx[p] * xk;
+    } else {
+      for (; p < pend; p++) X[Li[p]] -= Lx[p] * xk;
+      next = k + 1 < k2 ? X[k + 1] : SUN_RCONST(0.0);
+    }
+    xk = next;
+  }
+}
+
+/* U by columns from the last: X[k] /= U(k, k), then X(Ui(:, k)) -= U(:, k)
+ * X[k]; row k - 1, when first, carried as in LowerColumns. */
+static LGN_NOINLINE void UpperColumns(int32_t k1, int32_t k2,
+                                      const int32_t *restrict Up,
+                                      const int32_t *restrict Ui,
+                                      const double *restrict Ux,
+                                      const double *restrict Udiag,
+                                      double *restrict X)
+{
+  int32_t k, p, pend;
+  double xk, next = X[k2 - 1];
+  for (k = k2 - 1; k >= k1; k--) {
+    xk   = next / Udiag[k];
+    X[k] = xk;
+    p    = Up[k];
+    pend = Up[k + 1];
+    if (p < pend && Ui[p] == k - 1) {
+      next     = X[k - 1] - Ux[p] * xk;
+      X[k - 1] = next;
+      for (p++; p < pend; p++) X[Ui[p]] -= Ux[p] * xk;
+    } else {
+      for (; p < pend; p++) X[Ui[p]] -= Ux[p] * xk;
+      next = k > k1 ? X[k - 1] : SUN_RCONST(0.0);
+    }
+  }
+}
+
+/* X[k] -= T(:, k)^T X(Ti(:, k)), for k = k2 - 1, ..., k1: L^T by rows (no
+ * diagonal stored), or F^T from the rows of earlier blocks. */
+static LGN_NOINLINE void GatherColumns(int32_t k1, int32_t k2,
+                                       const int32_t *restrict Tp,
+                                       const int32_t *restrict Ti,
+                                       const double *restrict Tx,
+                                       double *restrict X)
+{
+  int32_t k, p;
+  double xk;
+  for (k = k2 - 1; k >= k1; k--) {
+    xk = X[k];
+    for (p = Tp[k]; p < Tp[k + 1]; p++) xk -= Tx[p] * X[Ti[p]];
+    X[k] = xk;
+  }
+}
+
+/* U^T by rows from the first: X[k] = (X[k] - U(:, k)^T X) / U(k, k). */
+static LGN_NOINLINE void UpperRows(int32_t k1, int32_t k2,
+                                   const int32_t *restrict Up,
+                                   const int32_t *restrict Ui,
+                                   const double *restrict Ux,
+                                   const double *restrict Udiag,
+                                   double *restrict X)
+{
+  int32_t k, p;
+  double xk;
+  for (k = k1; k < k2; k++) {
+    xk = X[k];
+    for (p = Up[k]; p < Up[k + 1]; p++) xk -= Ux[p] * X[Ui[p]];
+    X[k] = xk / Udiag[k];
+  }
+}
+
+/* S x = b (KLU's klu_solve): X = Rs^{-1} P b; for the blocks from the last
+ * to the first, X_b = U_b^{-1} L_b^{-1} X_b and the earlier rows minus
+ * F(:, b) X_b (a singleton block is X[k1] / Udiag[k1]); x = Q X. */
+static void Solve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x)
+{
+  const int32_t n = c->n, *P = c->P, *Q = c->Q;
+  double *X = c->X;
+  int32_t blk, k, k1, k2;
+
+  if (c->scaled)
+    for (k = 0; k < n; k++) X[k] = b[P[k]] / c->Rs[k];
+  else
+    for (k = 0; k < n; k++) X[k] = b[P[k]];
+  for (blk = c->nblocks - 1; blk >= 0; blk--) {
+    k1 = c->R[blk];
+    k2 = c->R[blk + 1];
+    LowerColumns(k1, k2, c->Lp, c->Li, c->Lx, X);
+    UpperColumns(k1, k2, c->Up, c->Ui, c->Ux, c->Udiag, X);
+    if (blk > 0) ScatterColumns(k1, k2, c->Fp, c->Fi, c->Fx, X);
+  }
+  for (k = 0; k < n; k++) x[Q[k]] = X[k];
+}
+
+/* S^T x = b (KLU's klu_tsolve): X = Q^T b; for the blocks from the first to
+ * the last, X_b minus F(:, b)^T X (earlier rows), then
+ * X_b = L_b^{-T} U_b^{-T} X_b; x = P^T Rs^{-1} X. (The order of the rows of
+ * F^T does not matter: they read only earlier blocks.) */
+static void SolveTransposed(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x)
+{
+  const int32_t n = c->n, *P = c->P, *Q = c->Q;
+  double *X = c->X;
+  int32_t blk, k, k1, k2;
+
+  for (k = 0; k < n; k++) X[k] = b[Q[k]];
+  for (blk = 0; blk < c->nblocks; blk++) {
+    k1 = c->R[blk];
+    k2 = c->R[blk + 1];
+    if (blk > 0) GatherColumns(k1, k2, c->Fp, c->Fi, c->Fx, X);
+    UpperRows(k1, k2, c->Up, c->Ui, c->Ux, c->Udiag, X);
+    GatherColumns(k1, k2, c->Lp, c->Li, c->Lx, X);
+  }
+  if (c->scaled)
+    for (k = 0; k < n; k++) x[P[k]] = X[k] / c->Rs[k];
+  else
+    for (k = 0; k < n; k++) x[P[k]] = X[k];
+}
+
+/* Solve A x = b for the A of the last refresh (x and b may be the same). */
+void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x)
+{
+  if (c->transpose) SolveTransposed(c, b, x);
+  else Solve(c, b, x);
+}
+
+#else
+typedef int lgnKluCopyUnavailable; /* ISO C: no empty translation unit */
+#endif

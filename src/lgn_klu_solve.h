@@ -1,0 +1,84 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Private header: Lignum's own solves with a compact copy of the factors of
+ * SUNLinSol_KLU (lgn_klu_solve.c, built with LGN_HAVE_KLU, for SUNDIALS with
+ * 64-bit indices, whose KLU interface calls klu_l_*). Otherwise the
+ * functions are stubs: no copy is ever made, so lgnLsSolve always calls
+ * SUNLinSolSolve.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LGN_KLU_SOLVE_H
+#define LGN_KLU_SOLVE_H
+
+#include <stdint.h>
+
+#include "lgn_impl.h"
+
+/* KLU's factorisation of the n x n matrix S it was given (S = A, or A^T for
+ * a CSR matrix A, whose arrays SUNDIALS hands to KLU as those of a CSC
+ * matrix), as klu_l_extract returns it:
+ *
+ *     L U + F = Rs^{-1} S(P, Q),  i.e. row k of the left side is row P[k]
+ *                                  of S divided by Rs[k], column k is Q[k],
+ *
+ * with L unit lower and U upper triangular, both block diagonal over the
+ * BTF blocks k = R[b] .. R[b+1]-1, and F the entries of the blocks above
+ * the diagonal. Stored in compressed columns with 32-bit indices: L without
+ * its unit diagonal, U without its diagonal (kept in Udiag). */
+typedef struct LGNKluCopyRec {
+  int32_t n, nblocks;
+  sunbooleantype transpose; /* SUNDIALS solves with klu_l_tsolve (CSR A)   */
+  sunbooleantype scaled;    /* Rs holds scale factors (else all ones)      */
+  int32_t *Lp, *Li;         /* strictly lower L: n + 1, lnz - n            */
+  double *Lx;               /* room for lnz (extracted with the diagonal)  */
+  int32_t *Up, *Ui;         /* strictly upper U: n + 1, unz - n            */
+  double *Ux;               /* room for unz                                */
+  int32_t *Fp, *Fi;         /* off-diagonal blocks: n + 1, nzoff           */
+  double *Fx;
+  int32_t *P, *Q, *R;       /* n, n, nblocks + 1                           */
+  double *Udiag, *Rs, *X;   /* n each; X is the work vector of a solve     */
+  size_t cap_n, cap_l, cap_u, cap_f; /* allocated n and entries (lnz, ...) */
+  int64_t *tmp;             /* 64-bit indices from klu_l_extract           */
+  size_t cap_tmp;
+} LGNKluCopy;
+
+/* Return values of lgnKluCopyRefresh besides LGN_SUCCESS and LGN_MEM_FAIL. */
+#define LGN_KLU_NO_COPY 1 /* no factors, sizes beyond 32 bits, or unknown */
+
+#if defined(LGN_HAVE_KLU) && defined(SUNDIALS_INT64_T)
+#define LGN_KLU_COPY
+
+int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS);
+void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x);
+void lgnKluCopyFree(LGNKluCopy **copy);
+void lgnKluCopySpace(const LGNKluCopy *c, long int *rw, long int *iw);
+
+#else
+
+static inline int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
+{
+  (void)copy;
+  (void)LS;
+  return LGN_KLU_NO_COPY;
+}
+static inline void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b,
+                                   sunrealtype *x)
+{
+  (void)c;
+  (void)b;
+  (void)x;
+}
+static inline void lgnKluCopyFree(LGNKluCopy **copy) { (void)copy; }
+static inline void lgnKluCopySpace(const LGNKluCopy *c, long int *rw,
+                                   long int *iw)
+{
+  (void)c;
+  (void)rw;
+  (void)iw;
+}
+
+#endif
+
+#endif
