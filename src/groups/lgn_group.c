@@ -151,11 +151,5 @@ void LGNRotationVectorFromQuaternion(const sunrealtype p[4], sunrealtype phi[3])
 void LGNQuaternionMultiply(const sunrealtype p1[4], const sunrealtype p2[4],
                            sunrealtype r[4])
 {
-  /* (w1,v1)(w2,v2) = (w1w2 - v1.v2, w1 v2 + w2 v1 + v1 x v2) */
-  const sunrealtype w1 = p1[0], x1 = p1[1], y1 = p1[2], z1 = p1[3];
-  const sunrealtype w2 = p2[0], x2 = p2[1], y2 = p2[2], z2 = p2[3];
-  r[0] = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
-  r[1] = w1 * x2 + w2 * x1 + y1 * z2 - z1 * y2;
-  r[2] = w1 * y2 + w2 * y1 + z1 * x2 - x1 * z2;
-  r[3] = w1 * z2 + w2 * z1 + x1 * y2 - y1 * x2;
+  lgnSO3_QuatMultiply(p1, p2, r);
 }

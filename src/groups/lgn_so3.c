@@ -271,7 +271,7 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
  * Quaternions (p = (w, x, y, z), Hamilton product)
  * ===========================================================================*/
 
-void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
+static inline void ExpQuat(const sunrealtype x[3], sunrealtype p[4])
 {
   /* expq(x) = (cos(h), sin(h)/phi x), h = phi/2. Below the threshold both
    * come from series in h^2 (no square root, sine or cosine): sin(h)/phi =
@@ -294,28 +294,41 @@ void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
   p[3] = k * x[2];
 }
 
-void lgnSO3_QuatNormalize(sunrealtype p[4])
+void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4])
 {
-  /* 1/|p|: for |p|^2 = 1 + d with |d| <= 1e-8, as after composing unit
-   * quaternions, 1 - d/2 is 1/sqrt(1 + d) to 3 d^2/8 < 4e-17, so neither
-   * a square root nor a division is needed. */
+  ExpQuat(x, p);
+}
+
+/* 1/|p|: for |p|^2 = 1 + d with |d| <= 1e-8, as after composing unit
+ * quaternions, 1 - d/2 is 1/sqrt(1 + d) to 3 d^2/8 < 4e-17, so neither a
+ * square root nor a division is needed. 0 for p = 0. */
+static inline sunrealtype InverseNorm(const sunrealtype p[4])
+{
   const sunrealtype n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
   const sunrealtype d  = n2 - ONE;
-  sunrealtype r;
-  if (fabs(d) <= SUN_RCONST(1.0e-8)) r = ONE - HALF * d;
-  else if (n2 > 0) r = ONE / sqrt(n2);
-  else return;
+  if (fabs(d) <= SUN_RCONST(1.0e-8)) return ONE - HALF * d;
+  return n2 > 0 ? ONE / sqrt(n2) : 0;
+}
+
+void lgnSO3_QuatNormalize(sunrealtype p[4])
+{
+  const sunrealtype r = InverseNorm(p);
+  if (r == 0) return;
   p[0] *= r; p[1] *= r; p[2] *= r; p[3] *= r;
 }
 
 void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
                            sunrealtype p_out[4])
 {
-  /* p_out = p (x) expq(w), renormalised to stop drift */
-  sunrealtype e[4];
-  lgnSO3_ExpQuat(w, e);
-  LGNQuaternionMultiply(p, e, p_out);
-  lgnSO3_QuatNormalize(p_out);
+  /* p_out = p (x) expq(w), renormalised to stop drift; computed in locals
+   * and stored once (storing, then reloading to normalise, stalls on
+   * store-to-load forwarding) */
+  sunrealtype e[4], r[4], s;
+  ExpQuat(w, e);
+  lgnSO3_QuatMultiply(p, e, r);
+  s = InverseNorm(r);
+  if (s == 0) s = ONE;
+  p_out[0] = s * r[0]; p_out[1] = s * r[1]; p_out[2] = s * r[2]; p_out[3] = s * r[3];
 }
 
 void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],

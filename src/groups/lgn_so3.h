@@ -99,6 +99,22 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
                         const sunrealtype xd[3], sunrealtype *M,
                         sunindextype ld);
 
+/* r = p1 (x) p2, the Hamilton product (r may alias p1 or p2: all inputs are
+ * read first): inline, since
+ * the composition p (x) expq(w) runs for every body at every iterate;
+ * LGNQuaternionMultiply is this. */
+static inline void lgnSO3_QuatMultiply(const sunrealtype p1[4],
+                                       const sunrealtype p2[4], sunrealtype r[4])
+{
+  /* (w1,v1)(w2,v2) = (w1w2 - v1.v2, w1 v2 + w2 v1 + v1 x v2) */
+  const sunrealtype w1 = p1[0], x1 = p1[1], y1 = p1[2], z1 = p1[3];
+  const sunrealtype w2 = p2[0], x2 = p2[1], y2 = p2[2], z2 = p2[3];
+  r[0] = w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2;
+  r[1] = w1 * x2 + w2 * x1 + y1 * z2 - z1 * y2;
+  r[2] = w1 * y2 + w2 * y1 + z1 * x2 - x1 * z2;
+  r[3] = w1 * z2 + w2 * z1 + x1 * y2 - y1 * x2;
+}
+
 /* p = (cos(phi/2), sin(phi/2) x/phi), the unit quaternion of exp(x~). */
 void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4]);
 
