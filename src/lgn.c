@@ -110,7 +110,7 @@ void lgnFreeWork(LGNMem mem)
   free(mem->sigma);
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
-  mem->work2_nv = mem->vdot_prev = mem->lambda_prev = mem->work_m = NULL;
+  mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
   mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
   mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
@@ -176,9 +176,9 @@ int lgnAllocWork(LGNMem mem)
   }
   if (!fail) {
     /* sigma, sigma_dot and sigma_ddot of the exact variant (BindIncrement
-     * in lgn_step.c), a_pred, work_nv, work2_nv, vdot_prev
+     * in lgn_step.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag
      * (nv each), lambda_prev and work_m (m each) in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(7 * nv + 2 * m), sizeof(sunrealtype));
+    mem->sigma = (sunrealtype *)calloc((size_t)(8 * nv + 2 * m), sizeof(sunrealtype));
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
     mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
                                        sizeof(sunrealtype));
@@ -198,8 +198,9 @@ int lgnAllocWork(LGNMem mem)
   mem->work_nv    = mem->sigma + 4 * nv;
   mem->work2_nv   = mem->sigma + 5 * nv;
   mem->vdot_prev  = mem->sigma + 6 * nv;
-  mem->lambda_prev = m > 0 ? mem->sigma + 7 * nv : NULL;
-  mem->work_m      = m > 0 ? mem->sigma + 7 * nv + m : NULL;
+  mem->mass_diag  = mem->sigma + 7 * nv;
+  mem->lambda_prev = m > 0 ? mem->sigma + 8 * nv : NULL;
+  mem->work_m      = m > 0 ? mem->sigma + 8 * nv + m : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
@@ -281,7 +282,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
-    rw += 7 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    rw += 8 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

@@ -77,6 +77,7 @@ typedef struct LGNMemRec {
   LGNConstrForceFn constr_force; /* NULL: B^T lambda from B                */
   sunbooleantype mass_constant;  /* LGNSetMassConstant                     */
   sunbooleantype mass_current;   /* Mmat holds the constant M              */
+  sunbooleantype mass_diagonal;  /* ... and it is diagonal, in mass_diag    */
 
   /* ---- method ---- */
   sunrealtype alpha_m, alpha_f, beta, gamma; /* Chung-Hulbert convention  */
@@ -113,6 +114,7 @@ typedef struct LGNMemRec {
   sunrealtype *work2_nv;    /* second scratch of length nv                 */
   sunrealtype *work_m;      /* scratch of length m                         */
   sunrealtype *vdot_prev;   /* vdot_{n-1}, for the extrapolating predictor */
+  sunrealtype *mass_diag;   /* diagonal of a constant diagonal M (nv)      */
   sunrealtype *lambda_prev; /* lambda_{n-1} (NULL when m = 0)              */
   sunrealtype h_prev;       /* step size that produced vdot_n (0: none)    */
   int predictor;            /* LGN_PREDICTOR_*                             */

@@ -122,9 +122,37 @@ sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
                         mem->constr_index == LGN_CONSTR_INDEX2);
 }
 
+/* Is M diagonal (no stored entry off the diagonal)? Its diagonal to d. */
+static sunbooleantype DiagonalOf(SUNMatrix M, sunrealtype *d)
+{
+  sunindextype i, j, p;
+  if (SUNMatGetID(M) == SUNMATRIX_SPARSE) {
+    const sunindextype *ptr = SUNSparseMatrix_IndexPointers(M);
+    const sunindextype *ind = SUNSparseMatrix_IndexValues(M);
+    const sunrealtype *val  = SUNSparseMatrix_Data(M);
+    for (j = 0; j < SUNSparseMatrix_NP(M); j++) {
+      d[j] = SUN_RCONST(0.0);
+      for (p = ptr[j]; p < ptr[j + 1]; p++) {
+        if (ind[p] != j) return SUNFALSE;
+        d[j] = val[p];
+      }
+    }
+    return SUNTRUE;
+  }
+  for (j = 0; j < SM_COLUMNS_D(M); j++) {
+    const sunrealtype *col = SM_COLUMN_D(M, j);
+    for (i = 0; i < SM_ROWS_D(M); i++)
+      if (i != j && col[i] != SUN_RCONST(0.0)) return SUNFALSE;
+    d[j] = col[j];
+  }
+  return SUNTRUE;
+}
+
 /* M(q), g(q, v, t) and, when with_B and m > 0, B(q) into the given
  * storage. A constant mass matrix (LGNSetMassConstant) is evaluated once,
- * into mem->Mmat, and kept: callers pass mem->Mmat as M then. */
+ * into mem->Mmat, and kept: callers pass mem->Mmat as M then; if it is
+ * diagonal (rigid bodies in principal axes), its diagonal is kept too, for
+ * M vdot without the sparse matrix-vector loop. */
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B)
 {
@@ -133,7 +161,8 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
     lgnMatClear(M);
     ret = mem->mass(t, q, M, mem->user_data);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
-    mem->mass_current = mem->mass_constant && M == mem->Mmat;
+    mem->mass_current  = mem->mass_constant && M == mem->Mmat;
+    mem->mass_diagonal = mem->mass_current && DiagonalOf(M, mem->mass_diag);
   }
   memset(lgnData(g), 0, (size_t)mem->nv * sizeof(sunrealtype));
   ret = mem->force(t, q, v, g, mem->user_data);
@@ -172,7 +201,16 @@ int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
   } else if (mem->m > 0) {
     lgnMatTvec(B, lgnData(mem->lambda1), rd, SUNFALSE);
   }
-  lgnMatvec(M, lgnData(mem->vdot1), rd, mem->m > 0);
+  if (M == mem->Mmat && mem->mass_current && mem->mass_diagonal) {
+    /* the same products and sums as the matrix-vector loop */
+    const sunrealtype *d = mem->mass_diag, *x = lgnData(mem->vdot1);
+    if (mem->m > 0)
+      for (i = 0; i < nv; i++) rd[i] += d[i] * x[i];
+    else
+      for (i = 0; i < nv; i++) rd[i] = d[i] * x[i];
+  } else {
+    lgnMatvec(M, lgnData(mem->vdot1), rd, mem->m > 0);
+  }
   for (i = 0; i < nv; i++) rd[i] += gd[i];
   return LGN_SUCCESS;
 }
