@@ -6,7 +6,10 @@
  * factorisation by SUNLinSol_KLU is solved with a second time (lgn_ls.c),
  * lgnKluCopyRefresh copies the factors out of KLU's Numeric object
  * (klu_l_extract) into compressed columns with 32-bit indices, and
- * lgnKluCopySolve solves with them. KLU keeps its
+ * lgnKluCopySolve solves with them. After a refactorisation (klu_l_refactor:
+ * the same pivots, so the same pattern) the refresh takes only the new
+ * values, straight from KLU's packed columns, once it has checked that the
+ * pattern is the copy's. KLU keeps its
  * factors in one packed array per block, with 64-bit indices: 16 bytes per
  * entry against 12 here. The column solves also carry the new value of the
  * next row from one column to the next in a register (LowerColumns), which
@@ -46,6 +49,7 @@ void lgnKluCopyFree(LGNKluCopy **copy)
   free(c->Up); free(c->Ui); free(c->Ux);
   free(c->Fp); free(c->Fi); free(c->Fx);
   free(c->P);  free(c->Q);  free(c->R);
+  free(c->Lswap); free(c->Uswap);
   free(c->Udiag); free(c->Rs); free(c->X);
   free(c->tmp);
   free(c);
@@ -59,7 +63,7 @@ void lgnKluCopySpace(const LGNKluCopy *c, long int *rw, long int *iw)
   size_t i32;
   if (c == NULL) return;
   *rw += (long int)(c->cap_l + c->cap_u + c->cap_f + 3 * c->cap_n);
-  i32 = 6 * c->cap_n + 4 + c->cap_l + c->cap_u + c->cap_f;
+  i32 = 8 * c->cap_n + 4 + c->cap_l + c->cap_u + c->cap_f;
   *iw += (long int)((i32 + 1) / 2 + c->cap_tmp);
 }
 
@@ -93,7 +97,8 @@ static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
     c->cap_n = 0;
     if (!(RENEW(c->Lp, cap + 1) && RENEW(c->Up, cap + 1) &&
           RENEW(c->Fp, cap + 1) && RENEW(c->P, cap) && RENEW(c->Q, cap) &&
-          RENEW(c->R, cap + 1) && RENEW(c->Udiag, cap) && RENEW(c->Rs, cap) &&
+          RENEW(c->R, cap + 1) && RENEW(c->Lswap, cap) &&
+          RENEW(c->Uswap, cap) && RENEW(c->Udiag, cap) && RENEW(c->Rs, cap) &&
           RENEW(c->X, cap)))
       return LGN_MEM_FAIL;
     c->cap_n = cap;
@@ -141,10 +146,11 @@ static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
  * then carry that row's value to the next column in a register. (Each
  * entry of a column updates another row, so their order does not change
  * the result; in the transposed solves it is the order of a sum, kept.)
- * Returns 0, or -1 if a column has no diagonal entry. */
+ * swap[k] is the place of that entry in KLU's column k, or 0. Returns 0,
+ * or -1 if a column has no diagonal entry. */
 static int CompactFactor(int32_t n, const int64_t *Tp, const int64_t *Ti,
                          double *x, int32_t *p32, int32_t *i32, double *diag,
-                         int next)
+                         int32_t *swap, int next)
 {
   int32_t k, cnt = 0, first, q, t;
   int64_t p, d;
@@ -161,7 +167,9 @@ static int CompactFactor(int32_t n, const int64_t *Tp, const int64_t *Ti,
       i32[cnt] = (int32_t)Ti[p];
       x[cnt++] = x[p];
     }
+    swap[k] = 0;
     if (next != 0 && q > first) { /* to the front */
+      swap[k]    = q - first;
       t          = i32[q];
       i32[q]     = i32[first];
       i32[first] = t;
@@ -184,9 +192,124 @@ static int SundialsTranspose(SUNLinearSolver LS)
   return -1;
 }
 
+/* =============================================================================
+ * A refresh of the values only
+ * ===========================================================================*/
+
+/* Whether KLU's factorisation has the copy's permutations, blocks, sizes
+ * and off-diagonal blocks F (pointers and row indices). klu_l_refactor
+ * keeps them all; klu_l_factor (new pivots, or a new pattern after a new
+ * analysis) may not. The patterns of L and U are compared column by column
+ * in GatherFactors. */
+static int SameLayout(const LGNKluCopy *c, const klu_l_symbolic *S,
+                      const klu_l_numeric *N, int transpose)
+{
+  const int32_t n = c->n;
+  int64_t k;
+  if (!c->complete || c->transpose != (transpose ? SUNTRUE : SUNFALSE) ||
+      S->n != n || S->nblocks != c->nblocks || N->lnz - n != c->Lp[n] ||
+      N->unz - n != c->Up[n] || N->nzoff != c->Fp[n])
+    return 0;
+  for (k = 0; k <= c->nblocks; k++)
+    if (S->R[k] != c->R[k]) return 0;
+  for (k = 0; k < n; k++)
+    if (N->Pnum[k] != c->P[k] || S->Q[k] != c->Q[k]) return 0;
+  for (k = 0; k <= n; k++)
+    if (N->Offp[k] != c->Fp[k]) return 0;
+  for (k = 0; k < N->nzoff; k++)
+    if (N->Offi[k] != c->Fi[k]) return 0;
+  return 1;
+}
+
+/* Column k of L or U from its block's packed array LU, where KLU keeps it
+ * as Xlen row indices (64-bit, local to the block, which starts at row
+ * k1) from Xip on, and then its Xlen values (one unit, a double, each;
+ * klu_version.h: GET_POINTER): the values into the copy's column p1 <=
+ * p < p2 (Ti, Tx), whose entries are in KLU's order, but for its first
+ * and its entry q, exchanged (CompactFactor). Returns nonzero if the
+ * column's length or a row index is not the copy's. */
+static inline int GatherColumn(const double *LU, int64_t Xip, int64_t Xlen,
+                               int64_t k1, int32_t p1, int32_t p2, int32_t q,
+                               const int32_t *Ti, double *Tx)
+{
+  const int64_t *ki = (const int64_t *)(const void *)(LU + Xip);
+  const double *kx  = LU + Xip + Xlen;
+  const int32_t *ti = Ti + p1;
+  double *tx        = Tx + p1;
+  int64_t j, differ; /* nonzero bits: a row index differs */
+  if (Xlen != p2 - p1) return 1;
+  if (Xlen == 0) return 0;
+  differ = (ti[0] ^ (k1 + ki[q])) | (ti[q] ^ (k1 + ki[0]));
+  tx[0]  = kx[q];
+  tx[q]  = kx[0];
+  for (j = 1; j < q; j++) {
+    differ |= ti[j] ^ (k1 + ki[j]);
+    tx[j] = kx[j];
+  }
+  for (j = q + 1; j < Xlen; j++) {
+    differ |= ti[j] ^ (k1 + ki[j]);
+    tx[j] = kx[j];
+  }
+  return differ != 0;
+}
+
+/* The values of L and U into the copy, if their patterns are the copy's,
+ * in one pass over the packed array of each block (KLU stores U(:, k)
+ * right after L(:, k)). Returns 0, or -1 if the pattern changed (some
+ * values are then replaced). */
+static int GatherFactors(LGNKluCopy *c, const klu_l_numeric *N)
+{
+  const int32_t *Lp = c->Lp, *Up = c->Up;
+  const double *LU;
+  int32_t blk, k, k1, k2;
+  int differ = 0;
+  for (blk = 0; blk < c->nblocks; blk++) {
+    k1 = c->R[blk];
+    k2 = c->R[blk + 1];
+    if (k2 - k1 == 1) { /* a singleton: U(k1, k1) only */
+      differ |= (Lp[k1 + 1] != Lp[k1]) | (Up[k1 + 1] != Up[k1]);
+      continue;
+    }
+    LU = (const double *)N->LUbx[blk];
+    for (k = k1; k < k2; k++) {
+      differ |= GatherColumn(LU, N->Lip[k], N->Llen[k], k1, Lp[k], Lp[k + 1],
+                             c->Lswap[k], c->Li, c->Lx);
+      differ |= GatherColumn(LU, N->Uip[k], N->Ulen[k], k1, Up[k], Up[k + 1],
+                             c->Uswap[k], c->Ui, c->Ux);
+    }
+    if (differ) return -1;
+  }
+  return 0;
+}
+
+/* The new values of the factorisation into the copy, if it has the copy's
+ * pattern (SameLayout, GatherFactors); the values of F, U's diagonal and
+ * the scale factors follow F's pattern, the blocks and the permutations.
+ * Returns 0, or -1 if the pattern changed (the values are then partly
+ * replaced: copy the whole factorisation). */
+static int RefreshValues(LGNKluCopy *c, const klu_l_symbolic *S,
+                         const klu_l_numeric *N, int transpose)
+{
+  const size_t n = (size_t)c->n;
+  size_t k;
+  if (!SameLayout(c, S, N, transpose) || GatherFactors(c, N) != 0) return -1;
+  memcpy(c->Udiag, N->Udiag, n * sizeof(double));
+  memcpy(c->Fx, N->Offx, (size_t)N->nzoff * sizeof(double));
+  c->scaled = N->Rs != NULL;
+  if (c->scaled) memcpy(c->Rs, N->Rs, n * sizeof(double));
+  else
+    for (k = 0; k < n; k++) c->Rs[k] = 1.0;
+  return 0;
+}
+
+/* =============================================================================
+ * The refresh
+ * ===========================================================================*/
+
 /* Copy the factors now in the SUNLinSol_KLU LS (again after every
  * SUNLinSolSetup: KLU refactors in place, and SUNDIALS replaces the
- * Numeric object when it factors with new pivots). Returns LGN_SUCCESS,
+ * Numeric object when it factors with new pivots; after a refactorisation
+ * only the values are taken, RefreshValues). Returns LGN_SUCCESS,
  * LGN_KLU_NO_COPY (no factors, sizes beyond 32-bit indices, an unknown
  * solve function: *copy is left as it is, to be used no more), or
  * LGN_MEM_FAIL (*copy freed). */
@@ -210,11 +333,17 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
       n >= INT32_MAX || lnz > INT32_MAX || unz > INT32_MAX || nzoff > INT32_MAX)
     return LGN_KLU_NO_COPY;
 
+  if (c != NULL && RefreshValues(c, S, N, transpose) == 0) {
+    c->nvalues++;
+    return LGN_SUCCESS;
+  }
+
   if (c == NULL) {
     c = (LGNKluCopy *)calloc(1, sizeof *c);
     if (c == NULL) return LGN_MEM_FAIL;
     *copy = c;
   }
+  c->complete = SUNFALSE; /* until the end of this copy */
   flag = Reserve(c, (size_t)n, (size_t)lnz, (size_t)unz, (size_t)nzoff);
   if (flag != LGN_SUCCESS) {
     lgnKluCopyFree(copy);
@@ -241,19 +370,21 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
                      NULL, NULL, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
   if (CompactFactor(c->n, tmp, tmp + n + 1, c->Lx, c->Lp, c->Li, NULL,
-                    transpose ? 0 : 1) != 0)
+                    c->Lswap, transpose ? 0 : 1) != 0)
     return LGN_KLU_NO_COPY;
   if (!klu_l_extract(N, S, NULL, NULL, NULL, tmp, tmp + n + 1, c->Ux, NULL,
                      NULL, NULL, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
   if (CompactFactor(c->n, tmp, tmp + n + 1, c->Ux, c->Up, c->Ui, c->Udiag,
-                    transpose ? 0 : -1) != 0)
+                    c->Uswap, transpose ? 0 : -1) != 0)
     return LGN_KLU_NO_COPY;
   if (!klu_l_extract(N, S, NULL, NULL, NULL, NULL, NULL, NULL, tmp,
                      tmp + n + 1, c->Fx, NULL, NULL, NULL, NULL, Cm))
     return LGN_KLU_NO_COPY;
   for (k = 0; k <= n; k++) c->Fp[k] = (int32_t)tmp[k];
   for (k = 0; k < nzoff; k++) c->Fi[k] = (int32_t)tmp[n + 1 + k];
+  c->complete = SUNTRUE;
+  c->nfull++;
   return LGN_SUCCESS;
 }
 

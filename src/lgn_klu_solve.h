@@ -26,11 +26,15 @@
  * with L unit lower and U upper triangular, both block diagonal over the
  * BTF blocks k = R[b] .. R[b+1]-1, and F the entries of the blocks above
  * the diagonal. Stored in compressed columns with 32-bit indices: L without
- * its unit diagonal, U without its diagonal (kept in Udiag). */
+ * its unit diagonal, U without its diagonal (kept in Udiag). Each column
+ * of L and U keeps KLU's order of entries, except that one of them may be
+ * exchanged with the first (Lswap, Uswap): a refresh after klu_l_refactor,
+ * which keeps the pattern, then takes only the values from KLU's columns. */
 typedef struct LGNKluCopyRec {
   int32_t n, nblocks;
   sunbooleantype transpose; /* SUNDIALS solves with klu_l_tsolve (CSR A)   */
   sunbooleantype scaled;    /* Rs holds scale factors (else all ones)      */
+  sunbooleantype complete;  /* a whole factorisation was copied            */
   int32_t *Lp, *Li;         /* strictly lower L: n + 1, lnz - n            */
   double *Lx;               /* room for lnz (extracted with the diagonal)  */
   int32_t *Up, *Ui;         /* strictly upper U: n + 1, unz - n            */
@@ -38,10 +42,14 @@ typedef struct LGNKluCopyRec {
   int32_t *Fp, *Fi;         /* off-diagonal blocks: n + 1, nzoff           */
   double *Fx;
   int32_t *P, *Q, *R;       /* n, n, nblocks + 1                           */
+  int32_t *Lswap, *Uswap;   /* n each: the place j in KLU's column k of
+                               the copy's first entry, which has KLU's
+                               first at j (or 0: none exchanged)           */
   double *Udiag, *Rs, *X;   /* n each; X is the work vector of a solve     */
   size_t cap_n, cap_l, cap_u, cap_f; /* allocated n and entries (lnz, ...) */
   int64_t *tmp;             /* 64-bit indices from klu_l_extract           */
   size_t cap_tmp;
+  long int nfull, nvalues;  /* refreshes: whole copies, values only        */
 } LGNKluCopy;
 
 /* Return values of lgnKluCopyRefresh besides LGN_SUCCESS and LGN_MEM_FAIL. */

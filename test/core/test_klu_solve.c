@@ -7,16 +7,23 @@
  *      among them -- in CSC and CSR storage, the copy's solve equals
  *      SUNLinSolSolve on the same factors (to 1e-13; in fact to the last
  *      bit, reported) and the true solution to cond(A) times round-off;
- *  (b) after a factorisation with new pivots (SUNDIALS refactors when
+ *      after a refactorisation with new values (pivots and pattern kept)
+ *      the refresh takes the values only, and the copy then equals a whole
+ *      new copy of the factors bit for bit;
+ *  (b) after a factorisation with new pivots (SUNDIALS factors anew when
  *      klu_refactor leaves a tiny pivot: the factors change and grow), the
- *      refreshed copy follows, while the old copy is far off;
+ *      refresh makes a whole copy, which follows, while the old copy is
+ *      far off; so it does when only the pivots change (a dense matrix),
+ *      or only a row index of L (a new analysis of a moved entry), the
+ *      place and length of every column of L and U staying the same;
  *  (c) through the public API: a sparse chain of point masses and the
  *      rigid-body chain of the examples give the same trajectories (and
  *      Newton iterations) with the switch on and off; the copy is made at
  *      the second solve with a factorisation (modified Newton), not for
  *      factorisations solved with once (full Newton); the switch off
  *      releases it and leaves Lignum on SUNLinSolSolve; it can be flipped
- *      during a run; the copy is counted in LGNGetWorkSpace. */
+ *      during a run; the copy is counted in LGNGetWorkSpace; the
+ *      refreshes after refactorisations take the values only. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -206,6 +213,95 @@ static double MaxDiff(const double *x, const double *y, int n)
 
 static int bitwise_all = 1; /* every comparison with SUNLinSolSolve exact */
 
+/* Whether two copies hold the same factorisation, bit for bit: sizes,
+ * permutations, blocks, patterns, values and the exchanged entries. */
+#define SAME(a, b, count) (memcmp((a), (b), (size_t)(count) * sizeof *(a)) == 0)
+static int SameCopy(const LGNKluCopy *a, const LGNKluCopy *b)
+{
+  const int32_t n = a->n;
+  return n == b->n && a->nblocks == b->nblocks && a->transpose == b->transpose &&
+         a->scaled == b->scaled && SAME(a->P, b->P, n) && SAME(a->Q, b->Q, n) &&
+         SAME(a->R, b->R, a->nblocks + 1) && SAME(a->Rs, b->Rs, n) &&
+         SAME(a->Lp, b->Lp, n + 1) && SAME(a->Li, b->Li, a->Lp[n]) &&
+         SAME(a->Lx, b->Lx, a->Lp[n]) && SAME(a->Lswap, b->Lswap, n) &&
+         SAME(a->Up, b->Up, n + 1) && SAME(a->Ui, b->Ui, a->Up[n]) &&
+         SAME(a->Ux, b->Ux, a->Up[n]) && SAME(a->Uswap, b->Uswap, n) &&
+         SAME(a->Udiag, b->Udiag, n) && SAME(a->Fp, b->Fp, n + 1) &&
+         SAME(a->Fi, b->Fi, a->Fp[n]) && SAME(a->Fx, b->Fx, a->Fp[n]);
+}
+
+/* The copy *copy of LS's factors against a whole new copy (bit for bit)
+ * and against SUNLinSolSolve for b (to 1e-13; to the last bit reported in
+ * bitwise_all); returns |x - x(SUNLinSolSolve)| / |x|. */
+static double CheckCopy(const char *what, LGNKluCopy *copy, SUNLinearSolver LS,
+                        SUNMatrix A, N_Vector b, N_Vector xs)
+{
+  const int n = (int)N_VGetLength(b);
+  double *xl = (double *)malloc((size_t)n * sizeof(double)), rel;
+  LGNKluCopy *fresh = NULL;
+  CHECK(lgnKluCopyRefresh(&fresh, LS) == LGN_SUCCESS && fresh->nfull == 1 &&
+            SameCopy(copy, fresh),
+        "%s: the copy equals a whole new copy, bit for bit", what);
+  SUNLinSolSolve(LS, A, xs, b, 0.0);
+  lgnKluCopySolve(copy, N_VGetArrayPointer(b), xl);
+  rel = MaxDiff(xl, N_VGetArrayPointer(xs), n) / MaxAbs(N_VGetArrayPointer(xs), n);
+  CHECK(rel <= 1e-13, "%s: |x - x(SUNLinSolSolve)| / |x| = %.3e > 1e-13", what, rel);
+  if (rel != 0.0) bitwise_all = 0;
+  lgnKluCopyFree(&fresh);
+  free(xl);
+  return rel;
+}
+
+/* Refactor with the values of D changed by up to 10% (deterministically,
+ * leaving the random sequence of the other tests alone): SUNDIALS keeps
+ * the pivots, the stale copy is off, the refresh takes the values only
+ * and the copy equals a whole new one. Returns the number of columns of L
+ * and U with an entry exchanged with the first (CompactFactor). */
+static int CheckValueRefresh(const char *what, const Dense *D, SUNMatrix A,
+                              SUNLinearSolver LS, LGNKluCopy **copy,
+                              SUNContext ctx)
+{
+  const int n = D->n;
+  const long nfull = (*copy)->nfull, nvalues = (*copy)->nvalues;
+  N_Vector b = N_VNew_Serial(n, ctx), xs = N_VNew_Serial(n, ctx);
+  double *bd = N_VGetArrayPointer(b), *xsd = N_VGetArrayPointer(xs);
+  double *xl = (double *)malloc((size_t)n * sizeof(double)), rel;
+  sunindextype *P0 = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  Dense D2 = DenseNew(n);
+  int i, j, nswap;
+
+  for (j = 0; j < n; j++)
+    for (i = 0; i < n; i++)
+      if (D->pat[i + j * n])
+        Set(&D2, i, j, D->a[i + j * n] * (1.0 + 0.1 * sin(1.0 + i + 2.0 * j)));
+  for (i = 0; i < n; i++) bd[i] = cos(3.0 * i);
+  memcpy(P0, SUNLinSol_KLUGetNumeric(LS)->Pnum, (size_t)n * sizeof(sunindextype));
+  ToSparse(&D2, A);
+  CHECK(SUNLinSolSetup(LS, A) == 0 &&
+            memcmp(P0, SUNLinSol_KLUGetNumeric(LS)->Pnum,
+                   (size_t)n * sizeof(sunindextype)) == 0,
+        "%s: refactored, the pivots kept", what);
+  SUNLinSolSolve(LS, A, xs, b, 0.0);
+  lgnKluCopySolve(*copy, bd, xl); /* the stale copy: the test can fail */
+  CHECK(MaxDiff(xl, xsd, n) > 1e-6 * MaxAbs(xsd, n),
+        "%s: new values, the stale copy differs from SUNLinSolSolve", what);
+  CHECK(lgnKluCopyRefresh(copy, LS) == LGN_SUCCESS && (*copy)->nfull == nfull &&
+            (*copy)->nvalues == nvalues + 1,
+        "%s: the refresh takes the values only (%ld whole copies, %ld of "
+        "values)", what, (*copy)->nfull, (*copy)->nvalues);
+  rel = CheckCopy(what, *copy, LS, A, b, xs);
+  for (nswap = 0, j = 0; j < n; j++)
+    nswap += ((*copy)->Lswap[j] != 0) + ((*copy)->Uswap[j] != 0);
+  printf("  %-23s refactored, values refreshed: vs SUNLinSolSolve %.0e (%d "
+         "columns of L and U with an exchanged entry)\n", what, rel, nswap);
+  DenseFree(&D2);
+  free(P0);
+  free(xl);
+  N_VDestroy(b);
+  N_VDestroy(xs);
+  return nswap;
+}
+
 /* |A|_inf: the largest row sum */
 static double NormInf(const Dense *D)
 {
@@ -255,9 +351,10 @@ static void CheckSolve(const char *name, const Dense *D, int type,
   double *xsd = N_VGetArrayPointer(xs), *xld = N_VGetArrayPointer(xl);
   double *res = (double *)malloc((size_t)n * sizeof(double));
   double rel_sun, rel_true, cond, rho, backward, tol_true;
+  char what[64];
   klu_l_numeric *Num;
   klu_l_symbolic *Sym;
-  int i, k, flag;
+  int i, k, flag, nswap;
 
   ToSparse(D, A);
   CHECK(SUNLinSolInitialize(LS) == 0, "%s %s: initialize", name, fmt);
@@ -320,6 +417,12 @@ static void CheckSolve(const char *name, const Dense *D, int type,
     if (Sym->R[k + 1] - Sym->R[k] == 1) (*nsingletons)++;
   for (k = 0; k < n; k++)
     if (Num->Pnum[k] != Sym->Q[k]) (*noffdiag_pivots)++;
+
+  snprintf(what, sizeof what, "%s %s", name, fmt);
+  nswap = CheckValueRefresh(what, D, A, LS, &copy, ctx);
+  /* in CSC (klu_solve) the row after the diagonal moves to the front */
+  if (type == CSC_MAT && n > 1)
+    CHECK(nswap > 0, "%s: entries exchanged in the copy's columns", what);
 
 done:
   free(res);
@@ -406,6 +509,7 @@ static void Repivot(SUNContext ctx, int type)
   long lnz1, unz1, lnz2, unz2, npiv = 0;
   sunindextype P1[40];
   size_t cap_l1, cap_u1;
+  char what[64];
   Dense A1, A2;
   int i;
 
@@ -422,6 +526,9 @@ static void Repivot(SUNContext ctx, int type)
   memcpy(P1, SUNLinSol_KLUGetNumeric(LS)->Pnum, sizeof P1);
   cap_l1 = copy->cap_l;
   cap_u1 = copy->cap_u;
+  /* new values with A1's pattern: the values only */
+  snprintf(what, sizeof what, "repivot %s, A1", fmt);
+  CheckValueRefresh(what, &A1, A, LS, &copy, ctx);
 
   ToSparse(&A2, A);
   CHECK(SUNLinSolSetup(LS, A) == 0, "repivot %s: A2 set up", fmt);
@@ -442,7 +549,10 @@ static void Repivot(SUNContext ctx, int type)
   lgnKluCopySolve(copy, bd, xl);
   CHECK(MaxDiff(xl, xsd, n) > 1e-3 * MaxAbs(xsd, n),
         "repivot %s: the stale copy differs from SUNLinSolSolve", fmt);
-  CHECK(lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS, "repivot %s: refreshed", fmt);
+  CHECK(lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS && copy->nfull == 2 &&
+            copy->nvalues == 1,
+        "repivot %s: refreshed by a whole copy (%ld whole copies, %ld of "
+        "values)", fmt, copy->nfull, copy->nvalues);
   CHECK(copy->cap_l >= (size_t)lnz2 && copy->cap_u >= (size_t)unz2 &&
             (copy->cap_l > cap_l1 || copy->cap_u > cap_u1),
         "repivot %s: the copy grew (L %zu -> %zu, U %zu -> %zu)", fmt, cap_l1,
@@ -452,6 +562,8 @@ static void Repivot(SUNContext ctx, int type)
         "repivot %s: |x - x(SUNLinSolSolve)| / |x| = %.3e", fmt,
         MaxDiff(xl, xsd, n) / MaxAbs(xsd, n));
   if (MaxDiff(xl, xsd, n) != 0.0) bitwise_all = 0;
+  snprintf(what, sizeof what, "repivot %s, A2", fmt);
+  CheckCopy(what, copy, LS, A, b, xs);
   printf("(b) repivot %s: L %ld -> %ld, U %ld -> %ld entries, %ld pivots "
          "changed; refreshed copy vs SUNLinSolSolve %.1e\n", fmt, lnz1, lnz2,
          unz1, unz2, npiv, MaxDiff(xl, xsd, n) / MaxAbs(xsd, n));
@@ -463,6 +575,134 @@ static void Repivot(SUNContext ctx, int type)
   SUNMatDestroy(A);
   N_VDestroy(b);
   N_VDestroy(xs);
+}
+
+/* M1 = 10 I plus a subdiagonal of 0.5 and (5, 0) = 0.3; M2 the same with
+ * (6, 0) in place of (5, 0). In the natural order and without BTF, KLU
+ * factors both on the diagonal and without fill: L(:, 0) holds rows 1
+ * and 5, or 1 and 6, the other columns of L one row, U only its diagonal.
+ * For CSR the transposes are stored, so that KLU factors M1 and M2 too. */
+static Dense MovedEntryMatrix(int n, int row, int csr)
+{
+  Dense M = DenseNew(n);
+  int i;
+  for (i = 0; i < n; i++) {
+    Set(&M, i, i, 10.0);
+    if (i + 1 < n) Set(&M, csr ? i : i + 1, csr ? i + 1 : i, 0.5);
+  }
+  Set(&M, csr ? 0 : row, csr ? row : 0, 0.3);
+  return M;
+}
+
+/* Dense 4 x 4 (every entry stored, zeros too): M1 diagonally dominant,
+ * factored on the diagonal; M2 with a tiny (0, 0), zeros below it in rows
+ * 2 and 3 and those two rows nearly equal, so that refactoring with M1's
+ * pivots leaves a tiny pivot (rcond ~ 1e-28) on a matrix with condest ~
+ * 1e13: SUNDIALS factors it anew, pivoting on row 1 first. L and U are
+ * dense either way. Rows of largest entry 1 (KLU's scaling keeps them);
+ * for CSR the transposes. */
+static Dense DensePivotMatrix(int which, int csr)
+{
+  static const double m[2][4][4] = {
+    {{1.0, 0.1, 0.2, 0.1}, {0.2, 1.0, 0.1, 0.3}, {0.1, 0.3, 1.0, 0.2}, {0.3, 0.1, 0.2, 1.0}},
+    {{1e-14, 1.0, 0.3, 0.2}, {1.0, 0.2, 0.4, 0.1}, {0.0, 0.5, 0.3, 1.0},
+     {0.0, 0.5, 0.3, 1.0 - 1e-12}}};
+  Dense M = DenseNew(4);
+  int i, j;
+  for (i = 0; i < 4; i++)
+    for (j = 0; j < 4; j++) Set(&M, csr ? j : i, csr ? i : j, m[which - 1][i][j]);
+  return M;
+}
+
+/* M1 factored and copied, then M2 factored (after a new analysis, as
+ * Lignum does when the pattern of A changes, if reanalyse): KLU's blocks,
+ * F (none) and the place and length of every column of L and U are M1's,
+ * all that a value-only refresh could compare in O(n) besides the
+ * permutations. What differs -- a row index of L (MovedEntryMatrix) or
+ * the pivots (DensePivotMatrix) -- must make the refresh copy the whole
+ * factorisation. */
+static void WholeCopyOnSameLayout(SUNContext ctx, int type, const char *label,
+                                  const Dense *M1, const Dense *M2,
+                                  int reanalyse, int same_pivots)
+{
+  const int n = M1->n;
+  const char *fmt = type == CSR_MAT ? "CSR" : "CSC";
+  SUNMatrix A = SUNSparseMatrix(n, n, (sunindextype)n * n, type, ctx);
+  N_Vector b = N_VNew_Serial(n, ctx), xs = N_VNew_Serial(n, ctx);
+  SUNLinearSolver LS = SUNLinSol_KLU(b, A, ctx);
+  klu_l_common *Cm = SUNLinSol_KLUGetCommon(LS);
+  klu_l_numeric *Num;
+  LGNKluCopy *copy = NULL;
+  double *bd = N_VGetArrayPointer(b), *xsd = N_VGetArrayPointer(xs), xl[16];
+  sunindextype layout[5][16]; /* Pnum, Lip, Llen, Uip, Ulen */
+  const size_t bytes = (size_t)n * sizeof(sunindextype);
+  long lnz, unz;
+  char what[96];
+  int i, same;
+
+  snprintf(what, sizeof what, "%s %s", label, fmt);
+  for (i = 0; i < n; i++) bd[i] = cos(1.0 + i);
+  ToSparse(M1, A);
+  SUNLinSol_KLUSetOrdering(LS, 2); /* natural */
+  Cm->btf = 0;
+  SUNLinSolInitialize(LS);
+  CHECK(SUNLinSolSetup(LS, A) == 0 && lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS,
+        "%s: M1 factored and copied", what);
+  Num = SUNLinSol_KLUGetNumeric(LS);
+  memcpy(layout[0], Num->Pnum, bytes);
+  memcpy(layout[1], Num->Lip, bytes);
+  memcpy(layout[2], Num->Llen, bytes);
+  memcpy(layout[3], Num->Uip, bytes);
+  memcpy(layout[4], Num->Ulen, bytes);
+  lnz = (long)Num->lnz;
+  unz = (long)Num->unz;
+
+  ToSparse(M2, A);
+  if (reanalyse)
+    CHECK(SUNLinSol_KLUReInit(LS, A, (sunindextype)n * n, SUNKLU_REINIT_PARTIAL) == 0,
+          "%s: a new analysis", what);
+  CHECK(SUNLinSolSetup(LS, A) == 0, "%s: M2 factored", what);
+  Num  = SUNLinSol_KLUGetNumeric(LS);
+  same = SUNLinSol_KLUGetSymbolic(LS)->nblocks == 1 && Num->nzoff == 0 &&
+         Num->lnz == lnz && Num->unz == unz &&
+         memcmp(layout[1], Num->Lip, bytes) == 0 &&
+         memcmp(layout[2], Num->Llen, bytes) == 0 &&
+         memcmp(layout[3], Num->Uip, bytes) == 0 &&
+         memcmp(layout[4], Num->Ulen, bytes) == 0;
+  CHECK(same && (memcmp(layout[0], Num->Pnum, bytes) == 0) == same_pivots,
+        "%s: the place and length of each column of L and U are M1's, the "
+        "pivots %s", what, same_pivots ? "too" : "not");
+
+  SUNLinSolSolve(LS, A, xs, b, 0.0);
+  lgnKluCopySolve(copy, bd, xl); /* the stale copy */
+  CHECK(MaxDiff(xl, xsd, n) > 1e-6 * MaxAbs(xsd, n),
+        "%s: the stale copy differs from SUNLinSolSolve", what);
+  CHECK(lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS && copy->nfull == 2 &&
+            copy->nvalues == 0,
+        "%s: refreshed by a whole copy (%ld whole copies, %ld of values)", what,
+        copy->nfull, copy->nvalues);
+  printf("(b) %s: a whole copy; vs SUNLinSolSolve %.1e\n", what,
+         CheckCopy(what, copy, LS, A, b, xs));
+
+  lgnKluCopyFree(&copy);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(b);
+  N_VDestroy(xs);
+}
+
+static void SameLayoutCases(SUNContext ctx, int type)
+{
+  const int csr = type == CSR_MAT;
+  Dense M1 = MovedEntryMatrix(12, 5, csr), M2 = MovedEntryMatrix(12, 6, csr);
+  WholeCopyOnSameLayout(ctx, type, "moved entry, new analysis", &M1, &M2, 1, 1);
+  DenseFree(&M1);
+  DenseFree(&M2);
+  M1 = DensePivotMatrix(1, csr);
+  M2 = DensePivotMatrix(2, csr);
+  WholeCopyOnSameLayout(ctx, type, "dense, new pivots", &M1, &M2, 0, 0);
+  DenseFree(&M1);
+  DenseFree(&M2);
 }
 
 /* ---------------------------------------------------------------------------
@@ -629,6 +869,7 @@ static void Switch(SUNContext ctx, int type, int newton)
   LGNMem mon, moff, mflip;
   sunrealtype t;
   long int nni_on, nni_off, nni_flip, rw_on, iw_on, rw_off, iw_off;
+  long int nfull = 0, nvalues = 0;
   double d;
   int f1, f2, f3;
 
@@ -650,10 +891,17 @@ static void Switch(SUNContext ctx, int type, int newton)
         fmt, nwt, f1, f2);
   /* copied at the second solve with a factorisation: never with full
    * Newton (one solve per factorisation) */
-  if (newton == LGN_NEWTON_MODIFIED)
+  if (mon->klu != NULL) {
+    nfull   = mon->klu->nfull;
+    nvalues = mon->klu->nvalues;
+  }
+  if (newton == LGN_NEWTON_MODIFIED) {
     CHECK(mon->klu != NULL && mon->klu_valid, "point chain %s %s: on, the copy is used",
           fmt, nwt);
-  else
+    CHECK(nfull >= 1 && nvalues > 0,
+          "point chain %s %s: refreshes after refactorisations take the values "
+          "only (%ld whole copies, %ld of values)", fmt, nwt, nfull, nvalues);
+  } else
     CHECK(mon->klu == NULL && !mon->klu_valid,
           "point chain %s %s: on, factors solved with once are not copied", fmt, nwt);
   CHECK(moff->klu == NULL && !moff->klu_valid,
@@ -696,7 +944,8 @@ static void Switch(SUNContext ctx, int type, int newton)
   CHECK(mon->klu == NULL && !mon->klu_valid,
         "point chain %s %s: LGNSetLinearSolver frees the copy", fmt, nwt);
   printf("(c) point chain %s, %s Newton: %ld Newton iterations, on = off, "
-         "flipped = on\n", fmt, nwt, nni_on);
+         "flipped = on; refreshes: %ld whole copies, %ld of values\n", fmt, nwt,
+         nni_on, nfull, nvalues);
 
   PChainFree(&on);
   PChainFree(&off);
@@ -739,6 +988,8 @@ int main(void)
   Matrices(ctx);
   Repivot(ctx, CSC_MAT);
   Repivot(ctx, CSR_MAT);
+  SameLayoutCases(ctx, CSC_MAT);
+  SameLayoutCases(ctx, CSR_MAT);
   Switch(ctx, CSC_MAT, LGN_NEWTON_MODIFIED);
   Switch(ctx, CSR_MAT, LGN_NEWTON_MODIFIED);
   Switch(ctx, CSC_MAT, LGN_NEWTON_FULL);
