@@ -274,11 +274,12 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A);
  *  then on solves with the copy instead of calling SUNLinSolSolve: 12
  *  instead of 16 bytes per entry to read, and a shorter chain of
  *  dependences, make a solve about twice as fast (CSC; 1.6 times for CSR).
- *  Copying costs about half a refactorisation, so factorisations solved
- *  with once (full Newton) are not copied. The solves do KLU's operations
+ *  A first copy costs about half a refactorisation, a refresh after a
+ *  refactorisation with the same pivots (values only) about a third, so
+ *  factorisations solved with once (full Newton) are not copied. The solves do KLU's operations
  *  in KLU's order: the results agree with SUNLinSolSolve to round-off (to
  *  the last bit without fused multiply-add). The copy takes 12 bytes per
- *  entry of L + U, 48 per row, and 8 per entry of the larger factor for
+ *  entry of L + U, 56 per row, and 8 per entry of the larger factor for
  *  the extraction (counted in LGNGetWorkSpace; doc/user-guide.md, section
  *  7). Factors beyond 32-bit indices, or memory refused, make Lignum fall
  *  back to SUNLinSolSolve.
