@@ -31,6 +31,19 @@ typedef struct {
   sunindextype *cols; /* nv          */
 } LGNColoring;
 
+/* The index arrays of a model matrix as its callback last wrote them, to
+ * tell whether the next evaluation has the same pattern (the callbacks write
+ * the whole structure every time), and for a CSR matrix where each of its
+ * entries goes in the CSC copy, so that a copy of the same pattern is a
+ * gather of the values instead of a transposition. */
+typedef struct {
+  sunbooleantype seen;      /* ptr and ind hold a pattern                  */
+  sunindextype np, nnz;     /* pointers - 1 (columns or rows) and entries  */
+  sunindextype *ptr, *ind;  /* np + 1 and nnz                              */
+  sunindextype *perm;       /* CSR: entry p is entry perm[p] of the copy   */
+  sunindextype capp, cap;   /* allocated pointers and entries              */
+} LGNPatternMemo;
+
 struct LGNSparseWorkRec {
   /* the iteration matrix in CSC (pattern fixed until a miss or a reset) */
   LGNCsc A;
@@ -39,8 +52,10 @@ struct LGNSparseWorkRec {
   sunindextype *csr_perm;    /* CSR A: position of CSC entry k in A's data  */
   long int npattern;         /* patterns built (symbolic analyses)          */
 
-  /* CSC views or transposed copies of the model matrices */
+  /* CSC views or transposed copies of the model matrices, and the patterns
+   * their callbacks wrote last */
   LGNCsc M, B, Bt, K, C;
+  LGNPatternMemo Mseen, Bseen, Kseen, Cseen;
   /* difference-quotient tangents: symmetric patterns with their colourings */
   LGNCsc Kdq, Cdq;
   LGNColoring Kcol, Ccol;
@@ -73,6 +88,9 @@ static inline void lgnColumnAddRow(LGNColumnBuilder *cb, sunindextype r)
 int lgnCscAppendColumn(LGNCsc *P, LGNColumnBuilder *cb);
 void lgnCscFree(LGNCsc *A);
 int lgnCscView(SUNMatrix S, LGNCsc *view);
+int lgnCscViewSeen(SUNMatrix S, LGNCsc *view, LGNPatternMemo *seen,
+                   sunbooleantype *changed);
+void lgnPatternMemoFree(LGNPatternMemo *seen);
 int lgnCscTranspose(const LGNCsc *A, LGNCsc *At);
 int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
                   sunindextype nnz);
