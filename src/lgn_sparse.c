@@ -269,9 +269,8 @@ int lgnSparseWorkCreate(LGNMem mem)
   if (sp == NULL) return LGN_MEM_FAIL;
   mem->sp  = sp;
   sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  sp->pos  = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
   sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  if (sp->mark == NULL || sp->pos == NULL || sp->list == NULL) {
+  if (sp->mark == NULL || sp->list == NULL) {
     lgnSparseWorkFree(mem);
     return LGN_MEM_FAIL;
   }
@@ -282,7 +281,9 @@ int lgnSparseWorkCreate(LGNMem mem)
 void lgnSparseWorkFree(LGNMem mem)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
+  int k;
   if (sp == NULL) return;
+  for (k = 0; k < LGN_NMAPS; k++) free(sp->map[k].off);
   lgnPatternMemoFree(&sp->Mseen);
   lgnPatternMemoFree(&sp->Bseen);
   lgnPatternMemoFree(&sp->Kseen);
@@ -300,7 +301,6 @@ void lgnSparseWorkFree(LGNMem mem)
   free(sp->csr_perm);
   free(sp->Bvq);
   free(sp->mark);
-  free(sp->pos);
   free(sp->list);
   free(sp);
   mem->sp = NULL;
@@ -317,14 +317,15 @@ void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
   all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
   all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
   for (k = 0; k < 8; k++) {
-    *rw += (long int)all[k]->cap;
+    if (all[k]->val != NULL) *rw += (long int)all[k]->cap; /* not A's, if CSC */
     *iw += (long int)(all[k]->cap + all[k]->capcol);
   }
   seen[0] = &sp->Mseen; seen[1] = &sp->Bseen; seen[2] = &sp->Kseen; seen[3] = &sp->Cseen;
   for (k = 0; k < 4; k++)
     *iw += (long int)(seen[k]->capp + (seen[k]->perm != NULL ? 2 : 1) * seen[k]->cap);
+  for (k = 0; k < LGN_NMAPS; k++) *iw += (long int)sp->map[k].cap;
   *rw += (long int)sp->Bvq_cap;
-  *iw += 3L * (long int)(mem->nv + mem->m);
+  *iw += 2L * (long int)(mem->nv + mem->m);
   if (sp->csr_perm != NULL) *iw += (long int)sp->A.cap;
   if (sp->Kcol.ptr != NULL) *iw += (long int)(sp->Kcol.ncolors + 1 + mem->nv);
   if (sp->Ccol.ptr != NULL) *iw += (long int)(sp->Ccol.ncolors + 1 + mem->nv);

@@ -3,8 +3,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Private header of the sparse path: compressed-column views of the model
- * matrices, the fixed pattern of the iteration matrix, and the column
- * colouring of the difference-quotient tangents.
+ * matrices, the fixed pattern of the iteration matrix with the maps of where
+ * the model matrices' entries go in it, and the column colouring of the
+ * difference-quotient tangents.
  * ---------------------------------------------------------------------------*/
 
 #ifndef LGN_SPARSE_H
@@ -44,16 +45,36 @@ typedef struct {
   sunindextype capp, cap;   /* allocated pointers and entries              */
 } LGNPatternMemo;
 
+/* Where the entries of a model matrix X go in A (lgn_assemble_sparse.c):
+ * entry p of column k is added at A.colptr[j] + off[p] in every column j
+ * of A that combines column k of X -- those columns hold the same rows --
+ * or, for the B^T block, at off[p] (p an entry of B, column nv + its row).
+ * Built for a pattern of A and of X, and valid while neither changes. */
+typedef struct {
+  const LGNCsc *src;        /* the matrix mapped                          */
+  sunindextype *off;        /* one per entry of src                       */
+  sunindextype cap;         /* allocated entries of off                   */
+  sunbooleantype valid;
+} LGNScatterMap;
+
+/* The maps of A's terms (B's also serves D_q(B v), which has its pattern). */
+enum { LGN_MAP_M = 0, LGN_MAP_C, LGN_MAP_K, LGN_MAP_B, LGN_MAP_BT, LGN_NMAPS };
+
 struct LGNSparseWorkRec {
-  /* the iteration matrix in CSC (pattern fixed until a miss or a reset) */
+  /* the iteration matrix in CSC (pattern fixed until a miss or a reset;
+   * values only for a CSR A, before the permutation: a CSC A is filled in
+   * place) */
   LGNCsc A;
   sunbooleantype have_pattern;
   sunbooleantype analysed;   /* KLU has a symbolic analysis of this pattern */
   sunindextype *csr_perm;    /* CSR A: position of CSC entry k in A's data  */
   long int npattern;         /* patterns built (symbolic analyses)          */
+  LGNScatterMap map[LGN_NMAPS];
+  long int nmapped;          /* maps built (for the tests)                  */
 
   /* CSC views or transposed copies of the model matrices, and the patterns
-   * their callbacks wrote last */
+   * their callbacks wrote last. Bt is B^T, transposed when B's pattern
+   * changes: its values are those of that evaluation (unused). */
   LGNCsc M, B, Bt, K, C;
   LGNPatternMemo Mseen, Bseen, Kseen, Cseen;
   /* difference-quotient tangents: symmetric patterns with their colourings */
@@ -65,7 +86,6 @@ struct LGNSparseWorkRec {
 
   /* scratch */
   sunindextype *mark;        /* n: column stamp of a row                    */
-  sunindextype *pos;         /* n: position of a row in the current column  */
   sunindextype *list;        /* n: rows of the column being built           */
 };
 
