@@ -16,8 +16,14 @@
  * symbolic analysis of the first factorisation. An entry outside the pattern
  * (a model whose pattern grows) extends it and triggers a new analysis, as
  * does LGNResetSparsityPattern; LGNGetNumSparsityAnalyses counts them.
- * Assembly works in compressed columns; a CSR matrix A receives the values
- * through a fixed permutation.
+ *
+ * Two paths. Building: once per pattern -- of A, or of a model matrix, as
+ * its callback wrote it (compared with the one seen last, lgnCscViewSeen) --
+ * a scatter map records where each entry of M, C, K and B lands in A; an
+ * entry outside A's pattern is found here. Filling, at every assembly: the
+ * terms go through the maps, with the same operations in the same order as
+ * a search of each entry's row would give. Assembly works in compressed
+ * columns; a CSR matrix A receives the values through a fixed permutation.
  * ---------------------------------------------------------------------------*/
 
 #include <stdlib.h>
@@ -30,24 +36,41 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
-/* Views of M, B and B^T as evaluated at the current iterate, and the
- * patterns and colourings of the difference quotients (built once): for
+/* Invalidate the maps of the matrices whose pattern changed. */
+static void Forget(struct LGNSparseWorkRec *sp, int s, sunbooleantype changed)
+{
+  if (changed) sp->map[s].valid = SUNFALSE;
+}
+
+/* Views of M, B and B^T as evaluated at the current iterate (B^T transposed
+ * again only when B's pattern changed; the assembly reads B's values), and
+ * the patterns and colourings of the difference quotients (built once): for
  * K_t or C_t when the model gives none, and at index 2 for D_q(B v), whose
  * quotients use the colouring of K_t's pattern. */
 static int RefreshViews(LGNMem mem)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
-  int flag = lgnCscView(mem->Mmat, &sp->M);
-  if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscView(mem->Bmat, &sp->B);
-  if (flag == LGN_SUCCESS && mem->m > 0) flag = lgnCscTranspose(&sp->B, &sp->Bt);
+  sunbooleantype changed = SUNFALSE;
+  int flag = lgnCscViewSeen(mem->Mmat, &sp->M, &sp->Mseen, &changed);
+  Forget(sp, LGN_MAP_M, changed);
+  if (flag == LGN_SUCCESS && mem->m > 0) {
+    flag = lgnCscViewSeen(mem->Bmat, &sp->B, &sp->Bseen, &changed);
+    Forget(sp, LGN_MAP_B, changed);
+    Forget(sp, LGN_MAP_BT, changed);
+    if (flag == LGN_SUCCESS && changed) flag = lgnCscTranspose(&sp->B, &sp->Bt);
+    if (flag != LGN_SUCCESS) sp->Bseen.seen = SUNFALSE; /* transpose next time */
+  }
   if (flag != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return flag;
   }
   if (!sp->have_dq_patterns &&
       (mem->stiffness == NULL || mem->damping == NULL ||
-       (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX2)))
+       (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX2))) {
+    Forget(sp, LGN_MAP_K, SUNTRUE);
+    Forget(sp, LGN_MAP_C, SUNTRUE);
     return lgnBuildDQPatterns(mem);
+  }
   return LGN_SUCCESS;
 }
 
@@ -55,9 +78,16 @@ static int RefreshViews(LGNMem mem)
 static int TangentViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
+  sunbooleantype changed = SUNFALSE;
   int flag = LGN_SUCCESS;
-  if (mem->stiffness != NULL) flag = lgnCscView(mem->Kmat, &sp->K);
-  if (flag == LGN_SUCCESS && mem->damping != NULL) flag = lgnCscView(mem->Cmat, &sp->C);
+  if (mem->stiffness != NULL) {
+    flag = lgnCscViewSeen(mem->Kmat, &sp->K, &sp->Kseen, &changed);
+    Forget(sp, LGN_MAP_K, changed);
+  }
+  if (flag == LGN_SUCCESS && mem->damping != NULL) {
+    flag = lgnCscViewSeen(mem->Cmat, &sp->C, &sp->Cseen, &changed);
+    Forget(sp, LGN_MAP_C, changed);
+  }
   if (flag != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return flag;
@@ -67,8 +97,26 @@ static int TangentViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
   return LGN_SUCCESS;
 }
 
+/* The columns of A that combine the same columns of the model matrices
+ * hold the same rows (BuildPattern gives them the same union): for j < nv,
+ * every column k in j's range has j's rows. The maps rely on it. */
+static sunbooleantype RangesAlike(LGNMem mem, const LGNCsc *P)
+{
+  sunindextype j, k, k0, k1, len;
+  for (j = 0; j < mem->nv; j++) {
+    len = P->colptr[j + 1] - P->colptr[j];
+    lgnTangentColumnRange(mem, j, &k0, &k1);
+    for (k = k0; k < k1; k++)
+      if (k != j && (P->colptr[k + 1] - P->colptr[k] != len ||
+                     memcmp(P->rowind + P->colptr[k], P->rowind + P->colptr[j],
+                            (size_t)len * sizeof(sunindextype)) != 0))
+        return SUNFALSE;
+  }
+  return SUNTRUE;
+}
+
 /* The pattern of A (keeping the old one's entries when extending it), its
- * CSR permutation, and A's index arrays. */
+ * CSR permutation, and A's index arrays; the maps into the old one go. */
 static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
@@ -111,6 +159,10 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
     flag = lgnCscAppendColumn(&P, &cb);
   }
   for (i = 0; i < n; i++) mark[i] = -1;
+  if (flag == LGN_SUCCESS && !RangesAlike(mem, &P)) {
+    lgnCscFree(&P);
+    return LGN_LSETUP_FAIL; /* cannot happen */
+  }
   nnz = flag == LGN_SUCCESS ? P.colptr[n] : 0;
   if (flag == LGN_SUCCESS && SUNSparseMatrix_NNZ(mem->A) < nnz)
     flag = SUNSparseMatrix_Reallocate(mem->A, nnz) == 0 ? LGN_SUCCESS : LGN_MEM_FAIL;
@@ -124,8 +176,13 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
+  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) { /* filled in place */
+    free(P.val);
+    P.val = NULL;
+  }
   lgnCscFree(&sp->A);
   sp->A = P;
+  for (s = 0; s < LGN_NMAPS; s++) sp->map[s].valid = SUNFALSE;
 
   if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
     memcpy(SUNSparseMatrix_IndexPointers(mem->A), P.colptr, (size_t)(n + 1) * sizeof(sunindextype));
@@ -156,93 +213,172 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   return LGN_SUCCESS;
 }
 
-/* Column accumulation: rows outside the pattern of the current column are
- * reported as a miss. */
+/* One term of A's left block columns: coef (X T)(:, j), with the values val
+ * on the pattern of X, whose entries go where map says. */
 typedef struct {
-  sunindextype col;          /* current column of A (the mark stamp) */
-  const sunindextype *mark, *pos;
-  sunrealtype *val;
-  sunbooleantype miss;
-} Column;
+  const LGNCsc *X;
+  const sunrealtype *val;
+  const sunrealtype *T;     /* block diagonal, packed (NULL: I)           */
+  sunrealtype coef;
+  int map;                  /* LGN_MAP_*                                  */
+} Term;
 
-/* y(:, j) += coef * (X Tb)(:, j) with rows shifted by `shift`; Tb NULL is I.
- * xval overrides X's values (D_q(B v) lives on the pattern of B). */
-static void AddTimesTangent(LGNMem mem, Column *col, const LGNCsc *X,
-                            const sunrealtype *xval, sunindextype j,
-                            const sunrealtype *T, sunrealtype coef,
-                            sunindextype shift)
+static int AddTerm(LGNMem mem, Term *t, int nt, const LGNCsc *X,
+                   const sunrealtype *val, const sunrealtype *T,
+                   sunrealtype coef, int map)
 {
-  const int b = (int)mem->blk_of[j];
-  const sunindextype o = mem->blk_voff[b], nb = mem->blk_voff[b + 1] - o;
-  const sunrealtype *Tb = T;
-  sunindextype k, k0 = j, k1 = j + 1, p, r;
-  sunrealtype f;
-
-  if (X->colptr == NULL || X->ncols != mem->nv) return;
-  if (xval == NULL) xval = X->val;
-  if (Tb != NULL && !lgnBlockIsIdentity(mem, b)) {
-    Tb += mem->blk_toff[b];
-    lgnTangentColumnRange(mem, j, &k0, &k1);
-  } else {
-    Tb = NULL;
-  }
-  for (k = k0; k < k1; k++) {
-    f = coef * (Tb != NULL ? Tb[(k - o) + (j - o) * nb] : SUN_RCONST(1.0));
-    if (f == SUN_RCONST(0.0)) continue;
-    for (p = X->colptr[k]; p < X->colptr[k + 1]; p++) {
-      r = X->rowind[p] + shift;
-      if (col->mark[r] != col->col) {
-        col->miss = SUNTRUE;
-        continue;
-      }
-      col->val[col->pos[r]] += f * xval[p];
-    }
-  }
+  if (coef == SUN_RCONST(0.0) || X->colptr == NULL || X->ncols != mem->nv) return nt;
+  t[nt].X    = X;
+  t[nt].val  = val != NULL ? val : X->val;
+  t[nt].T    = T;
+  t[nt].coef = coef;
+  t[nt].map  = map;
+  return nt + 1;
 }
 
-static sunbooleantype FillValues(LGNMem mem, const LGNCsc *K, const LGNCsc *C,
-                                 sunrealtype cM, sunrealtype cC, sunrealtype cK,
-                                 sunbooleantype use_tangent)
+/* The terms of A (spec §2), in the order of their additions into an entry. */
+static int Terms(LGNMem mem, const LGNCsc *K, const LGNCsc *C, sunrealtype cM,
+                 sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent, Term *t)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
-  const sunindextype nv = mem->nv, m = mem->m, n = nv + m;
   const sunbooleantype exact = use_tangent && mem->kinematics == LGN_KINEMATICS_EXACT;
   const sunbooleantype idx2 = mem->constr_index == LGN_CONSTR_INDEX2;
   const sunrealtype *Tk = use_tangent ? mem->Tm : NULL;
   const sunrealtype *Tb = !use_tangent ? NULL : (idx2 ? (exact ? mem->Tv : NULL) : mem->Tm);
-  Column col;
-  sunindextype j, p;
-
-  col.mark = sp->mark;
-  col.pos  = sp->pos;
-  col.val  = sp->A.val;
-  col.miss = SUNFALSE;
-  for (j = 0; j < n; j++) {
-    col.col = j;
-    for (p = sp->A.colptr[j]; p < sp->A.colptr[j + 1]; p++) {
-      sp->mark[sp->A.rowind[p]] = j;
-      sp->pos[sp->A.rowind[p]]  = p;
-      sp->A.val[p]              = SUN_RCONST(0.0);
-    }
-    if (j >= nv) { /* B^T */
-      for (p = sp->Bt.colptr[j - nv]; p < sp->Bt.colptr[j - nv + 1]; p++) {
-        if (sp->mark[sp->Bt.rowind[p]] != j) col.miss = SUNTRUE;
-        else sp->A.val[sp->pos[sp->Bt.rowind[p]]] += sp->Bt.val[p];
-      }
-      continue;
-    }
-    AddTimesTangent(mem, &col, &sp->M, NULL, j, exact ? mem->Ta : NULL, cM, 0);
-    if (cC != SUN_RCONST(0.0)) AddTimesTangent(mem, &col, C, NULL, j, exact ? mem->Tv : NULL, cC, 0);
-    if (cK != SUN_RCONST(0.0)) AddTimesTangent(mem, &col, K, NULL, j, Tk, cK, 0);
-    if (m > 0) {
-      AddTimesTangent(mem, &col, &sp->B, NULL, j, Tb, SUN_RCONST(1.0), nv);
-      /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
-      if (use_tangent && idx2 && cC != SUN_RCONST(0.0))
-        AddTimesTangent(mem, &col, &sp->B, sp->Bvq, j, Tk, cK / cC, nv);
-    }
+  int nt = 0;
+  nt = AddTerm(mem, t, nt, &sp->M, NULL, exact ? mem->Ta : NULL, cM, LGN_MAP_M);
+  nt = AddTerm(mem, t, nt, C, NULL, exact ? mem->Tv : NULL, cC, LGN_MAP_C);
+  nt = AddTerm(mem, t, nt, K, NULL, Tk, cK, LGN_MAP_K);
+  if (mem->m > 0) {
+    nt = AddTerm(mem, t, nt, &sp->B, NULL, Tb, SUN_RCONST(1.0), LGN_MAP_B);
+    /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
+    if (use_tangent && idx2 && cC != SUN_RCONST(0.0))
+      nt = AddTerm(mem, t, nt, &sp->B, sp->Bvq, Tk, cK / cC, LGN_MAP_B);
   }
-  for (j = 0; j < n; j++) sp->mark[j] = -1;
-  return !col.miss;
+  return nt;
+}
+
+/* Position of row r in column j of A (rows sorted), or -1. */
+static sunindextype FindRow(const LGNCsc *A, sunindextype j, sunindextype r)
+{
+  sunindextype lo = A->colptr[j], hi = A->colptr[j + 1], mid;
+  while (lo < hi) {
+    mid = lo + (hi - lo) / 2;
+    if (A->rowind[mid] < r) lo = mid + 1;
+    else hi = mid;
+  }
+  return lo < A->colptr[j + 1] && A->rowind[lo] == r ? lo : -1;
+}
+
+/* Map s of X: entry p of column k (row r) is row r of column k of A, rows
+ * shifted by nv for B; for the B^T block, row k of column nv + r. An entry
+ * outside A's pattern sets *miss and leaves the map invalid. */
+static int BuildMap(LGNMem mem, int s, const LGNCsc *X, sunbooleantype *miss)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  LGNScatterMap *map = &sp->map[s];
+  const sunindextype nnz = X->colptr[X->ncols], shift = s == LGN_MAP_B ? mem->nv : 0;
+  sunindextype k, p, q;
+
+  map->valid = SUNFALSE;
+  if (nnz > map->cap) {
+    sunindextype *off = (sunindextype *)realloc(map->off, (size_t)nnz * sizeof *off);
+    if (off == NULL) {
+      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    map->off = off;
+    map->cap = nnz;
+  }
+  for (k = 0; k < X->ncols; k++)
+    for (p = X->colptr[k]; p < X->colptr[k + 1]; p++) {
+      if (s == LGN_MAP_BT) {
+        q = FindRow(&sp->A, mem->nv + X->rowind[p], k);
+      } else {
+        q = FindRow(&sp->A, k, X->rowind[p] + shift);
+        if (q >= 0) q -= sp->A.colptr[k];
+      }
+      if (q < 0) {
+        *miss = SUNTRUE;
+        return LGN_SUCCESS;
+      }
+      map->off[p] = q;
+    }
+  map->src   = X;
+  map->valid = SUNTRUE;
+  sp->nmapped++;
+  return LGN_SUCCESS;
+}
+
+/* Map s of X unless it is there for the current patterns. */
+static int NeedMap(LGNMem mem, int s, const LGNCsc *X, sunbooleantype *miss)
+{
+  const LGNScatterMap *map = &mem->sp->map[s];
+  return map->valid && map->src == X ? LGN_SUCCESS : BuildMap(mem, s, X, miss);
+}
+
+/* The build path: the maps that the terms (and B^T) need. *miss: an entry
+ * is outside A's pattern. */
+static int MapTerms(LGNMem mem, const Term *t, int nt, sunbooleantype *miss)
+{
+  int i, flag = LGN_SUCCESS;
+  *miss = SUNFALSE;
+  for (i = 0; i < nt && flag == LGN_SUCCESS && !*miss; i++)
+    flag = NeedMap(mem, t[i].map, t[i].X, miss);
+  if (flag == LGN_SUCCESS && !*miss && mem->m > 0)
+    flag = NeedMap(mem, LGN_MAP_BT, &mem->sp->B, miss);
+  return flag;
+}
+
+/* acol += coef (X T)(:, j) for a term, acol being column j of A's values;
+ * T's block of j (from o, size nb) combines columns k0 <= k < k1 of X. */
+static void AddTimesTangent(const Term *t, const sunindextype *off,
+                            sunindextype j, sunindextype o, sunindextype nb,
+                            sunindextype k0, sunindextype k1,
+                            const sunrealtype *Tb, sunrealtype *acol)
+{
+  const LGNCsc *X = t->X;
+  const sunrealtype *xval = t->val;
+  sunindextype k, p;
+  sunrealtype f;
+
+  if (Tb == NULL) {
+    k0 = j;
+    k1 = j + 1;
+  }
+  for (k = k0; k < k1; k++) {
+    f = t->coef * (Tb != NULL ? Tb[(k - o) + (j - o) * nb] : SUN_RCONST(1.0));
+    if (f == SUN_RCONST(0.0)) continue;
+    for (p = X->colptr[k]; p < X->colptr[k + 1]; p++) acol[off[p]] += f * xval[p];
+  }
+}
+
+/* The fill path: A's values (CSC, into val) from the terms through the maps.
+ * Column j < nv: the terms in order, each over the columns k of its block
+ * and their entries p in order; B^T: B's entries in order. */
+static void FillValues(LGNMem mem, const Term *t, int nt, sunrealtype *val)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nv = mem->nv, n = nv + mem->m;
+  const sunindextype *colptr = sp->A.colptr, *bt = sp->map[LGN_MAP_BT].off;
+  sunindextype j, p, k0, k1, o, nb;
+  sunrealtype *acol;
+  int b, i;
+
+  memset(val, 0, (size_t)colptr[n] * sizeof *val);
+  for (j = 0; j < nv; j++) {
+    b  = (int)mem->blk_of[j];
+    o  = mem->blk_voff[b];
+    nb = mem->blk_voff[b + 1] - o;
+    lgnTangentColumnRange(mem, j, &k0, &k1);
+    acol = val + colptr[j];
+    for (i = 0; i < nt; i++)
+      AddTimesTangent(&t[i], sp->map[t[i].map].off, j, o, nb, k0, k1,
+                      t[i].T != NULL && !lgnBlockIsIdentity(mem, b) ? t[i].T + mem->blk_toff[b] : NULL,
+                      acol);
+  }
+  if (mem->m > 0)
+    for (p = 0; p < sp->B.colptr[nv]; p++) val[bt[p]] += sp->B.val[p];
 }
 
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
@@ -250,8 +386,11 @@ int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
 {
   struct LGNSparseWorkRec *sp = mem->sp;
   const LGNCsc *K, *C;
+  Term terms[5];
   sunindextype p, nnz;
-  int flag;
+  sunrealtype *data;
+  sunbooleantype miss;
+  int nt, flag;
 
   flag = RefreshViews(mem);
   if (flag == LGN_SUCCESS) flag = lgnEvalTangents(mem, t, cC, cK);
@@ -262,20 +401,24 @@ int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
   if (flag != LGN_SUCCESS) return flag;
   mem->nje++;
 
+  nt = Terms(mem, K, C, cM, cC, cK, use_tangent, terms);
   if (!sp->have_pattern) flag = BuildPattern(mem, K, C);
-  if (flag == LGN_SUCCESS && !FillValues(mem, K, C, cM, cC, cK, use_tangent)) {
-    /* the model's pattern grew: extend A's and fill again */
+  if (flag == LGN_SUCCESS) flag = MapTerms(mem, terms, nt, &miss);
+  if (flag == LGN_SUCCESS && miss) {
+    /* the model's pattern grew: extend A's (which drops the maps) and map again */
     flag = BuildPattern(mem, K, C);
-    if (flag == LGN_SUCCESS && !FillValues(mem, K, C, cM, cC, cK, use_tangent))
+    if (flag == LGN_SUCCESS) flag = MapTerms(mem, terms, nt, &miss);
+    if (flag == LGN_SUCCESS && miss)
       flag = LGN_LSETUP_FAIL; /* cannot happen: the new pattern holds every entry */
   }
   if (flag != LGN_SUCCESS) return flag;
 
-  nnz = sp->A.colptr[mem->nv + mem->m];
+  nnz  = sp->A.colptr[mem->nv + mem->m];
+  data = SUNSparseMatrix_Data(mem->A);
   if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
-    memcpy(SUNSparseMatrix_Data(mem->A), sp->A.val, (size_t)nnz * sizeof(sunrealtype));
+    FillValues(mem, terms, nt, data); /* A's indices are sp->A's */
   } else {
-    sunrealtype *data = SUNSparseMatrix_Data(mem->A);
+    FillValues(mem, terms, nt, sp->A.val);
     for (p = 0; p < nnz; p++) data[sp->csr_perm[p]] = sp->A.val[p];
   }
   sp->analysed = SUNTRUE; /* the setup below analyses if needed */

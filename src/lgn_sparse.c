@@ -3,9 +3,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Compressed sparse column kernels of the sparse path: views of SUNDIALS
- * sparse matrices (a CSR matrix is read as the CSC matrix of its transpose
- * and transposed once per evaluation), transposition, and the greedy column
- * colouring of a symmetric pattern.
+ * sparse matrices (a CSR matrix is read as the CSC matrix of its transpose:
+ * transposed when its pattern changes, its values gathered otherwise),
+ * transposition, and the greedy column colouring of a symmetric pattern.
  * ---------------------------------------------------------------------------*/
 
 #include <stdlib.h>
@@ -77,8 +77,9 @@ int lgnCscAppendColumn(LGNCsc *P, LGNColumnBuilder *cb)
   return LGN_SUCCESS;
 }
 
-/* At = A^T; row indices come out sorted in every column of At. */
-int lgnCscTranspose(const LGNCsc *A, LGNCsc *At)
+/* At = A^T, and perm[p] = the position in At of entry p of A (perm may be
+ * NULL); row indices come out sorted in every column of At. */
+static int Transpose(const LGNCsc *A, LGNCsc *At, sunindextype *perm)
 {
   sunindextype i, j, p, nnz = A->colptr[A->ncols];
   int flag = lgnCscReserve(At, A->ncols, A->nrows, nnz);
@@ -91,10 +92,16 @@ int lgnCscTranspose(const LGNCsc *A, LGNCsc *At)
       sunindextype q = At->colptr[A->rowind[p]]++;
       At->rowind[q]  = j;
       At->val[q]     = A->val[p];
+      if (perm != NULL) perm[p] = q;
     }
   for (i = At->ncols; i > 0; i--) At->colptr[i] = At->colptr[i - 1];
   At->colptr[0] = 0;
   return LGN_SUCCESS;
+}
+
+int lgnCscTranspose(const LGNCsc *A, LGNCsc *At)
+{
+  return Transpose(A, At, NULL);
 }
 
 /* A CSC view of the sparse SUNMatrix S: its own arrays when S is CSC, a
@@ -117,6 +124,90 @@ int lgnCscView(SUNMatrix S, LGNCsc *view)
   raw.nrows = SUNSparseMatrix_Columns(S);
   raw.ncols = SUNSparseMatrix_Rows(S);
   return lgnCscTranspose(&raw, view);
+}
+
+void lgnPatternMemoFree(LGNPatternMemo *seen)
+{
+  free(seen->ptr);
+  free(seen->ind);
+  free(seen->perm);
+  memset(seen, 0, sizeof *seen);
+}
+
+/* Room in seen for np + 1 pointers and nnz entries (and their permutation
+ * when csr). */
+static int MemoReserve(LGNPatternMemo *seen, sunindextype np, sunindextype nnz,
+                       sunbooleantype csr)
+{
+  if (np + 1 > seen->capp) {
+    sunindextype *p = (sunindextype *)realloc(seen->ptr, (size_t)(np + 1) * sizeof *p);
+    if (p == NULL) return LGN_MEM_FAIL;
+    seen->ptr  = p;
+    seen->capp = np + 1;
+  }
+  if (nnz > seen->cap || seen->ind == NULL || (csr && seen->perm == NULL)) {
+    const sunindextype cap = SUNMAX(SUNMAX(nnz, seen->cap), 1);
+    sunindextype *i = (sunindextype *)realloc(seen->ind, (size_t)cap * sizeof *i);
+    if (i == NULL) return LGN_MEM_FAIL;
+    seen->ind = i;
+    if (csr) {
+      sunindextype *p = (sunindextype *)realloc(seen->perm, (size_t)cap * sizeof *p);
+      if (p == NULL) return LGN_MEM_FAIL;
+      seen->perm = p;
+    }
+    seen->cap = cap;
+  }
+  return LGN_SUCCESS;
+}
+
+/* lgnCscView of a matrix that its callback has just written: *changed says
+ * whether its pattern differs from the one seen last (it does at the first
+ * call), and the new one is recorded. seen belongs to view: a CSR matrix
+ * whose pattern is unchanged keeps the indices of its CSC copy and only
+ * gathers the values, through the permutation recorded at the last
+ * transposition. */
+int lgnCscViewSeen(SUNMatrix S, LGNCsc *view, LGNPatternMemo *seen,
+                   sunbooleantype *changed)
+{
+  const sunbooleantype csr = SUNSparseMatrix_SparseType(S) == CSR_MAT;
+  const sunindextype np = SUNSparseMatrix_NP(S);
+  const sunindextype *ptr = SUNSparseMatrix_IndexPointers(S);
+  const sunindextype *ind = SUNSparseMatrix_IndexValues(S);
+  const sunindextype nnz = ptr[np];
+  sunindextype p;
+  int flag;
+
+  *changed = !(seen->seen && seen->np == np && seen->nnz == nnz &&
+               memcmp(seen->ptr, ptr, (size_t)(np + 1) * sizeof *ptr) == 0 &&
+               (nnz == 0 || memcmp(seen->ind, ind, (size_t)nnz * sizeof *ind) == 0));
+  if (!*changed && csr) {
+    const sunrealtype *val = SUNSparseMatrix_Data(S);
+    for (p = 0; p < nnz; p++) view->val[seen->perm[p]] = val[p];
+    return LGN_SUCCESS;
+  }
+  if (!*changed) return lgnCscView(S, view);
+
+  seen->seen = SUNFALSE;
+  flag = MemoReserve(seen, np, nnz, csr);
+  if (flag == LGN_SUCCESS && csr) {
+    LGNCsc raw; /* CSR of S = CSC of S^T */
+    raw.nrows  = SUNSparseMatrix_Columns(S);
+    raw.ncols  = SUNSparseMatrix_Rows(S);
+    raw.colptr = SUNSparseMatrix_IndexPointers(S);
+    raw.rowind = SUNSparseMatrix_IndexValues(S);
+    raw.val    = SUNSparseMatrix_Data(S);
+    raw.cap = raw.capcol = 0;
+    flag = Transpose(&raw, view, seen->perm);
+  } else if (flag == LGN_SUCCESS) {
+    flag = lgnCscView(S, view);
+  }
+  if (flag != LGN_SUCCESS) return flag;
+  memcpy(seen->ptr, ptr, (size_t)(np + 1) * sizeof *ptr);
+  if (nnz > 0) memcpy(seen->ind, ind, (size_t)nnz * sizeof *ind);
+  seen->np   = np;
+  seen->nnz  = nnz;
+  seen->seen = SUNTRUE;
+  return LGN_SUCCESS;
 }
 
 void lgnColoringFree(LGNColoring *c)
@@ -178,9 +269,8 @@ int lgnSparseWorkCreate(LGNMem mem)
   if (sp == NULL) return LGN_MEM_FAIL;
   mem->sp  = sp;
   sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  sp->pos  = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
   sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  if (sp->mark == NULL || sp->pos == NULL || sp->list == NULL) {
+  if (sp->mark == NULL || sp->list == NULL) {
     lgnSparseWorkFree(mem);
     return LGN_MEM_FAIL;
   }
@@ -191,7 +281,13 @@ int lgnSparseWorkCreate(LGNMem mem)
 void lgnSparseWorkFree(LGNMem mem)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
+  int k;
   if (sp == NULL) return;
+  for (k = 0; k < LGN_NMAPS; k++) free(sp->map[k].off);
+  lgnPatternMemoFree(&sp->Mseen);
+  lgnPatternMemoFree(&sp->Bseen);
+  lgnPatternMemoFree(&sp->Kseen);
+  lgnPatternMemoFree(&sp->Cseen);
   lgnCscFree(&sp->A);
   lgnCscFree(&sp->M);
   lgnCscFree(&sp->B);
@@ -205,7 +301,6 @@ void lgnSparseWorkFree(LGNMem mem)
   free(sp->csr_perm);
   free(sp->Bvq);
   free(sp->mark);
-  free(sp->pos);
   free(sp->list);
   free(sp);
   mem->sp = NULL;
@@ -216,16 +311,21 @@ void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
 {
   const struct LGNSparseWorkRec *sp = mem->sp;
   const LGNCsc *all[8];
+  const LGNPatternMemo *seen[4];
   int k;
   if (sp == NULL) return;
   all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
   all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
   for (k = 0; k < 8; k++) {
-    *rw += (long int)all[k]->cap;
+    if (all[k]->val != NULL) *rw += (long int)all[k]->cap; /* not A's, if CSC */
     *iw += (long int)(all[k]->cap + all[k]->capcol);
   }
+  seen[0] = &sp->Mseen; seen[1] = &sp->Bseen; seen[2] = &sp->Kseen; seen[3] = &sp->Cseen;
+  for (k = 0; k < 4; k++)
+    *iw += (long int)(seen[k]->capp + (seen[k]->perm != NULL ? 2 : 1) * seen[k]->cap);
+  for (k = 0; k < LGN_NMAPS; k++) *iw += (long int)sp->map[k].cap;
   *rw += (long int)sp->Bvq_cap;
-  *iw += 3L * (long int)(mem->nv + mem->m);
+  *iw += 2L * (long int)(mem->nv + mem->m);
   if (sp->csr_perm != NULL) *iw += (long int)sp->A.cap;
   if (sp->Kcol.ptr != NULL) *iw += (long int)(sp->Kcol.ncolors + 1 + mem->nv);
   if (sp->Ccol.ptr != NULL) *iw += (long int)(sp->Ccol.ncolors + 1 + mem->nv);
