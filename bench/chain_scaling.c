@@ -20,8 +20,10 @@
  * and fits the exponent p of seconds_per_step ~ N^p for KLU (least squares
  * in log-log over all N, and between the two largest N). Memory per body
  * (Lignum's work space from LGNGetWorkSpace plus KLU's peak) goes to a
- * second CSV, and the floor under a Newton iteration, the CPU time of one
- * solve and one factorisation with the last iteration matrix, to a third.
+ * second CSV, and the floor under a Newton iteration, the CPU time [ms] of
+ * one solve and one factorisation by SUNDIALS' KLU with the last iteration
+ * matrix ("KLU solve", "KLU factor"; Lignum's own solves on its copy of the
+ * factors, LGNSetOwnKLUSolves, take about 0.6 of KLU's), to a third.
  * Never fails on timing.
  * ---------------------------------------------------------------------------*/
 
@@ -105,7 +107,7 @@ int main(int argc, char **argv)
          "analytic tangents\n\n", steps);
   printf("%7s %-6s %6s %9s %10s %10s %9s %7s %9s %10s %10s %11s\n", "N", "solver",
          "steps", "cpu [s]", "first [ms]", "ms/step", "Newton/st", "setups", "nnz",
-         "solve [ms]", "setup [ms]", "bytes/body");
+         "KLU solve", "KLU factor", "bytes/body");
   for (i = 0; i < nn; i++) {
     RigidSystem *sys = chain_create(ns[i], RB_R3XSO3, ctx);
     if (sys == NULL) return 1;
