@@ -674,11 +674,11 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
   if (flag == LGN_SUCCESS && J->m > 0) flag = CheckVec(J, lambda, J->m, "lambda", __func__);
   if (flag == LGN_SUCCESS) flag = CheckVec(J, f, J->G->nv, "f", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  N_VConst(SUN_RCONST(0.0), f);
+  fd = N_VGetArrayPointer(f);
+  memset(fd, 0, (size_t)J->G->nv * sizeof(sunrealtype)); /* the data checked above */
   if (J->m == 0) return LGN_SUCCESS;
   qd = N_VGetArrayPointer(q);
   ld = N_VGetArrayPointer(lambda);
-  fd = N_VGetArrayPointer(f);
   FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
