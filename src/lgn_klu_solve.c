@@ -85,6 +85,19 @@ static size_t NewCap(size_t cap, size_t need)
   return cap == 0 ? need : need + need / 8;
 }
 
+/* Values x and 32-bit indices i with room for `need` entries, kept while
+ * the capacity *cap suffices (*cap is 0 after a failure). */
+static int ReserveEntries(double **x, int32_t **i, size_t *cap, size_t need)
+{
+  size_t c;
+  if (need <= *cap && *x != NULL) return LGN_SUCCESS;
+  c    = NewCap(*cap, need);
+  *cap = 0;
+  if (!(RENEW(*x, c) && RENEW(*i, c))) return LGN_MEM_FAIL;
+  *cap = c;
+  return LGN_SUCCESS;
+}
+
 /* Arrays for n rows (and up to n blocks) and lnz, unz, nzoff entries
  * (klu_l_extract's sizes: L and U with their diagonals), kept while they
  * are large enough. On failure some arrays may be gone: free the copy. */
@@ -105,24 +118,10 @@ static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
   }
   /* L and U: the values are extracted in place, diagonals included, and
    * then compacted; the indices go through tmp */
-  if (lnz > c->cap_l || c->Lx == NULL) {
-    cap      = NewCap(c->cap_l, lnz);
-    c->cap_l = 0;
-    if (!(RENEW(c->Lx, cap) && RENEW(c->Li, cap))) return LGN_MEM_FAIL;
-    c->cap_l = cap;
-  }
-  if (unz > c->cap_u || c->Ux == NULL) {
-    cap      = NewCap(c->cap_u, unz);
-    c->cap_u = 0;
-    if (!(RENEW(c->Ux, cap) && RENEW(c->Ui, cap))) return LGN_MEM_FAIL;
-    c->cap_u = cap;
-  }
-  if (nzoff > c->cap_f || c->Fx == NULL) {
-    cap      = NewCap(c->cap_f, nzoff);
-    c->cap_f = 0;
-    if (!(RENEW(c->Fx, cap) && RENEW(c->Fi, cap))) return LGN_MEM_FAIL;
-    c->cap_f = cap;
-  }
+  if (ReserveEntries(&c->Lx, &c->Li, &c->cap_l, lnz) != LGN_SUCCESS ||
+      ReserveEntries(&c->Ux, &c->Ui, &c->cap_u, unz) != LGN_SUCCESS ||
+      ReserveEntries(&c->Fx, &c->Fi, &c->cap_f, nzoff) != LGN_SUCCESS)
+    return LGN_MEM_FAIL;
   /* tmp: pointers and indices of one of L, U, F; or P, Q and R */
   ntmp = SUNMAX(n + 1 + SUNMAX(SUNMAX(lnz, unz), nzoff), 3 * n + 1);
   if (ntmp > c->cap_tmp || c->tmp == NULL) {
