@@ -123,6 +123,21 @@ static void CheckExact(const char *what, double err, int bad)
   Check(what, bad ? HUGE_VAL : err, 0.0);
 }
 
+/* Attachment points and axes of the test mechanisms. */
+static const double pa[3] = {0.1, -0.2, 0.5}, pb[3] = {-0.3, 0.2, -0.4};
+static const double ax[3] = {0, 0, 1}, ay[3] = {0, 1, 0}, axy[3] = {1, 1, 0.5};
+
+/* The mechanism of the main checks on four bodies: S, R, U, R, S joints
+ * (20 constraints). */
+static void AddTestJoints(LGNJoints J)
+{
+  LGNJoints_AddSpherical(J, LGN_GROUND, pa, 0, pb);
+  LGNJoints_AddRevolute(J, 0, pa, axy, 1, pb, ax);
+  LGNJoints_AddUniversal(J, 1, pb, ay, 2, pa, axy);
+  LGNJoints_AddRevolute(J, 3, pa, ax, LGN_GROUND, pb, ay);
+  LGNJoints_AddSpherical(J, 2, pb, 3, pa);
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -135,8 +150,6 @@ int main(void)
   const double eps = 1e-5;
   double w[24], Bw[32], fd[32], errB = 0, errZ = 0, errK = 0, scale;
   int trial, type;
-  const double pa[3] = {0.1, -0.2, 0.5}, pb[3] = {-0.3, 0.2, -0.4};
-  const double ax[3] = {0, 0, 1}, ay[3] = {0, 1, 0}, axy[3] = {1, 1, 0.5};
 
   if (SUNContext_Create(NULL, &ctx) != 0) return 1;
   body[0] = LGNGroup_R3xSO3();
@@ -148,11 +161,7 @@ int main(void)
 
   J = LGNJoints_Create(NULL, G);
   if (J == NULL || LGNJoints_NumBodies(J) != 4) return 1;
-  LGNJoints_AddSpherical(J, LGN_GROUND, pa, 0, pb);
-  LGNJoints_AddRevolute(J, 0, pa, axy, 1, pb, ax);
-  LGNJoints_AddUniversal(J, 1, pb, ay, 2, pa, axy);
-  LGNJoints_AddRevolute(J, 3, pa, ax, LGN_GROUND, pb, ay);
-  LGNJoints_AddSpherical(J, 2, pb, 3, pa);
+  AddTestJoints(J);
   m = LGNJoints_NumConstraints(J);
   if (m != 3 + 5 + 4 + 5 + 3) {
     printf("m = %lld, expected 20\n", (long long)m);
@@ -395,11 +404,7 @@ int main(void)
         double *p = qd + 7 * k + 3; /* both body types: (x, p), nq = 7 */
         p[c] = -p[c];
         Jf = LGNJoints_Create(NULL, G);
-        LGNJoints_AddSpherical(Jf, LGN_GROUND, pa, 0, pb);
-        LGNJoints_AddRevolute(Jf, 0, pa, axy, 1, pb, ax);
-        LGNJoints_AddUniversal(Jf, 1, pb, ay, 2, pa, axy);
-        LGNJoints_AddRevolute(Jf, 3, pa, ax, LGN_GROUND, pb, ay);
-        LGNJoints_AddSpherical(Jf, 2, pb, 3, pa);
+        AddTestJoints(Jf);
         LGNJoints_Residual(J, q, phi_p);
         LGNJoints_Residual(Jf, q, phi_m);
         for (i = 0; i < m; i++)
