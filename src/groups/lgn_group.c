@@ -139,7 +139,7 @@ void LGNRotationVectorFromQuaternion(const sunrealtype p[4], sunrealtype phi[3])
     k = 0;
   } else if (n < SUN_RCONST(1.0e-3) * w) {
     const sunrealtype r2 = (n / w) * (n / w);
-    k = (TWO / w) * (ONE + r2 * (-ONE / 3 + r2 * (ONE / 5 - r2 / 7)));
+    k = (TWO / w) * (ONE + r2 * (-ONE / 3 + r2 * (ONE / 5 - r2 * (ONE / 7))));
   } else {
     k = TWO * atan2(n, w) / n;
   }

@@ -71,54 +71,57 @@ void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
     cs  = ONE - omc;           /* cos(phi)     */
   }
 
+  /* below the thresholds: Taylor series in phi^2, Horner form; the last
+   * coefficient is a product with 1/k!-like constants folded at compile
+   * time, not a division (a division costs several multiplications) */
   if (need & LGN_SO3_SINC) {
     c->sinc = (phi < LGN_SO3_THR_SINC)
-      ? ONE + p2 * (-ONE / 6 + p2 * (ONE / 120 - p2 / 5040))
+      ? ONE + p2 * (-ONE / 6 + p2 * (ONE / 120 - p2 * (ONE / 5040)))
       : s / phi;
   }
   if (need & LGN_SO3_CC) {
     c->cc = (phi < LGN_SO3_THR_CC)
-      ? HALF + p2 * (-ONE / 24 + p2 * (ONE / 720 - p2 / 40320))
+      ? HALF + p2 * (-ONE / 24 + p2 * (ONE / 720 - p2 * (ONE / 40320)))
       : omc / p2;
   }
   if (need & LGN_SO3_A) {
     c->a = (phi < LGN_SO3_THR_A)
-      ? -HALF + p2 * (ONE / 24 + p2 * (-ONE / 720 + p2 / 40320))
+      ? -HALF + p2 * (ONE / 24 + p2 * (-ONE / 720 + p2 * (ONE / 40320)))
       : -omc / p2;
   }
   if (need & LGN_SO3_B) {
     c->b = (phi < LGN_SO3_THR_B)
-      ? ONE / 6 + p2 * (-ONE / 120 + p2 * (ONE / 5040 - p2 / 362880))
+      ? ONE / 6 + p2 * (-ONE / 120 + p2 * (ONE / 5040 - p2 * (ONE / 362880)))
       : (phi - s) / (p2 * phi);
   }
   if (need & LGN_SO3_D) {
     c->d = (phi < LGN_SO3_THR_D)
-      ? ONE / 12 + p2 * (ONE / 720 + p2 * (ONE / 30240 + p2 / 1209600))
+      ? ONE / 12 + p2 * (ONE / 720 + p2 * (ONE / 30240 + p2 * (ONE / 1209600)))
       : (ONE - HALF * phi * ch / sh) / p2;
   }
   if (need & LGN_SO3_C1) {
     c->c1 = (phi < LGN_SO3_THR_C1)
-      ? ONE / 12 + p2 * (-ONE / 180 + p2 * (ONE / 6720 - p2 / 453600))
+      ? ONE / 12 + p2 * (-ONE / 180 + p2 * (ONE / 6720 - p2 * (ONE / 453600)))
       : (TWO * omc - phi * s) / (p2 * p2);
   }
   if (need & LGN_SO3_C2) {
     c->c2 = (phi < LGN_SO3_THR_C2)
       ? -ONE / 60 + p2 * (ONE / 1260 + p2 * (-ONE / 60480 + p2 * (ONE / 4989600
-                                              - p2 / 622702080)))
+                                              - p2 * (ONE / 622702080))))
       : (3 * s - TWO * phi - phi * cs) / (p2 * p2 * phi);
   }
   if (need & LGN_SO3_C3) {
     /* c3 = (8cos - 8 + 5 phi sin - phi^2 cos)/phi^6 */
     c->c3 = (phi < LGN_SO3_THR_C3)
       ? -ONE / 90 + p2 * (ONE / 1680 + p2 * (-ONE / 75600 + p2 * (ONE / 5987520
-                                              - p2 / 726485760)))
+                                              - p2 * (ONE / 726485760))))
       : (-8 * omc + 5 * phi * s - p2 * cs) / (p2 * p2 * p2);
   }
   if (need & LGN_SO3_C4) {
     /* c4 = (phi^2 sin + 7 phi cos + 8 phi - 15 sin)/phi^7 */
     c->c4 = (phi < LGN_SO3_THR_C4)
       ? ONE / 630 + p2 * (-ONE / 15120 + p2 * (ONE / 831600 + p2 * (
-            -ONE / 77837760 + p2 / SUN_RCONST(10897286400.0))))
+            -ONE / 77837760 + p2 * (ONE / SUN_RCONST(10897286400.0)))))
       : (p2 * s + 7 * phi * cs + 8 * phi - 15 * s) / (p2 * p2 * p2 * phi);
   }
 }
@@ -281,8 +284,8 @@ static inline void ExpQuat(const sunrealtype x[3], sunrealtype p[4])
   const sunrealtype h2 = Dot(x, x) / 4;
   sunrealtype k, c;
   if (h2 < LGN_SO3_THR_SINC * LGN_SO3_THR_SINC) {
-    k = HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 / 5040)));
-    c = ONE + h2 * (-HALF + h2 * (ONE / 24 + h2 * (-ONE / 720 + h2 / 40320)));
+    k = HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 * (ONE / 5040))));
+    c = ONE + h2 * (-HALF + h2 * (ONE / 24 + h2 * (-ONE / 720 + h2 * (ONE / 40320))));
   } else {
     const sunrealtype h = sqrt(h2);
     k = sin(h) / (2 * h);
