@@ -182,6 +182,29 @@ static int Kinematics(LGNMem mem, sunbooleantype with_tangent)
   return LGN_SUCCESS;
 }
 
+/* sum_i (d_i / (a + r |c x_i|))^2, in four partial sums: one running sum
+ * would make each addition wait for the previous one (the loop is bound by
+ * the latency of the additions, not by the divisions). */
+static sunrealtype SumOfSquaresRatio(sunindextype n, const sunrealtype *d,
+                                     const sunrealtype *x, sunrealtype c,
+                                     sunrealtype a, sunrealtype r)
+{
+  sunrealtype s[4] = {SUN_RCONST(0.0), SUN_RCONST(0.0), SUN_RCONST(0.0),
+                      SUN_RCONST(0.0)};
+  sunrealtype w;
+  sunindextype i, j;
+  for (i = 0; i + 4 <= n; i += 4)
+    for (j = 0; j < 4; j++) {
+      w = d[i + j] / (a + r * fabs(c * x[i + j]));
+      s[j] += w * w;
+    }
+  for (; i < n; i++) {
+    w = d[i] / (a + r * fabs(c * x[i]));
+    s[0] += w * w;
+  }
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
 /* Weighted RMS norm of the Newton correction in the variables of the spec's
  * stop test (numerics.md §2): xi = (sigma/h, h lambda), weights
  * 1/(atol + rtol |xi_i| + floor_i). The multiplier part of the correction
@@ -199,7 +222,7 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
                                   sunrealtype *norm_sigma,
                                   sunrealtype *norm_lambda)
 {
-  sunindextype i, nv = mem->nv, m = mem->m;
+  const sunindextype nv = mem->nv, m = mem->m;
   const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;
@@ -209,17 +232,12 @@ static sunrealtype CorrectionNorm(LGNMem mem, const StepCoeffs *c,
   const sunrealtype sigma_atol  = atol * h + roundoff;
   const sunrealtype lambda_unit = c->scale / h;
   const sunrealtype lambda_atol = atol + roundoff / (mem->beta * h);
-  sunrealtype sum = SUN_RCONST(0.0), sum_lambda = SUN_RCONST(0.0), w;
+  sunrealtype sum, sum_lambda;
 
-  for (i = 0; i < nv; i++) {
-    w = delta[i] / (sigma_atol + rtol * fabs(mem->sigma[i]));
-    sum += w * w;
-  }
+  sum = SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol, rtol);
   *norm_sigma = sqrt(sum / (sunrealtype)(nv + m));
-  for (i = 0; i < m; i++) {
-    w = dmu[i] / (lambda_unit * (lambda_atol + rtol * fabs(h * lambda1[i])));
-    sum_lambda += w * w;
-  }
+  sum_lambda = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
+                                 lambda_unit * rtol);
   *norm_lambda = sqrt(sum_lambda / (sunrealtype)(nv + m));
   return sqrt((sum + sum_lambda) / (sunrealtype)(nv + m));
 }
