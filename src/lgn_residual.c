@@ -21,10 +21,12 @@
 
 sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n)
 {
+  /* |x_i| <= SUN_BIG_REAL is false for an Inf and for a NaN; the flags are
+   * or-ed without a branch, so that the loop vectorises */
   sunindextype i;
-  for (i = 0; i < n; i++)
-    if (!isfinite(x[i])) return SUNFALSE;
-  return SUNTRUE;
+  int bad = 0;
+  for (i = 0; i < n; i++) bad |= !(fabs(x[i]) <= SUN_BIG_REAL);
+  return bad ? SUNFALSE : SUNTRUE;
 }
 
 /* y (+)= A x and y (+)= A^T x for a dense (column-major) or sparse (CSC or
@@ -202,16 +204,17 @@ int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
     lgnMatTvec(B, lgnData(mem->lambda1), rd, SUNFALSE);
   }
   if (M == mem->Mmat && mem->mass_current && mem->mass_diagonal) {
-    /* the same products and sums as the matrix-vector loop */
+    /* the same products and sums as the matrix-vector loop, and g, in one
+     * pass */
     const sunrealtype *d = mem->mass_diag, *x = lgnData(mem->vdot1);
     if (mem->m > 0)
-      for (i = 0; i < nv; i++) rd[i] += d[i] * x[i];
+      for (i = 0; i < nv; i++) rd[i] = (rd[i] + d[i] * x[i]) + gd[i];
     else
-      for (i = 0; i < nv; i++) rd[i] = d[i] * x[i];
+      for (i = 0; i < nv; i++) rd[i] = d[i] * x[i] + gd[i];
   } else {
     lgnMatvec(M, lgnData(mem->vdot1), rd, mem->m > 0);
+    for (i = 0; i < nv; i++) rd[i] += gd[i];
   }
-  for (i = 0; i < nv; i++) rd[i] += gd[i];
   return LGN_SUCCESS;
 }
 
