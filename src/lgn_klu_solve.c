@@ -504,6 +504,20 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
 #define LGN_NOINLINE
 #endif
 
+/* A hint to fetch the cache line `bytes` after (before, if negative) the
+ * address a: the row sweeps ask for their streams of values and indices
+ * LGN_AHEAD bytes ahead (stand-alone on the 10000-body chain with the
+ * factors not in cache: 0.84-0.96 -> 0.70-0.83 ms a solve; 2, 3 and 4 kB
+ * ahead alike, 1 kB less good). Integer arithmetic: the address may be outside the
+ * array, which a prefetch does not mind. */
+#if defined(__GNUC__)
+#define LGN_PREFETCH(a, bytes) \
+  __builtin_prefetch((const void *)((uintptr_t)(a) + (uintptr_t)(intptr_t)(bytes)))
+#else
+#define LGN_PREFETCH(a, bytes) ((void)0)
+#endif
+#define LGN_AHEAD 3072
+
 /* X(Fi(:, k)) -= F(:, k) X[k], for k = k1, ..., k2 - 1: the columns of a
  * block of F into the rows of earlier blocks. */
 static LGN_NOINLINE void ScatterColumns(int32_t k1, int32_t k2,
@@ -545,6 +559,8 @@ static LGN_NOINLINE void LowerByRows(int32_t k1, int32_t k2,
     else xi = b[P[i]];
     p    = Rp[i];
     pend = Rp[i + 1];
+    LGN_PREFETCH(Tx + p, LGN_AHEAD);
+    LGN_PREFETCH(Ci + p, LGN_AHEAD);
     if (pend - p >= 2 && Ci[pend - 1] == i - 1 && Ci[pend - 2] == i - 2) {
       for (; p < pend - 2; p++) xi -= Tx[p] * X[Ci[p]];
       xi -= Tx[p] * x2;
@@ -580,6 +596,8 @@ static LGN_NOINLINE void UpperByRows(int32_t k1, int32_t k2,
     xi   = X[i];
     p    = Rp[i];
     pend = Rp[i + 1];
+    LGN_PREFETCH(Tx + p, -LGN_AHEAD);
+    LGN_PREFETCH(Ci + p, -LGN_AHEAD);
     if (pend - p >= 2 && Ci[pend - 1] == i + 1 && Ci[pend - 2] == i + 2) {
       for (; p < pend - 2; p++) xi -= Tx[p] * X[Ci[p]];
       xi -= Tx[p] * x2;
