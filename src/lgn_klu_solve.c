@@ -312,14 +312,15 @@ static inline int GatherColumn(const double *LU, int64_t Xip, int64_t Xlen,
   return differ != 0;
 }
 
-/* GatherColumn for a copy by rows: KLU's entry j of column k, in row
- * r = k1 + ki[j], goes to Tx[map[p1 + j]], which must be in row r
- * (Rp[r] <= q < Rp[r + 1]) and column k. */
+/* GatherColumn for a copy by rows: KLU's entry j of the column, in row
+ * r = k1 + ki[j], goes to Tx[q], q = map[p1 + j], which must be in row r
+ * (Rp[r] <= q < Rp[r + 1]). It is in the column: BuildRows makes the map
+ * and the columns of the places together. So with the lengths of the
+ * columns equal, the pattern is the copy's if every entry passes. */
 static inline int GatherColumnRows(const double *LU, int64_t Xip, int64_t Xlen,
-                                   int64_t k1, int32_t k, int32_t p1,
-                                   int32_t p2, const int32_t *map,
-                                   const int32_t *Rp, int32_t n,
-                                   const int32_t *Ti, double *Tx)
+                                   int64_t k1, int32_t p1, int32_t p2,
+                                   const int32_t *map, const int32_t *Rp,
+                                   int32_t n, double *Tx)
 {
   const int64_t *ki = (const int64_t *)(const void *)(LU + Xip);
   const double *kx  = LU + Xip + Xlen;
@@ -330,7 +331,7 @@ static inline int GatherColumnRows(const double *LU, int64_t Xip, int64_t Xlen,
     q = map[p1 + j];
     r = k1 + ki[j];
     if (r < 0 || r >= n) return 1;
-    differ |= (Ti[q] ^ k) | (q < Rp[r]) | (q >= Rp[r + 1]);
+    differ |= (q < Rp[r]) | (q >= Rp[r + 1]);
     Tx[q] = kx[j];
   }
   return differ != 0;
@@ -356,12 +357,10 @@ static int GatherFactors(LGNKluCopy *c, const klu_l_numeric *N)
     LU = (const double *)N->LUbx[blk];
     if (c->rows) {
       for (k = k1; k < k2; k++) {
-        differ |= GatherColumnRows(LU, N->Lip[k], N->Llen[k], k1, k, Lp[k],
-                                   Lp[k + 1], c->Lmap, c->Lrp, c->n, c->Li,
-                                   c->Lx);
-        differ |= GatherColumnRows(LU, N->Uip[k], N->Ulen[k], k1, k, Up[k],
-                                   Up[k + 1], c->Umap, c->Urp, c->n, c->Ui,
-                                   c->Ux);
+        differ |= GatherColumnRows(LU, N->Lip[k], N->Llen[k], k1, Lp[k],
+                                   Lp[k + 1], c->Lmap, c->Lrp, c->n, c->Lx);
+        differ |= GatherColumnRows(LU, N->Uip[k], N->Ulen[k], k1, Up[k],
+                                   Up[k + 1], c->Umap, c->Urp, c->n, c->Ux);
       }
       if (differ) return -1;
       continue;
