@@ -9,7 +9,10 @@
  *      bit, reported) and the true solution to cond(A) times round-off;
  *      after a refactorisation with new values (pivots and pattern kept)
  *      the refresh takes the values only, and the copy then equals a whole
- *      new copy of the factors bit for bit;
+ *      new copy of the factors bit for bit; for CSC the copy holds L and U
+ *      by rows (a banded matrix among the others, so that rows with two,
+ *      one and no carried entries all occur), for CSR by columns in KLU's
+ *      order, and lgnKluCopyPlace finds each of KLU's entries in it;
  *  (b) after a factorisation with new pivots (SUNDIALS factors anew when
  *      klu_refactor leaves a tiny pivot: the factors change and grow), the
  *      refresh makes a whole copy, which follows, while the old copy is
