@@ -45,12 +45,36 @@ typedef struct LGNKluCopyRec {
   int32_t *Lswap, *Uswap;   /* n each: the place j in KLU's column k of
                                the copy's first entry, which has KLU's
                                first at j (or 0: none exchanged)           */
+  /* By rows (klu_l_solve, rows = SUNTRUE): Lp and Up stay the column
+   * pointers of KLU's columns (Lswap, Uswap all 0), but Li/Lx and Ui/Ux
+   * hold L and U by rows, row i from Lrp[i] (Urp[i]) on, with the column
+   * of each entry in Li (Ui): a row of L in increasing and a row of U in
+   * decreasing column order, the order in which klu_l_solve's column
+   * sweeps update that row, so rows i - 1, i - 2 (L) and i + 1, i + 2 (U)
+   * come last. Lmap[Lp[k] + j] (Umap[Up[k] + j]) is the place in Li/Lx
+   * (Ui/Ux) of KLU's entry j of its column k (lgnKluCopyPlace). */
+  sunbooleantype rows;
+  int32_t *Lrp, *Urp;       /* n + 1 each                                  */
+  int32_t *Lmap, *Umap;     /* lnz - n, unz - n                            */
+  size_t cap_rn, cap_lmap, cap_umap;
   double *Udiag, *Rs, *X;   /* n each; X is the work vector of a solve     */
   size_t cap_n, cap_l, cap_u, cap_f; /* allocated n and entries (lnz, ...) */
   int64_t *tmp;             /* 64-bit indices from klu_l_extract           */
   size_t cap_tmp;
   long int nfull, nvalues;  /* refreshes: whole copies, values only        */
 } LGNKluCopy;
+
+/* The place in Lx (lower != 0) or Ux of KLU's entry j (0 <= j < Llen[k],
+ * or Ulen[k]: the order of KLU's packed column, which klu_l_extract keeps
+ * after the diagonal) of column k, for a complete copy. */
+static inline int32_t lgnKluCopyPlace(const LGNKluCopy *c, int lower, int32_t k,
+                                      int32_t j)
+{
+  const int32_t p = (lower ? c->Lp : c->Up)[k];
+  const int32_t s = (lower ? c->Lswap : c->Uswap)[k];
+  if (c->rows) return (lower ? c->Lmap : c->Umap)[p + j];
+  return p + (j == 0 ? s : (j == s ? 0 : j));
+}
 
 /* Return values of lgnKluCopyRefresh besides LGN_SUCCESS and LGN_MEM_FAIL. */
 #define LGN_KLU_NO_COPY 1 /* no factors, sizes beyond 32 bits, or unknown */

@@ -9,7 +9,10 @@
  *      bit, reported) and the true solution to cond(A) times round-off;
  *      after a refactorisation with new values (pivots and pattern kept)
  *      the refresh takes the values only, and the copy then equals a whole
- *      new copy of the factors bit for bit;
+ *      new copy of the factors bit for bit; for CSC the copy holds L and U
+ *      by rows (a banded matrix among the others, so that rows with two,
+ *      one and no carried entries all occur), for CSR by columns in KLU's
+ *      order, and lgnKluCopyPlace finds each of KLU's entries in it;
  *  (b) after a factorisation with new pivots (SUNDIALS factors anew when
  *      klu_refactor leaves a tiny pivot: the factors change and grow), the
  *      refresh makes a whole copy, which follows, while the old copy is
@@ -124,6 +127,25 @@ static Dense DiagDominant(int n)
   return D;
 }
 
+/* Banded: entries (i +- 1, i), (i +- 2, i), each left out with probability
+ * 0.2, a few far ones, a dominant diagonal: rows of L and U by rows with
+ * two, one and none of the adjacent columns last (LowerByRows). */
+static Dense Banded(int n)
+{
+  Dense D = DenseNew(n);
+  int i, j, d;
+  for (j = 0; j < n; j++) {
+    for (d = -2; d <= 2; d++) {
+      i = j + d;
+      if (d == 0 || i < 0 || i >= n || Rand() < -0.6) continue;
+      Set(&D, i, j, Rand());
+    }
+    if (Rand() > 0.9) Set(&D, (j + n / 2) % n, j, Rand());
+  }
+  for (j = 0; j < n; j++) Set(&D, j, j, 6.0 + Rand());
+  return D;
+}
+
 /* [[K, B^T], [B, 0]]: K (nv x nv) non-symmetric sparse with a dominant
  * diagonal, B (m x nv) of full row rank; the zero block forces KLU to pivot
  * off the diagonal. */
@@ -212,6 +234,7 @@ static double MaxDiff(const double *x, const double *y, int n)
 }
 
 static int bitwise_all = 1; /* every comparison with SUNLinSolSolve exact */
+static long total_carried[3]; /* CountCarried over the matrices of (a) */
 
 /* Whether two copies hold the same factorisation, bit for bit: sizes,
  * permutations, blocks, patterns, values and the exchanged entries. */
@@ -227,7 +250,67 @@ static int SameCopy(const LGNKluCopy *a, const LGNKluCopy *b)
          SAME(a->Up, b->Up, n + 1) && SAME(a->Ui, b->Ui, a->Up[n]) &&
          SAME(a->Ux, b->Ux, a->Up[n]) && SAME(a->Uswap, b->Uswap, n) &&
          SAME(a->Udiag, b->Udiag, n) && SAME(a->Fp, b->Fp, n + 1) &&
-         SAME(a->Fi, b->Fi, a->Fp[n]) && SAME(a->Fx, b->Fx, a->Fp[n]);
+         SAME(a->Fi, b->Fi, a->Fp[n]) && SAME(a->Fx, b->Fx, a->Fp[n]) &&
+         a->rows == b->rows &&
+         (!a->rows ||
+          (SAME(a->Lrp, b->Lrp, n + 1) && SAME(a->Urp, b->Urp, n + 1) &&
+           SAME(a->Lmap, b->Lmap, a->Lp[n]) && SAME(a->Umap, b->Umap, a->Up[n])));
+}
+
+/* Whether lgnKluCopyPlace finds each entry of KLU's packed columns of L
+ * and U (the blocks that are not singletons) in the copy: the same value
+ * and, by rows, in KLU's column (by columns: in KLU's row). */
+static int PlacesMatch(const LGNKluCopy *c, SUNLinearSolver LS)
+{
+  const klu_l_numeric *N = SUNLinSol_KLUGetNumeric(LS);
+  const double *LU;
+  const int64_t *ki;
+  const double *kx;
+  int32_t blk, k, k1, k2, j, q, len, lower;
+  int64_t ip;
+  for (blk = 0; blk < c->nblocks; blk++) {
+    k1 = c->R[blk];
+    k2 = c->R[blk + 1];
+    if (k2 - k1 == 1) continue;
+    LU = (const double *)N->LUbx[blk];
+    for (k = k1; k < k2; k++)
+      for (lower = 0; lower < 2; lower++) {
+        ip  = lower ? N->Lip[k] : N->Uip[k];
+        len = (int32_t)(lower ? N->Llen[k] : N->Ulen[k]);
+        ki  = (const int64_t *)(const void *)(LU + ip);
+        kx  = LU + ip + len;
+        for (j = 0; j < len; j++) {
+          q = lgnKluCopyPlace(c, lower, k, j);
+          if ((lower ? c->Lx : c->Ux)[q] != kx[j] ||
+              (lower ? c->Li : c->Ui)[q] != (c->rows ? k : k1 + ki[j]))
+            return 0;
+        }
+      }
+  }
+  return 1;
+}
+
+/* The rows of L and U by rows whose last two entries are the adjacent
+ * columns (i - 2, i - 1 in L, i + 2, i + 1 in U; carried[2]), only the
+ * nearest one (carried[1]), or neither (carried[0]): the three paths of
+ * LowerByRows and UpperByRows. */
+static void CountCarried(const LGNKluCopy *c, long carried[3])
+{
+  const int32_t n = c->n;
+  int32_t i, s, p, pend, two, one;
+  const int32_t *Rp, *Ci;
+  carried[0] = carried[1] = carried[2] = 0;
+  for (s = -1; s <= 1; s += 2) { /* L: s = -1 */
+    Rp = s < 0 ? c->Lrp : c->Urp;
+    Ci = s < 0 ? c->Li : c->Ui;
+    for (i = 0; i < n; i++) {
+      p    = Rp[i];
+      pend = Rp[i + 1];
+      one  = pend > p && Ci[pend - 1] == i + s;
+      two  = one && pend - p >= 2 && Ci[pend - 2] == i + 2 * s;
+      carried[two ? 2 : one]++;
+    }
+  }
 }
 
 /* The copy *copy of LS's factors against a whole new copy (bit for bit)
@@ -246,6 +329,7 @@ static double CheckCopy(const char *what, LGNKluCopy *copy, SUNLinearSolver LS,
   lgnKluCopySolve(copy, N_VGetArrayPointer(b), xl);
   rel = MaxDiff(xl, N_VGetArrayPointer(xs), n) / MaxAbs(N_VGetArrayPointer(xs), n);
   CHECK(rel <= 1e-13, "%s: |x - x(SUNLinSolSolve)| / |x| = %.3e > 1e-13", what, rel);
+  CHECK(PlacesMatch(copy, LS), "%s: lgnKluCopyPlace finds KLU's entries", what);
   if (rel != 0.0) bitwise_all = 0;
   lgnKluCopyFree(&fresh);
   free(xl);
@@ -355,6 +439,7 @@ static void CheckSolve(const char *name, const Dense *D, int type,
   klu_l_numeric *Num;
   klu_l_symbolic *Sym;
   int i, k, flag, nswap;
+  long carried[3];
 
   ToSparse(D, A);
   CHECK(SUNLinSolInitialize(LS) == 0, "%s %s: initialize", name, fmt);
@@ -420,9 +505,18 @@ static void CheckSolve(const char *name, const Dense *D, int type,
 
   snprintf(what, sizeof what, "%s %s", name, fmt);
   nswap = CheckValueRefresh(what, D, A, LS, &copy, ctx);
-  /* in CSC (klu_solve) the row after the diagonal moves to the front */
-  if (type == CSC_MAT && n > 1)
-    CHECK(nswap > 0, "%s: entries exchanged in the copy's columns", what);
+  /* CSC (klu_solve): L and U by rows; CSR (klu_tsolve): by columns, in
+   * KLU's order (no entry exchanged) */
+  CHECK(copy->rows == (type == CSC_MAT) && nswap == 0,
+        "%s: by rows iff CSC, KLU's order of entries (%d exchanged)", what, nswap);
+  if (copy->rows) {
+    CountCarried(copy, carried);
+    printf("  %-23s rows of L and U with 2, 1, 0 carried entries: %ld %ld %ld\n",
+           what, carried[2], carried[1], carried[0]);
+    total_carried[0] += carried[0];
+    total_carried[1] += carried[1];
+    total_carried[2] += carried[2];
+  }
 
 done:
   free(res);
@@ -450,6 +544,10 @@ static void Matrices(SUNContext ctx)
     CheckSolve("diagonally dominant", &D, types[t], ctx, &nb, &ns, &npiv, &nzoff);
     DenseFree(&D);
 
+    D = Banded(400);
+    CheckSolve("banded", &D, types[t], ctx, &nb, &ns, &npiv, &nzoff);
+    DenseFree(&D);
+
     D = SaddlePoint(60, 25);
     CheckSolve("saddle point", &D, types[t], ctx, &nb, &ns, &npiv, &nzoff);
     CHECK(npiv > 0, "saddle point: KLU pivoted off the diagonal (%ld rows)", npiv);
@@ -462,6 +560,9 @@ static void Matrices(SUNContext ctx)
           "%ld entries off the blocks", nb, ns, nzoff);
     DenseFree(&D);
   }
+  CHECK(total_carried[0] > 0 && total_carried[1] > 0 && total_carried[2] > 0,
+        "rows with 2, 1, 0 carried entries: %ld %ld %ld, all paths taken",
+        total_carried[2], total_carried[1], total_carried[0]);
 }
 
 /* ---------------------------------------------------------------------------
