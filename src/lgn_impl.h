@@ -159,6 +159,8 @@ typedef struct LGNMemRec {
   sunbooleantype klu_valid;      /* klu holds the factors now in LS         */
   long int klu_nsolve;           /* solves with LS's factors since its setup */
   struct LGNKluCopyRec *klu;     /* the copy (NULL: none)                   */
+  long int klu_pattern;          /* A's pattern number when KLU last factored */
+  long int nklu_fallback;        /* own refactorisations handed back to KLU */
 
   /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
   sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */

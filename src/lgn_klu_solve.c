@@ -32,6 +32,7 @@
  *   lgnKluCopyFree, lgnKluCopySpace
  * ---------------------------------------------------------------------------*/
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -56,6 +57,7 @@ void lgnKluCopyFree(LGNKluCopy **copy)
   free(c->Lswap); free(c->Uswap);
   free(c->Udiag); free(c->Rs); free(c->X);
   free(c->Lrp); free(c->Urp); free(c->Lmap); free(c->Umap);
+  free(c->Arp); free(c->Acol); free(c->Apos); free(c->Fpos);
   free(c->tmp);
   free(c);
   *copy = NULL;
@@ -70,6 +72,7 @@ void lgnKluCopySpace(const LGNKluCopy *c, long int *rw, long int *iw)
   *rw += (long int)(c->cap_l + c->cap_u + c->cap_f + 3 * c->cap_n);
   i32 = 8 * c->cap_n + 4 + c->cap_l + c->cap_u + c->cap_f;
   i32 += 2 * (c->cap_rn + 1) + c->cap_lmap + c->cap_umap;
+  i32 += c->cap_arp + c->cap_acol + c->cap_apos + c->cap_fpos;
   *iw += (long int)((i32 + 1) / 2 + c->cap_tmp);
 }
 
@@ -435,9 +438,11 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
   if (c == NULL) {
     c = (LGNKluCopy *)calloc(1, sizeof *c);
     if (c == NULL) return LGN_MEM_FAIL;
+    c->pattern = -1;
     *copy = c;
   }
   c->complete = SUNFALSE; /* until the end of this copy */
+  c->pattern  = -1;       /* new pivots: the maps of A are rebuilt */
   flag = Reserve(c, (size_t)n, (size_t)lnz, (size_t)unz, (size_t)nzoff);
   if (flag == LGN_SUCCESS && !transpose)
     flag = ReserveRows(c, (size_t)n, (size_t)(lnz - n), (size_t)(unz - n));
@@ -488,6 +493,199 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
   for (k = 0; k < nzoff; k++) c->Fi[k] = (int32_t)tmp[n + 1 + k];
   c->complete = SUNTRUE;
   c->nfull++;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Lignum's refactorisation: KLU's pivots, pattern and scaling, new values
+ * ===========================================================================*/
+
+/* An int32_t array of `need` entries in *a, kept while *cap suffices. */
+static int ReserveInt32(int32_t **a, size_t *cap, size_t need)
+{
+  size_t c;
+  if (need <= *cap && *a != NULL) return LGN_SUCCESS;
+  c    = NewCap(*cap, need);
+  *cap = 0;
+  if (!RENEW(*a, c)) return LGN_MEM_FAIL;
+  *cap = c;
+  return LGN_SUCCESS;
+}
+
+/* The maps from A (CSC, n x n, nnz entries) to the rows of S = Rs^{-1}
+ * A(P, Q) in the diagonal blocks (Arp, Acol, Apos: for each pivot row, the
+ * place of each of its entries in A's data and its column in S) and to the
+ * entries of F (Fpos), for the copy's permutations and blocks. Returns
+ * LGN_SUCCESS, LGN_MEM_FAIL, or LGN_KLU_NO_COPY if A does not fit them (an
+ * entry below the block diagonal, or one that F does not hold). */
+static int BuildRefactorMaps(LGNKluCopy *c, const sunindextype *Ap,
+                             const sunindextype *Ai, sunindextype nnz)
+{
+  const int32_t n = c->n;
+  int32_t *Pinv = (int32_t *)(void *)c->tmp, *Qinv = Pinv + n, *Bend = Qinv + n;
+  int32_t *cursor = Bend + n; /* 4 n int32 within tmp's 3 n + 1 int64 */
+  int32_t i, k, kc, b, f;
+  sunindextype p;
+
+  if (nnz > INT32_MAX ||
+      ReserveInt32(&c->Arp, &c->cap_arp, (size_t)n + 1) != LGN_SUCCESS ||
+      ReserveInt32(&c->Acol, &c->cap_acol, (size_t)nnz) != LGN_SUCCESS ||
+      ReserveInt32(&c->Apos, &c->cap_apos, (size_t)nnz) != LGN_SUCCESS ||
+      ReserveInt32(&c->Fpos, &c->cap_fpos, (size_t)c->Fp[n] + 1) != LGN_SUCCESS)
+    return nnz > INT32_MAX ? LGN_KLU_NO_COPY : LGN_MEM_FAIL;
+  for (k = 0; k < n; k++) {
+    Pinv[c->P[k]] = k;
+    Qinv[c->Q[k]] = k;
+  }
+  for (b = 0; b < c->nblocks; b++)
+    for (k = c->R[b]; k < c->R[b + 1]; k++) Bend[k] = c->R[b + 1];
+
+  /* count the entries of each row in its block; place those of F */
+  memset(c->Arp, 0, ((size_t)n + 1) * sizeof *c->Arp);
+  for (f = 0; f < c->Fp[n]; f++) c->Fpos[f] = -1;
+  for (p = 0; p < (sunindextype)n; p++) { /* p: a column of A */
+    sunindextype q;
+    kc = Qinv[p];
+    for (q = Ap[p]; q < Ap[p + 1]; q++) {
+      if (Ai[q] < 0 || Ai[q] >= n) return LGN_KLU_NO_COPY;
+      i = Pinv[Ai[q]];
+      if (Bend[kc] == Bend[i]) { /* in i's diagonal block */
+        c->Arp[i + 1]++;
+        continue;
+      }
+      if (kc < Bend[i]) return LGN_KLU_NO_COPY; /* below the blocks */
+      for (f = c->Fp[kc]; f < c->Fp[kc + 1] && c->Fi[f] != i; f++) {}
+      if (f == c->Fp[kc + 1] || c->Fpos[f] >= 0) return LGN_KLU_NO_COPY;
+      c->Fpos[f] = (int32_t)q;
+    }
+  }
+  for (f = 0; f < c->Fp[n]; f++)
+    if (c->Fpos[f] < 0) return LGN_KLU_NO_COPY;
+  for (i = 0; i < n; i++) c->Arp[i + 1] += c->Arp[i];
+  for (i = 0; i < n; i++) cursor[i] = c->Arp[i];
+  for (p = 0; p < (sunindextype)n; p++) {
+    sunindextype q;
+    kc = Qinv[p];
+    for (q = Ap[p]; q < Ap[p + 1]; q++) {
+      i = Pinv[Ai[q]];
+      if (Bend[kc] != Bend[i]) continue;
+      c->Acol[cursor[i]]   = kc;
+      c->Apos[cursor[i]++] = (int32_t)q;
+    }
+  }
+  return LGN_SUCCESS;
+}
+
+/* KLU's row scale factors of A (klu_scale: scale 1, the sums of |a_ij| of
+ * each row, 2 or more, their maxima; an empty row 1) in pivot order into
+ * Rs; work: n doubles. */
+static void ScaleFactors(LGNKluCopy *c, const sunindextype *Ap,
+                         const sunindextype *Ai, const double *Ax, int scale,
+                         double *work)
+{
+  const int32_t n = c->n;
+  int32_t k;
+  sunindextype col, p;
+  for (k = 0; k < n; k++) work[k] = 0.0;
+  for (col = 0; col < (sunindextype)n; col++)
+    for (p = Ap[col]; p < Ap[col + 1]; p++) {
+      const double a = fabs(Ax[p]);
+      if (scale == 1) work[Ai[p]] += a;
+      else if (a > work[Ai[p]]) work[Ai[p]] = a;
+    }
+  for (k = 0; k < n; k++) {
+    const double r = work[c->P[k]];
+    c->Rs[k] = r == 0.0 ? 1.0 : r;
+  }
+}
+
+/* Rows k1 <= i < k2 of L and U (by rows, in place of the copy's values) and
+ * U's diagonal from the rows of S in the block, by the row-oriented
+ * elimination with the copy's pivots: W = S(i, :); for the columns j < i of
+ * L's row i, in increasing order, L(i, j) = W[j] / U(j, j) and W -= L(i, j)
+ * U(j, :); then U(i, :) = W on U's row. W (the solve's X) is zero before
+ * and after each row. Returns the smallest |U(i, i)| of the rows, and
+ * their largest in *umax. */
+static double EliminateRows(LGNKluCopy *c, int32_t k1, int32_t k2,
+                            const double *Ax, double *umax)
+{
+  const int32_t *Lrp = c->Lrp, *Li = c->Li, *Urp = c->Urp, *Ui = c->Ui;
+  const int32_t *Arp = c->Arp, *Acol = c->Acol, *Apos = c->Apos;
+  double *Lx = c->Lx, *Ux = c->Ux, *Udiag = c->Udiag, *W = c->X;
+  double umin = HUGE_VAL, l, d;
+  int32_t i, j, p, q;
+  for (i = k1; i < k2; i++) {
+    const double rs = c->scaled ? c->Rs[i] : 1.0;
+    for (q = Arp[i]; q < Arp[i + 1]; q++) W[Acol[q]] = Ax[Apos[q]] / rs;
+    for (p = Lrp[i]; p < Lrp[i + 1]; p++) {
+      j     = Li[p];
+      l     = W[j] / Udiag[j];
+      W[j]  = 0.0;
+      Lx[p] = l;
+      for (q = Urp[j]; q < Urp[j + 1]; q++) W[Ui[q]] -= l * Ux[q];
+    }
+    d        = W[i];
+    W[i]     = 0.0;
+    Udiag[i] = d;
+    for (q = Urp[i]; q < Urp[i + 1]; q++) {
+      Ux[q]     = W[Ui[q]];
+      W[Ui[q]]  = 0.0;
+    }
+    d = fabs(d);
+    if (!(d >= umin)) umin = d; /* a NaN is the smallest */
+    if (d > *umax) *umax = d;
+  }
+  return umin;
+}
+
+/* Refactor with the values now in the CSC matrix A (whose pattern is A's
+ * pattern number `pattern` and was analysed and factored by the KLU whose
+ * factors the copy holds) with the copy's pivots, blocks and pattern, and
+ * KLU's row scaling `scale` (klu_common.scale): the values of L, U and F
+ * in the copy become those of A. This is what klu_l_refactor does, by rows
+ * instead of by columns (the same factors up to roundoff), without the
+ * copy out of KLU afterwards. As SUNLinSolSetup does after klu_l_refactor,
+ * it checks KLU's cheap reciprocal condition number min |U(i, i)| / max
+ * |U(i, i)|: below eps^(2/3) (or a zero, Inf or NaN) it returns
+ * LGN_KLU_PIVOT and the copy is no longer complete, so the caller factors
+ * with KLU (which may pivot anew) and copies again. LGN_KLU_NO_COPY: not a
+ * copy by rows, or A does not fit the copy's factors; LGN_MEM_FAIL. */
+int lgnKluCopyRefactor(LGNKluCopy *c, SUNMatrix A, long int pattern, int scale)
+{
+  const sunindextype *Ap, *Ai;
+  const double *Ax;
+  double umin = HUGE_VAL, umax = 0.0, u;
+  int32_t b, f;
+  int flag;
+
+  if (c == NULL || !c->complete || !c->rows || SUNMatGetID(A) != SUNMATRIX_SPARSE ||
+      SUNSparseMatrix_SparseType(A) != CSC_MAT || SUNSparseMatrix_NP(A) != c->n)
+    return LGN_KLU_NO_COPY;
+  Ap = SUNSparseMatrix_IndexPointers(A);
+  Ai = SUNSparseMatrix_IndexValues(A);
+  Ax = SUNSparseMatrix_Data(A);
+  if (c->pattern != pattern) {
+    c->pattern = -1;
+    flag = BuildRefactorMaps(c, Ap, Ai, Ap[c->n]);
+    if (flag != LGN_SUCCESS) return flag;
+    c->pattern = pattern;
+  }
+
+  c->scaled = scale > 0 ? SUNTRUE : SUNFALSE;
+  if (c->scaled) ScaleFactors(c, Ap, Ai, Ax, scale, (double *)(void *)c->tmp);
+  for (b = 0; b < c->nblocks; b++) {
+    u = EliminateRows(c, c->R[b], c->R[b + 1], Ax, &umax);
+    if (!(u >= umin)) umin = u;
+  }
+  for (f = 0; f < c->Fp[c->n]; f++)
+    c->Fx[f] = c->scaled ? Ax[c->Fpos[f]] / c->Rs[c->Fi[f]] : Ax[c->Fpos[f]];
+  c->nrefactor++;
+  /* KLU's rcond, and SUNDIALS' threshold for it */
+  if (!(umin > 0.0) || !(umax <= SUN_BIG_REAL) ||
+      umin / umax < pow(SUN_UNIT_ROUNDOFF, 2.0 / 3.0)) {
+    c->complete = SUNFALSE;
+    return LGN_KLU_PIVOT;
+  }
   return LGN_SUCCESS;
 }
 

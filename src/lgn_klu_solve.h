@@ -57,11 +57,20 @@ typedef struct LGNKluCopyRec {
   int32_t *Lrp, *Urp;       /* n + 1 each                                  */
   int32_t *Lmap, *Umap;     /* lnz - n, unz - n                            */
   size_t cap_rn, cap_lmap, cap_umap;
-  double *Udiag, *Rs, *X;   /* n each; X is the work vector of a solve     */
+  double *Udiag, *Rs, *X;   /* n each; X is the work vector of a solve (and
+                               of a refactorisation, zero between rows)  */
+  /* Lignum's refactorisation (lgnKluCopyRefactor), copies by rows only: row
+   * i of S = Rs^{-1} A(P, Q) in its diagonal block is A's data at Apos[q]
+   * in column Acol[q] (of S), Arp[i] <= q < Arp[i + 1]; F's entry f is A's
+   * data at Fpos[f]. Built for A's pattern number `pattern` (-1: none). */
+  int32_t *Arp, *Acol, *Apos, *Fpos;
+  size_t cap_arp, cap_acol, cap_apos, cap_fpos;
+  long int pattern;
   size_t cap_n, cap_l, cap_u, cap_f; /* allocated n and entries (lnz, ...) */
   int64_t *tmp;             /* 64-bit indices from klu_l_extract           */
   size_t cap_tmp;
   long int nfull, nvalues;  /* refreshes: whole copies, values only        */
+  long int nrefactor;       /* Lignum's refactorisations                   */
 } LGNKluCopy;
 
 /* The place in Lx (lower != 0) or Ux of KLU's entry j (0 <= j < Llen[k],
@@ -76,13 +85,16 @@ static inline int32_t lgnKluCopyPlace(const LGNKluCopy *c, int lower, int32_t k,
   return p + (j == 0 ? s : (j == s ? 0 : j));
 }
 
-/* Return values of lgnKluCopyRefresh besides LGN_SUCCESS and LGN_MEM_FAIL. */
+/* Return values of lgnKluCopyRefresh and lgnKluCopyRefactor besides
+ * LGN_SUCCESS and LGN_MEM_FAIL. */
 #define LGN_KLU_NO_COPY 1 /* no factors, sizes beyond 32 bits, or unknown */
+#define LGN_KLU_PIVOT   2 /* a refactorisation with a pivot too small      */
 
 #if defined(LGN_HAVE_KLU) && defined(SUNDIALS_INT64_T)
 #define LGN_KLU_COPY
 
 int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS);
+int lgnKluCopyRefactor(LGNKluCopy *c, SUNMatrix A, long int pattern, int scale);
 void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b, sunrealtype *x);
 void lgnKluCopyFree(LGNKluCopy **copy);
 void lgnKluCopySpace(const LGNKluCopy *c, long int *rw, long int *iw);
@@ -101,6 +113,15 @@ static inline void lgnKluCopySolve(LGNKluCopy *c, const sunrealtype *b,
   (void)c;
   (void)b;
   (void)x;
+}
+static inline int lgnKluCopyRefactor(LGNKluCopy *c, SUNMatrix A,
+                                     long int pattern, int scale)
+{
+  (void)c;
+  (void)A;
+  (void)pattern;
+  (void)scale;
+  return LGN_KLU_NO_COPY;
 }
 static inline void lgnKluCopyFree(LGNKluCopy **copy) { (void)copy; }
 static inline void lgnKluCopySpace(const LGNKluCopy *c, long int *rw,

@@ -15,6 +15,10 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_klu_solve.h"
+#include "lgn_sparse.h"
+#if defined(LGN_KLU_COPY)
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
 
 int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
 {
@@ -73,10 +77,13 @@ int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
   mem->own_klu_solves = own ? SUNTRUE : SUNFALSE;
-  if (!mem->own_klu_solves) { /* SUNLinSolSolve from now on */
-    mem->klu_valid = SUNFALSE;
+  if (!mem->own_klu_solves && mem->klu != NULL) {
+    /* SUNLinSolSetup and SUNLinSolSolve from now on; the factors of the
+     * matrix may be only in the copy (Lignum refactored), so the next
+     * step sets the matrix up anew */
+    lgnInvalidateMatrix(mem);
     lgnKluCopyFree(&mem->klu);
-  } /* else the copy is made at the second solve after the next setup */
+  } /* else the copy is made at the first solve after the next setup */
   return LGN_SUCCESS;
 }
 
@@ -109,17 +116,21 @@ int lgnLsCheck(LGNMem mem)
   return LGN_SUCCESS;
 }
 
-/* Copy the factors of SUNLinSol_KLU for lgnLsSolve, at the second solve
- * with them: copying costs about half a refactorisation (klu_l_extract and
- * the conversion), more than one solve saves, so factors solved with once
- * (full Newton, the initial values) are not copied. When they cannot be
- * copied (indices beyond 32 bits, or memory refused), the solves fall back
- * to SUNLinSolSolve, which gives the same results: the integration goes
- * on, only slower, and the copy's memory is released. */
+/* Copy the factors of SUNLinSol_KLU for lgnLsSolve. For a CSC matrix the
+ * copy holds L and U by rows, and Lignum refactors into it (OwnRefactor):
+ * it is made at the first solve with a factorisation by KLU, which then
+ * factors again only when the pattern changes or a pivot becomes too small.
+ * For a CSR matrix (a copy by columns, refactored by KLU) it is made at
+ * the second solve: a copy costs more than one solve saves, so
+ * factorisations solved with once (full Newton) are not copied. When they cannot
+ * be copied (indices beyond 32 bits, or memory refused), the solves fall
+ * back to SUNLinSolSolve and the setups to SUNLinSolSetup: the
+ * integration goes on, only slower, and the copy's memory is released. */
 static void CopyKLUFactors(LGNMem mem)
 {
   int flag;
-  if (!mem->own_klu_solves || mem->klu_nsolve != 1 ||
+  const long int at = SUNSparseMatrix_SparseType(mem->A) == CSC_MAT ? 0 : 1;
+  if (!mem->own_klu_solves || mem->klu_nsolve != at ||
       SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
     return;
   flag = lgnKluCopyRefresh(&mem->klu, mem->LS);
@@ -127,13 +138,51 @@ static void CopyKLUFactors(LGNMem mem)
   if (flag != LGN_SUCCESS) lgnKluCopyFree(&mem->klu);
 }
 
+/* The number of A's sparsity pattern (changes when the assembly builds a
+ * new one, and with it KLU's analysis). */
+static long int PatternNumber(LGNMem mem)
+{
+  return mem->sp != NULL ? mem->sp->npattern : -1L;
+}
+
+/* Lignum's refactorisation of A into the copy of KLU's factors, with KLU's
+ * pivots and scaling (lgnKluCopyRefactor), while the copy is of A's
+ * pattern. Returns SUNTRUE when it took the place of SUNLinSolSetup; on a
+ * pivot that became too small, or anything else, KLU factors (and may
+ * pivot anew), and its factors are copied again at the next solve. */
+static sunbooleantype OwnRefactor(LGNMem mem)
+{
+#if defined(LGN_KLU_COPY)
+  int flag;
+  if (!mem->own_klu_solves || mem->klu == NULL || !mem->klu->rows ||
+      mem->klu_pattern != PatternNumber(mem) ||
+      SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
+    return SUNFALSE;
+  flag = lgnKluCopyRefactor(mem->klu, mem->A, mem->klu_pattern,
+                            SUNLinSol_KLUGetCommon(mem->LS)->scale);
+  if (flag == LGN_MEM_FAIL) lgnKluCopyFree(&mem->klu);
+  if (flag != LGN_SUCCESS) {
+    mem->nklu_fallback++;
+    return SUNFALSE;
+  }
+  mem->klu_valid  = SUNTRUE;
+  mem->klu_nsolve = 1; /* no copy to make */
+  return SUNTRUE;
+#else
+  (void)mem;
+  return SUNFALSE;
+#endif
+}
+
 int lgnLsSetup(LGNMem mem)
 {
   int ret;
+  mem->nlsetup++;
+  if (OwnRefactor(mem)) return LGN_SUCCESS;
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
+  mem->klu_pattern = PatternNumber(mem);
   ret = SUNLinSolSetup(mem->LS, mem->A);
-  mem->nlsetup++;
   mem->last_lin_flag = ret;
   if (ret != 0) {
     LGN_ERROR(mem, LGN_LSETUP_FAIL,
@@ -151,7 +200,7 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
   if (!mem->klu_valid) CopyKLUFactors(mem);
   mem->klu_nsolve++;
   mem->nlsolve++;
-  if (mem->klu_valid) { /* the same operations as KLU's solve */
+  if (mem->klu_valid) { /* KLU's operations on KLU's or Lignum's factors */
     lgnKluCopySolve(mem->klu, lgnData(b), lgnData(x));
     mem->last_lin_flag = 0;
     return LGN_SUCCESS;

@@ -217,6 +217,7 @@ static Dense BlockTriangular(const int *sizes, int nsizes)
  * (a) the copy's solve against SUNLinSolSolve and the true solution
  * ------------------------------------------------------------------------ */
 
+static double NormInf(const Dense *D);
 static double MaxAbs(const double *x, int n)
 {
   double m = 0.0;
@@ -336,6 +337,100 @@ static double CheckCopy(const char *what, LGNKluCopy *copy, SUNLinearSolver LS,
   return rel;
 }
 
+/* The largest difference between the values of two copies of the same
+ * layout (L, U, U's diagonal, F, Rs), relative to the largest entry of
+ * each. */
+static double FactorDiff(const LGNKluCopy *a, const LGNKluCopy *b)
+{
+  const int n = a->n;
+  double d = 0.0;
+  d = fmax(d, MaxDiff(a->Lx, b->Lx, a->Lp[n]) / fmax(MaxAbs(b->Lx, b->Lp[n]), 1e-300));
+  d = fmax(d, MaxDiff(a->Ux, b->Ux, a->Up[n]) / fmax(MaxAbs(b->Ux, b->Up[n]), 1e-300));
+  d = fmax(d, MaxDiff(a->Udiag, b->Udiag, n) / MaxAbs(b->Udiag, n));
+  if (a->Fp[n] > 0)
+    d = fmax(d, MaxDiff(a->Fx, b->Fx, a->Fp[n]) / fmax(MaxAbs(b->Fx, b->Fp[n]), 1e-300));
+  return fmax(d, MaxDiff(a->Rs, b->Rs, n) / MaxAbs(b->Rs, n));
+}
+
+/* Lignum's refactorisation (lgnKluCopyRefactor) into *copy, which holds
+ * KLU's factors of A, with the values of D changed by up to 20%: the same
+ * factors as KLU's own refactorisation of those values (a whole copy of
+ * them) to roundoff, and a solution with a backward error at roundoff; a
+ * matrix of zeros is refused (LGN_KLU_PIVOT: KLU's rcond below
+ * eps^(2/3)), which leaves the copy incomplete, and the next refresh
+ * copies KLU's factors whole. A copy by columns (CSR) is not refactored. */
+static void CheckOwnRefactor(const char *what, const Dense *D, SUNMatrix A,
+                             SUNLinearSolver LS, LGNKluCopy **copy,
+                             SUNContext ctx)
+{
+  const int n = D->n, scale = SUNLinSol_KLUGetCommon(LS)->scale;
+  N_Vector b = N_VNew_Serial(n, ctx), xs = N_VNew_Serial(n, ctx);
+  double *bd = N_VGetArrayPointer(b), *xl = (double *)malloc((size_t)n * sizeof(double));
+  double *r = (double *)malloc((size_t)n * sizeof(double)), diff, berr, berr_klu;
+  LGNKluCopy *klu = NULL;
+  Dense D3 = DenseNew(n);
+  long nfull;
+  int i, j, flag;
+
+  if (!(*copy)->rows) {
+    CHECK(lgnKluCopyRefactor(*copy, A, 1, scale) == LGN_KLU_NO_COPY,
+          "%s: a copy by columns is not refactored by Lignum", what);
+    goto done;
+  }
+  for (j = 0; j < n; j++)
+    for (i = 0; i < n; i++)
+      if (D->pat[i + j * n])
+        Set(&D3, i, j, D->a[i + j * n] * (1.0 + 0.2 * cos(2.0 + 3.0 * i + j)));
+  ToSparse(&D3, A);
+  flag = lgnKluCopyRefactor(*copy, A, 1, scale);
+  CHECK(flag == LGN_SUCCESS && (*copy)->complete && (*copy)->nrefactor >= 1,
+        "%s: Lignum refactors (%d)", what, flag);
+  CHECK(SUNLinSolSetup(LS, A) == 0 && lgnKluCopyRefresh(&klu, LS) == LGN_SUCCESS,
+        "%s: KLU refactors the same values", what);
+  diff = FactorDiff(*copy, klu);
+  CHECK(diff <= 1e-12, "%s: Lignum's factors = KLU's to %.1e (> 1e-12)", what, diff);
+  for (i = 0; i < n; i++) bd[i] = sin(1.0 + i);
+  /* backward errors |b - A x| / (|A| |x|) of both: Lignum's within 10
+   * times KLU's (which carries KLU's pivot growth), or 100 n eps */
+  for (i = 0; i < n; i++) bd[i] = sin(1.0 + i);
+  SUNLinSolSolve(LS, A, xs, b, 0.0);
+  MatVec(&D3, N_VGetArrayPointer(xs), r);
+  for (i = 0; i < n; i++) r[i] -= bd[i];
+  berr_klu = MaxAbs(r, n) / (NormInf(&D3) * MaxAbs(N_VGetArrayPointer(xs), n));
+  lgnKluCopySolve(*copy, bd, xl);
+  MatVec(&D3, xl, r);
+  for (i = 0; i < n; i++) r[i] -= bd[i];
+  berr = MaxAbs(r, n) / (NormInf(&D3) * MaxAbs(xl, n));
+  CHECK(berr <= fmax(10.0 * berr_klu, 100.0 * n * EPS),
+        "%s: Lignum's refactorisation, backward error %.1e > max(10 x KLU's %.1e, "
+        "100 n eps)", what, berr, berr_klu);
+  printf("  %-23s Lignum's refactorisation: factors vs KLU's %.0e, backward "
+         "error %.0e (KLU's %.0e)\n", what, diff, berr, berr_klu);
+
+  /* no pivot left: refused, and the next refresh copies whole */
+  for (j = 0; j < n; j++)
+    for (i = 0; i < n; i++)
+      if (D->pat[i + j * n]) Set(&D3, i, j, 0.0);
+  ToSparse(&D3, A);
+  nfull = (*copy)->nfull;
+  CHECK(lgnKluCopyRefactor(*copy, A, 1, scale) == LGN_KLU_PIVOT && !(*copy)->complete,
+        "%s: a zero matrix is refused, the copy left incomplete", what);
+  for (j = 0; j < n; j++)
+    for (i = 0; i < n; i++)
+      if (D->pat[i + j * n]) Set(&D3, i, j, D->a[i + j * n]);
+  ToSparse(&D3, A);
+  CHECK(SUNLinSolSetup(LS, A) == 0 && lgnKluCopyRefresh(copy, LS) == LGN_SUCCESS &&
+            (*copy)->nfull == nfull + 1 && (*copy)->complete,
+        "%s: after a refusal, KLU's factors are copied whole", what);
+done:
+  lgnKluCopyFree(&klu);
+  DenseFree(&D3);
+  free(xl);
+  free(r);
+  N_VDestroy(b);
+  N_VDestroy(xs);
+}
+
 /* Refactor with the values of D changed by up to 10% (deterministically,
  * leaving the random sequence of the other tests alone): SUNDIALS keeps
  * the pivots, the stale copy is off, the refresh takes the values only
@@ -378,6 +473,7 @@ static int CheckValueRefresh(const char *what, const Dense *D, SUNMatrix A,
     nswap += ((*copy)->Lswap[j] != 0) + ((*copy)->Uswap[j] != 0);
   printf("  %-23s refactored, values refreshed: vs SUNLinSolSolve %.0e (%d "
          "columns of L and U with an exchanged entry)\n", what, rel, nswap);
+  CheckOwnRefactor(what, D, A, LS, copy, ctx);
   DenseFree(&D2);
   free(P0);
   free(xl);
@@ -610,6 +706,7 @@ static void Repivot(SUNContext ctx, int type)
   long lnz1, unz1, lnz2, unz2, npiv = 0;
   sunindextype P1[40];
   size_t cap_l1, cap_u1;
+  long nfull1, nvalues1;
   char what[64];
   Dense A1, A2;
   int i;
@@ -630,6 +727,8 @@ static void Repivot(SUNContext ctx, int type)
   /* new values with A1's pattern: the values only */
   snprintf(what, sizeof what, "repivot %s, A1", fmt);
   CheckValueRefresh(what, &A1, A, LS, &copy, ctx);
+  nfull1   = copy->nfull;
+  nvalues1 = copy->nvalues;
 
   ToSparse(&A2, A);
   CHECK(SUNLinSolSetup(LS, A) == 0, "repivot %s: A2 set up", fmt);
@@ -650,8 +749,8 @@ static void Repivot(SUNContext ctx, int type)
   lgnKluCopySolve(copy, bd, xl);
   CHECK(MaxDiff(xl, xsd, n) > 1e-3 * MaxAbs(xsd, n),
         "repivot %s: the stale copy differs from SUNLinSolSolve", fmt);
-  CHECK(lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS && copy->nfull == 2 &&
-            copy->nvalues == 1,
+  CHECK(lgnKluCopyRefresh(&copy, LS) == LGN_SUCCESS && copy->nfull == nfull1 + 1 &&
+            copy->nvalues == nvalues1,
         "repivot %s: refreshed by a whole copy (%ld whole copies, %ld of "
         "values)", fmt, copy->nfull, copy->nvalues);
   CHECK(copy->cap_l >= (size_t)lnz2 && copy->cap_u >= (size_t)unz2 &&
@@ -970,7 +1069,8 @@ static void Switch(SUNContext ctx, int type, int newton)
   LGNMem mon, moff, mflip;
   sunrealtype t;
   long int nni_on, nni_off, nni_flip, rw_on, iw_on, rw_off, iw_off;
-  long int nfull = 0, nvalues = 0;
+  long int nfull = 0, nvalues = 0, nrefactor = 0;
+  const int byrows = type == CSC_MAT; /* Lignum refactors into the copy */
   double d;
   int f1, f2, f3;
 
@@ -990,19 +1090,30 @@ static void Switch(SUNContext ctx, int type, int newton)
   f2 |= LGNSolve(off.mem, 0.3, &t, off.q, off.v, LGN_NORMAL);
   CHECK(f1 == LGN_SUCCESS && f2 == LGN_SUCCESS, "point chain %s %s: runs (%d, %d)",
         fmt, nwt, f1, f2);
-  /* copied at the second solve with a factorisation: never with full
-   * Newton (one solve per factorisation) */
+  /* CSC: copied at the first solve with KLU's factorisation, then Lignum
+   * refactors into the copy (full and modified Newton alike); CSR: copied
+   * at the second solve with a factorisation, so never with full Newton
+   * (one solve per factorisation), and refreshed after KLU's
+   * refactorisations (values only) */
   if (mon->klu != NULL) {
-    nfull   = mon->klu->nfull;
-    nvalues = mon->klu->nvalues;
+    nfull     = mon->klu->nfull;
+    nvalues   = mon->klu->nvalues;
+    nrefactor = mon->klu->nrefactor;
   }
-  if (newton == LGN_NEWTON_MODIFIED) {
+  if (newton == LGN_NEWTON_MODIFIED || byrows)
     CHECK(mon->klu != NULL && mon->klu_valid, "point chain %s %s: on, the copy is used",
           fmt, nwt);
-    CHECK(nfull >= 1 && nvalues > 0,
+  if (byrows)
+    CHECK(nfull == 1 && nvalues == 0 && nrefactor > 0 && mon->nklu_fallback == 0,
+          "point chain %s %s: one copy of KLU's factors, then Lignum's "
+          "refactorisations (%ld whole copies, %ld of values, %ld refactorisations, "
+          "%ld handed back to KLU)", fmt, nwt, nfull, nvalues, nrefactor,
+          mon->nklu_fallback);
+  else if (newton == LGN_NEWTON_MODIFIED)
+    CHECK(nfull >= 1 && nvalues > 0 && nrefactor == 0,
           "point chain %s %s: refreshes after refactorisations take the values "
           "only (%ld whole copies, %ld of values)", fmt, nwt, nfull, nvalues);
-  } else
+  else
     CHECK(mon->klu == NULL && !mon->klu_valid,
           "point chain %s %s: on, factors solved with once are not copied", fmt, nwt);
   CHECK(moff->klu == NULL && !moff->klu_valid,
@@ -1016,8 +1127,8 @@ static void Switch(SUNContext ctx, int type, int newton)
   if (d != 0.0) bitwise_all = 0;
   LGNGetWorkSpace(on.mem, &rw_on, &iw_on);
   LGNGetWorkSpace(off.mem, &rw_off, &iw_off);
-  CHECK(newton == LGN_NEWTON_FULL ? (rw_on == rw_off && iw_on == iw_off)
-                                   : (rw_on > rw_off && iw_on > iw_off),
+  CHECK(newton == LGN_NEWTON_FULL && !byrows ? (rw_on == rw_off && iw_on == iw_off)
+                                              : (rw_on > rw_off && iw_on > iw_off),
         "point chain %s %s: the copy is counted in LGNGetWorkSpace (%ld + %ld "
         "vs %ld + %ld)", fmt, nwt, rw_on, iw_on, rw_off, iw_off);
 
