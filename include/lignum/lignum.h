@@ -267,25 +267,37 @@ int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
 int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A);
 
 /** Solve with Lignum's own triangular solves on a copy of KLU's factors
- *  (SUNLinSol_KLU only). When a factorisation is solved with a second time
- *  (modified Newton reuses it), Lignum copies L, U, the off-diagonal BTF
- *  blocks, the permutations and the row scaling out of KLU
- *  (klu_l_extract) into compressed columns with 32-bit indices and from
- *  then on solves with the copy instead of calling SUNLinSolSolve: 12
- *  instead of 16 bytes per entry to read, and a shorter chain of
- *  dependences, make a solve about twice as fast (CSC; 1.6 times for CSR).
- *  A first copy costs about half a refactorisation, a refresh after a
- *  refactorisation with the same pivots (values only) about a third, so
- *  factorisations solved with once (full Newton) are not copied. The solves do KLU's operations
- *  in KLU's order: the results agree with SUNLinSolSolve to round-off (to
- *  the last bit without fused multiply-add). The copy takes 12 bytes per
- *  entry of L + U, 56 per row, and 8 per entry of the larger factor for
- *  the extraction (counted in LGNGetWorkSpace; doc/user-guide.md, section
- *  7). Factors beyond 32-bit indices, or memory refused, make Lignum fall
- *  back to SUNLinSolSolve.
+ *  (SUNLinSol_KLU only). Lignum copies L, U, the off-diagonal BTF blocks,
+ *  the permutations and the row scaling out of KLU (klu_l_extract) with
+ *  32-bit indices and solves with the copy instead of calling
+ *  SUNLinSolSolve: 12 instead of 16 bytes per entry to read and a shorter
+ *  chain of dependences make a solve about twice as fast.
+ *  - CSC matrix: the copy holds L and U by rows and is made at the first
+ *    solve after KLU's factorisation. From then on Lignum also refactors
+ *    in its place: each row of Rs^{-1} A(P, Q) is eliminated against the
+ *    rows of U with KLU's pivots, blocks, pattern and row scaling
+ *    (klu_common.scale), which gives KLU's factors up to roundoff without
+ *    klu_l_refactor and without copying them out again. As SUNLinSolSetup
+ *    does, it checks KLU's cheap rcond, min |U(i,i)| / max |U(i,i)|: below
+ *    eps^(2/3), and after a change of A's pattern, KLU factors (and may
+ *    pivot anew) and its factors are copied again.
+ *  - CSR matrix: the copy holds the columns of KLU's factors and is made
+ *    at the second solve with a factorisation (so never with full Newton);
+ *    after klu_l_refactor only the new values are taken.
+ *  The solves do KLU's operations in KLU's order: with KLU's own factors
+ *  (CSR, or the first factorisation) the results agree with SUNLinSolSolve
+ *  to the last bit without fused multiply-add; with Lignum's
+ *  refactorisation they agree to roundoff. The copy takes 12 bytes per
+ *  entry of L + U, 56 per row, 8 per entry of A for the refactorisation's
+ *  maps, and 8 per entry of the larger factor for the extraction (counted
+ *  in LGNGetWorkSpace; doc/user-guide.md, section 7). Factors beyond 32-bit
+ *  indices, or memory refused, make Lignum fall back to SUNLinSolSetup and
+ *  SUNLinSolSolve.
  *  @param lgn_mem memory block
- *  @param own     SUNTRUE (default): Lignum's solves; SUNFALSE:
- *                 SUNLinSolSolve, and the copy is freed. Without KLU
+ *  @param own     SUNTRUE (default): Lignum's solves (and, CSC, its
+ *                 refactorisations); SUNFALSE: SUNLinSolSetup and
+ *                 SUNLinSolSolve, the copy is freed and the next step sets
+ *                 the matrix up anew. Without KLU
  *                 (LGN_ENABLE_KLU=OFF) the setting is only recorded.
  *  @return LGN_SUCCESS or LGN_MEM_NULL. */
 int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own);
