@@ -142,6 +142,18 @@ static int Reserve(LGNKluCopy *c, size_t n, size_t lnz, size_t unz,
   return LGN_SUCCESS;
 }
 
+/* An int32_t array of `need` entries in *a, kept while *cap suffices. */
+static int ReserveInt32(int32_t **a, size_t *cap, size_t need)
+{
+  size_t c;
+  if (need <= *cap && *a != NULL) return LGN_SUCCESS;
+  c    = NewCap(*cap, need);
+  *cap = 0;
+  if (!RENEW(*a, c)) return LGN_MEM_FAIL;
+  *cap = c;
+  return LGN_SUCCESS;
+}
+
 /* The row pointers and entry maps of a copy by rows, for n rows and lnz,
  * unz entries (the strictly lower and upper parts), kept while large
  * enough. */
@@ -154,18 +166,9 @@ static int ReserveRows(LGNKluCopy *c, size_t n, size_t lnz, size_t unz)
     if (!(RENEW(c->Lrp, cap + 1) && RENEW(c->Urp, cap + 1))) return LGN_MEM_FAIL;
     c->cap_rn = cap;
   }
-  if (lnz > c->cap_lmap || c->Lmap == NULL) {
-    cap         = NewCap(c->cap_lmap, lnz);
-    c->cap_lmap = 0;
-    if (!RENEW(c->Lmap, cap)) return LGN_MEM_FAIL;
-    c->cap_lmap = cap;
-  }
-  if (unz > c->cap_umap || c->Umap == NULL) {
-    cap         = NewCap(c->cap_umap, unz);
-    c->cap_umap = 0;
-    if (!RENEW(c->Umap, cap)) return LGN_MEM_FAIL;
-    c->cap_umap = cap;
-  }
+  if (ReserveInt32(&c->Lmap, &c->cap_lmap, lnz) != LGN_SUCCESS ||
+      ReserveInt32(&c->Umap, &c->cap_umap, unz) != LGN_SUCCESS)
+    return LGN_MEM_FAIL;
   return LGN_SUCCESS;
 }
 
@@ -499,18 +502,6 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
 /* =============================================================================
  * Lignum's refactorisation: KLU's pivots, pattern and scaling, new values
  * ===========================================================================*/
-
-/* An int32_t array of `need` entries in *a, kept while *cap suffices. */
-static int ReserveInt32(int32_t **a, size_t *cap, size_t need)
-{
-  size_t c;
-  if (need <= *cap && *a != NULL) return LGN_SUCCESS;
-  c    = NewCap(*cap, need);
-  *cap = 0;
-  if (!RENEW(*a, c)) return LGN_MEM_FAIL;
-  *cap = c;
-  return LGN_SUCCESS;
-}
 
 /* The maps from A (CSC, n x n, nnz entries) to the rows of S = Rs^{-1}
  * A(P, Q) in the diagonal blocks (Arp, Acol, Apos: for each pivot row, the

@@ -165,8 +165,7 @@ static sunbooleantype OwnRefactor(LGNMem mem)
     mem->nklu_fallback++;
     return SUNFALSE;
   }
-  mem->klu_valid  = SUNTRUE;
-  mem->klu_nsolve = 1; /* no copy to make */
+  mem->klu_valid = SUNTRUE; /* the factors are the copy's: nothing to copy */
   return SUNTRUE;
 #else
   (void)mem;

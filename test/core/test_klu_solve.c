@@ -217,7 +217,6 @@ static Dense BlockTriangular(const int *sizes, int nsizes)
  * (a) the copy's solve against SUNLinSolSolve and the true solution
  * ------------------------------------------------------------------------ */
 
-static double NormInf(const Dense *D);
 static double MaxAbs(const double *x, int n)
 {
   double m = 0.0;
@@ -232,6 +231,30 @@ static double MaxDiff(const double *x, const double *y, int n)
   int i;
   for (i = 0; i < n; i++) m = fmax(m, fabs(x[i] - y[i]));
   return m;
+}
+
+/* |A|_inf: the largest row sum */
+static double NormInf(const Dense *D)
+{
+  double m = 0.0, s;
+  int i, j;
+  for (i = 0; i < D->n; i++) {
+    for (s = 0.0, j = 0; j < D->n; j++) s += fabs(D->a[i + j * D->n]);
+    m = fmax(m, s);
+  }
+  return m;
+}
+
+/* |A^{-1}|_inf, the columns of A^{-1} from SUNLinSolSolve with e_j */
+/* The backward error |b - A x|_inf / (|A|_inf |x|_inf) of x for D x = b
+ * (res: n doubles of work). */
+static double BackwardError(const Dense *D, const double *x, const double *b,
+                            double *res)
+{
+  int i;
+  MatVec(D, x, res);
+  for (i = 0; i < D->n; i++) res[i] -= b[i];
+  return MaxAbs(res, D->n) / (NormInf(D) * MaxAbs(x, D->n));
 }
 
 static int bitwise_all = 1; /* every comparison with SUNLinSolSolve exact */
@@ -394,13 +417,9 @@ static void CheckOwnRefactor(const char *what, const Dense *D, SUNMatrix A,
    * times KLU's (which carries KLU's pivot growth), or 100 n eps */
   for (i = 0; i < n; i++) bd[i] = sin(1.0 + i);
   SUNLinSolSolve(LS, A, xs, b, 0.0);
-  MatVec(&D3, N_VGetArrayPointer(xs), r);
-  for (i = 0; i < n; i++) r[i] -= bd[i];
-  berr_klu = MaxAbs(r, n) / (NormInf(&D3) * MaxAbs(N_VGetArrayPointer(xs), n));
+  berr_klu = BackwardError(&D3, N_VGetArrayPointer(xs), bd, r);
   lgnKluCopySolve(*copy, bd, xl);
-  MatVec(&D3, xl, r);
-  for (i = 0; i < n; i++) r[i] -= bd[i];
-  berr = MaxAbs(r, n) / (NormInf(&D3) * MaxAbs(xl, n));
+  berr = BackwardError(&D3, xl, bd, r);
   CHECK(berr <= fmax(10.0 * berr_klu, 100.0 * n * EPS),
         "%s: Lignum's refactorisation, backward error %.1e > max(10 x KLU's %.1e, "
         "100 n eps)", what, berr, berr_klu);
@@ -482,19 +501,6 @@ static int CheckValueRefresh(const char *what, const Dense *D, SUNMatrix A,
   return nswap;
 }
 
-/* |A|_inf: the largest row sum */
-static double NormInf(const Dense *D)
-{
-  double m = 0.0, s;
-  int i, j;
-  for (i = 0; i < D->n; i++) {
-    for (s = 0.0, j = 0; j < D->n; j++) s += fabs(D->a[i + j * D->n]);
-    m = fmax(m, s);
-  }
-  return m;
-}
-
-/* |A^{-1}|_inf, the columns of A^{-1} from SUNLinSolSolve with e_j */
 static double InverseNormInf(SUNLinearSolver LS, SUNMatrix A, int n, SUNContext ctx)
 {
   N_Vector e = N_VNew_Serial(n, ctx), col = N_VNew_Serial(n, ctx);
@@ -570,9 +576,7 @@ static void CheckSolve(const char *name, const Dense *D, int type,
   rho  = 1.0;
   for (k = 0; k < n; k++) rho = fmax(rho, fabs(copy->Udiag[k]));
   for (k = 0; k < copy->Up[n]; k++) rho = fmax(rho, fabs(copy->Ux[k]));
-  MatVec(D, xld, res);
-  for (i = 0; i < n; i++) res[i] -= bd[i];
-  backward = MaxAbs(res, n) / (NormInf(D) * MaxAbs(xld, n));
+  backward = BackwardError(D, xld, bd, res);
   CHECK(backward <= 10.0 * n * EPS * rho, "%s %s: |b - A x| / (|A| |x|) = %.3e > "
         "10 n eps rho = %.3e", name, fmt, backward, 10.0 * n * EPS * rho);
   rel_true = MaxDiff(xld, xtd, n) / MaxAbs(xtd, n);
