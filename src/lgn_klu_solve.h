@@ -51,8 +51,11 @@ typedef struct LGNKluCopyRec {
    * of each entry in Li (Ui): a row of L in increasing and a row of U in
    * decreasing column order, the order in which klu_l_solve's column
    * sweeps update that row, so rows i - 1, i - 2 (L) and i + 1, i + 2 (U)
-   * come last. Lmap[Lp[k] + j] (Umap[Up[k] + j]) is the place in Li/Lx
-   * (Ui/Ux) of KLU's entry j of its column k (lgnKluCopyPlace). */
+   * come last. U's rows are stored divided by its diagonal, Ux holding
+   * U(i, j) / U(i, i) (the solve's division then is not in the chain of
+   * dependences from row to row). Lmap[Lp[k] + j] (Umap[Up[k] + j]) is the
+   * place in Li/Lx (Ui/Ux) of KLU's entry j of its column k
+   * (lgnKluCopyPlace). */
   sunbooleantype rows;
   int32_t *Lrp, *Urp;       /* n + 1 each                                  */
   int32_t *Lmap, *Umap;     /* lnz - n, unz - n                            */
@@ -75,7 +78,8 @@ typedef struct LGNKluCopyRec {
 
 /* The place in Lx (lower != 0) or Ux of KLU's entry j (0 <= j < Llen[k],
  * or Ulen[k]: the order of KLU's packed column, which klu_l_extract keeps
- * after the diagonal) of column k, for a complete copy. */
+ * after the diagonal) of column k, for a complete copy (by rows, Ux there
+ * holds the entry divided by U's diagonal entry of its row). */
 static inline int32_t lgnKluCopyPlace(const LGNKluCopy *c, int lower, int32_t k,
                                       int32_t j)
 {
