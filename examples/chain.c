@@ -179,8 +179,10 @@ int main(int argc, char **argv)
                          same_tol, 0);
     opt.plain_residual = !opt.plain_residual;
 
-    /* Lignum's solves on a copy of KLU's factors do KLU's operations in
-     * KLU's order: the same iterates (to the last bit without FMA) */
+    /* Lignum's solves on a copy of KLU's factors: by columns (CSR) KLU's
+     * operations in KLU's order, the same iterates (to the last bit
+     * without FMA); by rows (CSC) Lignum refactors and keeps U's rows
+     * divided by the diagonal, the same iterates to round-off */
     if (opt.solver != RB_DENSE) {
       opt.klu_solve_sundials = !opt.klu_solve_sundials;
       status |= CompareRun(sys, &opt, &res,

@@ -284,10 +284,12 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A);
  *  - CSR matrix: the copy holds the columns of KLU's factors and is made
  *    at the second solve with a factorisation (so never with full Newton);
  *    after klu_l_refactor only the new values are taken.
- *  The solves do KLU's operations in KLU's order: with KLU's own factors
- *  (CSR, or the first factorisation) the results agree with SUNLinSolSolve
- *  to the last bit without fused multiply-add; with Lignum's
- *  refactorisation they agree to roundoff. The copy takes 12 bytes per
+ *  By columns (CSR) the solves do KLU's operations in KLU's order: the
+ *  results agree with SUNLinSolSolve to the last bit without fused
+ *  multiply-add. By rows (CSC) U's rows are kept divided by U's diagonal,
+ *  which takes the division off the solve's chain of dependences, and
+ *  Lignum refactors: the results agree with SUNLinSolSolve to roundoff
+ *  (backward errors within KLU's). The copy takes 12 bytes per
  *  entry of L + U, 56 per row, 8 per entry of A for the refactorisation's
  *  maps, and 8 per entry of the larger factor for the extraction (counted
  *  in LGNGetWorkSpace; doc/user-guide.md, section 7). Factors beyond 32-bit
