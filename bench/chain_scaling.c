@@ -194,7 +194,11 @@ int main(int argc, char **argv)
               8.0 * (double)(r.lenrw + r.leniw), r.klu_peak_bytes, bytes / ns[i]);
       if (s >= 1) {
         klu_n[s - 1][nklu[s - 1]]   = ns[i];
-        klu_it[s - 1][nklu[s - 1]]  = per_step * r.nsteps / (double)r.nni;
+        /* the Newton iterations of the same steps as steady_seconds */
+        {
+          const long int it = steady_steps == r.nsteps ? r.nni : r.nni - r.nni_first;
+          klu_it[s - 1][nklu[s - 1]] = steady_seconds / (double)(it > 0 ? it : 1);
+        }
         klu_t[s - 1][nklu[s - 1]++] = per_step;
       }
       rigid_result_free(&r);

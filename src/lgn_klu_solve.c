@@ -19,17 +19,18 @@
  * two after in U), on the chain of dependences that limits a sparse
  * triangular solve on a banded matrix, are carried in registers. On the
  * 10000-body chain of the examples (n = 90000, 0.88 M entries in L + U
- * besides the diagonal) a solve takes 0.64 ms with the factors in cache
- * (0.91 by columns), 0.88 ms from memory (1.02). By rows, U's rows are
- * kept divided by its diagonal (ScaleRowsOfU), which takes the division
- * out of that chain (U's sweep 0.34 -> 0.27 ms on the chain); and
+ * besides the diagonal) a solve took 0.64 ms with the factors in cache
+ * (0.91 by columns), 0.88 ms from memory (1.02), before U's rows were kept
+ * divided by its diagonal (ScaleRowsOfU), which takes the division out of
+ * that chain (U's sweep 0.34 -> 0.27 ms on the chain); and
  * lgnKluCopyRefactor refactors into the copy by rows with KLU's pivots.
  *
- * By columns, the solves do the operations of klu_l_solve / klu_l_tsolve
- * (one right-hand side) on each entry in the same order, so they give the
+ * By columns (klu_l_tsolve's), the solve does klu_l_tsolve's operations
+ * (one right-hand side) on each entry in the same order, so it gives the
  * same result to the last bit when both are compiled without contractions
- * (fused multiply-add); by rows, L's sweep does too, U's agrees to
- * round-off.
+ * (fused multiply-add); by rows, L's sweep does klu_l_solve's operations
+ * in its order too, U's takes its terms in klu_l_solve's order but divides
+ * first, and agrees to round-off.
  *
  *   lgnKluCopyRefresh  copy the factors now in a SUNLinSol_KLU
  *   lgnKluCopySolve    solve A x = b with the copy

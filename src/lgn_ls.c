@@ -199,7 +199,7 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
   if (!mem->klu_valid) CopyKLUFactors(mem);
   mem->klu_nsolve++;
   mem->nlsolve++;
-  if (mem->klu_valid) { /* KLU's operations on KLU's or Lignum's factors */
+  if (mem->klu_valid) { /* Lignum's solve on its copy of the factors */
     lgnKluCopySolve(mem->klu, lgnData(b), lgnData(x));
     mem->last_lin_flag = 0;
     return LGN_SUCCESS;

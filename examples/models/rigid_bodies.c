@@ -529,6 +529,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     if (k == 1) {
       res->cpu_first_seconds = res->cpu_seconds;
       LGNGetNumSteps(mem, &res->nsteps_first);
+      LGNGetNumNewtonIters(mem, &res->nni_first);
     }
     if (flag != 0) break;
     res->energy    = rigid_energy(sys, q, v);

@@ -84,6 +84,7 @@ typedef struct {
                                         first output): set-up, KLU analysis,
                                         initial values and its steps        */
   long int nsteps_first;             /* steps of that first call             */
+  long int nni_first;                /* Newton iterations of that first call */
   double solve_seconds;              /* one linear solve with the last matrix */
   double setup_seconds;              /* one factorisation of the last matrix  */
   double *q, *v;                     /* final state (nq, nv), malloc'ed      */
