@@ -487,9 +487,11 @@ static double FactorDiff(const LGNKluCopy *a, const LGNKluCopy *b)
 }
 
 /* Lignum's refactorisation (lgnKluCopyRefactor) into *copy, which holds
- * KLU's factors of A, with the values of D changed by up to 20%: the same
- * factors as KLU's own refactorisation of those values (a whole copy of
- * them) to roundoff, and a solution with a backward error at roundoff; a
+ * KLU's factors of A, with the values of D changed by up to 20%: a
+ * factorisation whose backward error is within the textbook bound, as is
+ * that of KLU's own refactorisation of those values (a whole copy of
+ * them; the difference between the two is reported), and a solution with
+ * a backward error within 10 times that of KLU's; a
  * matrix of zeros is refused (LGN_KLU_PIVOT: KLU's rcond below
  * eps^(2/3)), which leaves the copy incomplete, and the next refresh
  * copies KLU's factors whole. A copy by columns (CSR) is not refactored. */
