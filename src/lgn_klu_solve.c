@@ -458,7 +458,6 @@ int lgnKluCopyRefresh(LGNKluCopy **copy, SUNLinearSolver LS)
   if (c == NULL) {
     c = (LGNKluCopy *)calloc(1, sizeof *c);
     if (c == NULL) return LGN_MEM_FAIL;
-    c->pattern = -1;
     *copy = c;
   }
   c->complete = SUNFALSE; /* until the end of this copy */

@@ -129,9 +129,8 @@ int lgnLsCheck(LGNMem mem)
 static void CopyKLUFactors(LGNMem mem)
 {
   int flag;
-  const long int at = SUNSparseMatrix_SparseType(mem->A) == CSC_MAT ? 0 : 1;
-  if (!mem->own_klu_solves || mem->klu_nsolve != at ||
-      SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
+  if (!mem->own_klu_solves || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU ||
+      mem->klu_nsolve != (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT ? 0 : 1))
     return;
   flag = lgnKluCopyRefresh(&mem->klu, mem->LS);
   mem->klu_valid = flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;

@@ -534,7 +534,6 @@ static void CheckOwnRefactor(const char *what, const Dense *D, SUNMatrix A,
   CHECK(fbe <= n * EPS && fbe_klu <= n * EPS,
         "%s: |S - L U| <= n eps |L| |U| for Lignum's factors (%.1f eps) and "
         "KLU's (%.1f eps)", what, fbe / EPS, fbe_klu / EPS);
-  for (i = 0; i < n; i++) bd[i] = sin(1.0 + i);
   /* backward errors |b - A x| / (|A| |x|) of both: Lignum's within 10
    * times KLU's (which carries KLU's pivot growth), or 10 eps */
   for (i = 0; i < n; i++) bd[i] = sin(1.0 + i);
