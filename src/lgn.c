@@ -48,7 +48,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
   mem->own_klu_solves = SUNTRUE;
-  mem->errfp        = stderr;
+  lgnErrSinkInit(&mem->err);
   return mem;
 }
 

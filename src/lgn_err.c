@@ -10,9 +10,17 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "lgn_err.h"
 #include "lgn_impl.h"
 
 #define LGN_MSG_LEN 512
+
+void lgnErrSinkInit(LGNErrSink *sink)
+{
+  sink->ehfun   = NULL;
+  sink->eh_data = NULL;
+  sink->errfp   = stderr;
+}
 
 /* The default handler: "[LGN ERROR]  function\n  message" on errfp. */
 void lgnDefaultErrHandler(int error_code, const char *module,
@@ -25,28 +33,39 @@ void lgnDefaultErrHandler(int error_code, const char *module,
           error_code >= 0 ? "WARNING" : "ERROR", function, msg);
 }
 
+void lgnReportV(const LGNErrSink *sink, int error_code, const char *func,
+                const char *msgfmt, va_list ap)
+{
+  char msg[LGN_MSG_LEN];
+  vsnprintf(msg, sizeof msg, msgfmt, ap);
+  if (sink == NULL) {
+    /* no object: nowhere to find a handler, so write to stderr */
+    lgnDefaultErrHandler(error_code, "LGN", func, msg, stderr);
+  } else if (sink->ehfun != NULL) {
+    sink->ehfun(error_code, "LGN", func, msg, sink->eh_data);
+  } else {
+    lgnDefaultErrHandler(error_code, "LGN", func, msg, sink->errfp);
+  }
+}
+
+void lgnReport(const LGNErrSink *sink, int error_code, const char *func,
+               const char *msgfmt, ...)
+{
+  va_list ap;
+  va_start(ap, msgfmt);
+  lgnReportV(sink, error_code, func, msgfmt, ap);
+  va_end(ap);
+}
+
 void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
                      const char *file, const char *msgfmt, ...)
 {
-  char msg[LGN_MSG_LEN];
   va_list ap;
   (void)line;
   (void)file;
-
   va_start(ap, msgfmt);
-  vsnprintf(msg, sizeof msg, msgfmt, ap);
+  lgnReportV(mem == NULL ? NULL : &mem->err, error_code, func, msgfmt, ap);
   va_end(ap);
-
-  if (mem == NULL) {
-    /* no memory block: nowhere to find a handler, so write to stderr */
-    lgnDefaultErrHandler(error_code, "LGN", func, msg, stderr);
-    return;
-  }
-  if (mem->ehfun != NULL) {
-    mem->ehfun(error_code, "LGN", func, msg, mem->eh_data);
-  } else {
-    lgnDefaultErrHandler(error_code, "LGN", func, msg, mem->errfp);
-  }
 }
 
 static const char *CallbackName(LGNCallbackId cb)

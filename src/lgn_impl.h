@@ -13,6 +13,8 @@
 #include <lignum/lignum.h>
 #include <sundials/sundials_math.h>
 
+#include "lgn_err.h"
+
 /* =============================================================================
  * Defaults
  * ===========================================================================*/
@@ -192,9 +194,7 @@ typedef struct LGNMemRec {
                         matrix after failing with a reused one             */
 
   /* ---- error reporting ---- */
-  LGNErrHandlerFn ehfun;
-  void *eh_data;
-  FILE *errfp;
+  LGNErrSink err;            /* where messages go (lgn_err.h)              */
 } *LGNMem;
 
 /* =============================================================================
@@ -204,8 +204,6 @@ typedef struct LGNMemRec {
 /* lgn_err.c */
 void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
                      const char *file, const char *msgfmt, ...);
-void lgnDefaultErrHandler(int error_code, const char *module,
-                          const char *function, const char *msg, void *data);
 int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval,
                     const char *func);
 

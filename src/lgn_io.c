@@ -395,8 +395,8 @@ int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun, void *eh_data)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  mem->ehfun   = ehfun;
-  mem->eh_data = eh_data;
+  mem->err.ehfun   = ehfun;
+  mem->err.eh_data = eh_data;
   return LGN_SUCCESS;
 }
 
@@ -404,7 +404,7 @@ int LGNSetErrFile(void *lgn_mem, FILE *errfp)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  mem->errfp = errfp;
+  mem->err.errfp = errfp;
   return LGN_SUCCESS;
 }
 

@@ -175,7 +175,8 @@ void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
   int b;
   sunrealtype tkj;
   for (b = 0; b < mem->nblk; b++) {
-    const sunrealtype *Tb = T + mem->blk_toff[b];
+    /* T == NULL stands for T = I: no offset into it */
+    const sunrealtype *Tb = T != NULL ? T + mem->blk_toff[b] : NULL;
     o = mem->blk_voff[b];
     n = mem->blk_voff[b + 1] - o;
     for (j = o; j < o + n; j++) {
