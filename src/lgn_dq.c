@@ -2,28 +2,49 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Difference-quotient tangent matrices along the group (the analogue of IDA's
- * DQ Jacobian), used when the user gives no callback:
+ * The derivatives of the model the iteration matrix and the initial values
+ * need, from the user's callbacks or by difference quotients along the group:
  *
- *   K_t e_j = [ r(q o exp(eps e_j)) - r(q) ] / eps,   r = M(q) vdot + g(q,v,t) + B(q)^T lambda
- *   C_t e_j = [ g(q, v + eps e_j, t) - g(q, v, t) ] / eps
- *   Z(q)(v,v) = [ B(q o exp(eps v)) v - B(q o exp(-eps v)) v ] / (2 eps)
- *   Bvq e_j   = [ B(q o exp(eps e_j)) v - B(q) v ] / eps   (index-2 Newton row)
+ *   K_t = d/dq (M vdot + g + B^T lambda) . (q w~)   (stiffness)
+ *   C_t = d/dv g                                   (damping)
+ *   D_q(B v) . (q w~)                               (index 2)
+ *   Z(q)(v, v) = D_q(B(q) v) . (q v~)               (curvature, initial values)
  *
- * (definitions of K_t, C_t and Z: spec numerics.md §1). Forward differences
- * suffice for Newton; Z enters the initial values, so it gets a central one.
+ * lgnEvalTangents is the one entry point for K_t and C_t: the callback if
+ * the model gives one, else quotients column by column (dense matrices) or
+ * by column colours (sparse ones).
+ *
+ * Colouring (Curtis, Powell and Reid 1974): columns that share no row are
+ * displaced together, so one evaluation gives a whole group of columns and
+ * the cost is (number of colours) evaluations, independent of the number of
+ * bodies. The patterns are structural, from what the model already tells
+ * Lignum:
+ *   K_t:  blocks of T  u  M  u  B^T B      C_t:  blocks of T  u  M
+ * (each symmetrised). The blocks of T are the factors of the group: a body's
+ * forces may depend on all of its own coordinates; M and B^T B add the
+ * couplings through inertia and joints. Forces coupling bodies that share no
+ * joint (e.g. a spring between distant bodies) are outside these patterns:
+ * such a model must give K_t and C_t itself (LGNSetStiffnessFn/DampingFn).
+ * D_q(B v) has the pattern of B and uses the colouring of K_t, which is valid
+ * for it because B^T B is part of that pattern.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "lgn_impl.h"
+#include "lgn_sparse.h"
+
+/* =============================================================================
+ * Dense matrices: column by column
+ * ===========================================================================*/
 
 /* r(q) = M(q) vdot1 + g(q, v1, t) + B(q)^T lambda1 at q = dq_q, into dq_r
  * (B only for B^T lambda1, so not evaluated with an LGNConstrForceFn). */
-int lgnDQResidualAt(LGNMem mem, sunrealtype t)
+static int DQResidualAt(LGNMem mem, sunrealtype t)
 {
   int flag;
   SUNMatrix M = mem->mass_constant ? mem->Mmat : mem->Mdq;
@@ -35,7 +56,7 @@ int lgnDQResidualAt(LGNMem mem, sunrealtype t)
   return flag;
 }
 
-int lgnStiffnessDQ(LGNMem mem, sunrealtype t)
+static int StiffnessDQ(LGNMem mem, sunrealtype t)
 {
   sunindextype i, j, nv = mem->nv;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
@@ -50,7 +71,7 @@ int lgnStiffnessDQ(LGNMem mem, sunrealtype t)
     ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w,
                                    lgnData(mem->dq_q));
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
-    flag = lgnDQResidualAt(mem, t);
+    flag = DQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
     col = SUNDenseMatrix_Column(mem->Kmat, j);
     for (i = 0; i < nv; i++) col[i] = (r[i] - r0[i]) / eps;
@@ -58,7 +79,7 @@ int lgnStiffnessDQ(LGNMem mem, sunrealtype t)
   return LGN_SUCCESS;
 }
 
-int lgnDampingDQ(LGNMem mem, sunrealtype t)
+static int DampingDQ(LGNMem mem, sunrealtype t)
 {
   sunindextype i, j, nv = mem->nv;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
@@ -83,7 +104,7 @@ int lgnDampingDQ(LGNMem mem, sunrealtype t)
 
 /* z = B(q o exp(w)) v (length m), using dq_q and Bdq: one constraint
  * Jacobian evaluation at a point displaced along the group. */
-int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
+static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
                             const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
@@ -112,9 +133,9 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   /* central difference: step of size cbrt(uround) in the group */
   eps = cbrt(SUN_UNIT_ROUNDOFF) / vmax;
   for (i = 0; i < nv; i++) w[i] = eps * vd[i];
-  flag = lgnConstraintVelocityAt(mem, t, q, w, v, zd);
+  flag = ConstraintVelocityAt(mem, t, q, w, v, zd);
   for (i = 0; i < nv; i++) w[i] = -eps * vd[i];
-  if (flag == LGN_SUCCESS) flag = lgnConstraintVelocityAt(mem, t, q, w, v, zm);
+  if (flag == LGN_SUCCESS) flag = ConstraintVelocityAt(mem, t, q, w, v, zm);
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < m; i++) zd[i] = (zd[i] - zm[i]) / (SUN_RCONST(2.0) * eps);
   return LGN_SUCCESS;
@@ -136,9 +157,204 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
     eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(mem->sigma[j]));
     memset(w, 0, (size_t)nv * sizeof(sunrealtype));
     w[j] = eps;
-    flag = lgnConstraintVelocityAt(mem, t, mem->q1, w, mem->v1, col);
+    flag = ConstraintVelocityAt(mem, t, mem->q1, w, mem->v1, col);
     if (flag != LGN_SUCCESS) return flag;
     for (i = 0; i < m; i++) col[i] = (col[i] - z0[i]) / eps;
   }
   return LGN_SUCCESS;
 }
+
+/* =============================================================================
+ * Sparse matrices: by column colours
+ * ===========================================================================*/
+
+/* Symmetric pattern blocks u M u M^T (u B^T B) of size nv x nv into P. */
+static int BuildPattern(LGNMem mem, const LGNCsc *Mt, sunbooleantype with_BtB,
+                        LGNCsc *P)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nv = mem->nv;
+  LGNColumnBuilder cb;
+  sunindextype i, j, p, q;
+  int b, flag;
+
+  flag = lgnCscReserve(P, nv, nv, 2 * (sp->M.colptr[nv] + nv) + mem->tlen);
+  if (flag != LGN_SUCCESS) return flag;
+  P->colptr[0] = 0;
+  cb.mark      = sp->mark;
+  cb.list      = sp->list;
+  for (j = 0; j < nv && flag == LGN_SUCCESS; j++) {
+    cb.col = j;
+    cb.cnt = 0;
+    b = (int)mem->blk_of[j];
+    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) lgnColumnAddRow(&cb, i);
+    for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) lgnColumnAddRow(&cb, sp->M.rowind[p]);
+    for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) lgnColumnAddRow(&cb, Mt->rowind[p]);
+    if (with_BtB && mem->m > 0)
+      for (p = sp->B.colptr[j]; p < sp->B.colptr[j + 1]; p++) {
+        const sunindextype r = sp->B.rowind[p];
+        for (q = sp->Bt.colptr[r]; q < sp->Bt.colptr[r + 1]; q++)
+          lgnColumnAddRow(&cb, sp->Bt.rowind[q]);
+      }
+    flag = lgnCscAppendColumn(P, &cb);
+  }
+  for (j = 0; j < nv; j++) sp->mark[j] = -1;
+  if (flag != LGN_SUCCESS) return flag;
+  for (p = 0; p < P->colptr[nv]; p++) P->val[p] = SUN_RCONST(0.0);
+  return LGN_SUCCESS;
+}
+
+/* The DQ patterns and colourings, from the current views of M and B. */
+int lgnBuildDQPatterns(LGNMem mem)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  LGNCsc Mt;
+  int flag;
+  memset(&Mt, 0, sizeof Mt);
+  flag = lgnCscTranspose(&sp->M, &Mt);
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNTRUE, &sp->Kdq);
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNFALSE, &sp->Cdq);
+  if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Kdq, sp->mark, &sp->Kcol);
+  if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Cdq, sp->mark, &sp->Ccol);
+  lgnCscFree(&Mt);
+  if (flag != LGN_SUCCESS) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return flag;
+  }
+  sp->have_dq_patterns = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* Increment of column j: the same rule as the dense quotients above. */
+static sunrealtype Increment(sunrealtype x)
+{
+  return sqrt(SUN_UNIT_ROUNDOFF) * SUNMAX(SUN_RCONST(1.0), fabs(x));
+}
+
+/* The quotients of one colour: P(:, j) = (f - f0)(rows of column j) / eps_j. */
+static void ScatterColor(const LGNCsc *P, sunrealtype *val,
+                         const LGNColoring *col, sunindextype c,
+                         const sunrealtype *f, const sunrealtype *f0,
+                         const sunrealtype *x)
+{
+  sunindextype k, p, j;
+  sunrealtype eps;
+  for (k = col->ptr[c]; k < col->ptr[c + 1]; k++) {
+    j   = col->cols[k];
+    eps = Increment(x[j]);
+    for (p = P->colptr[j]; p < P->colptr[j + 1]; p++)
+      val[p] = (f[P->rowind[p]] - f0[P->rowind[p]]) / eps;
+  }
+}
+
+/* w = eps_j e_j summed over the columns of colour c. */
+static void ColorDisplacement(LGNMem mem, const LGNColoring *col,
+                              sunindextype c, const sunrealtype *x,
+                              sunrealtype *w)
+{
+  sunindextype k;
+  memset(w, 0, (size_t)mem->nv * sizeof(sunrealtype));
+  for (k = col->ptr[c]; k < col->ptr[c + 1]; k++)
+    w[col->cols[k]] = Increment(x[col->cols[k]]);
+}
+
+static int StiffnessDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  sunindextype c;
+  int ret, flag;
+  for (c = 0; c < sp->Kcol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
+    ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), mem->work_nv,
+                                  lgnData(mem->dq_q));
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    flag = DQResidualAt(mem, t);
+    if (flag != LGN_SUCCESS) return flag;
+    ScatterColor(&sp->Kdq, sp->Kdq.val, &sp->Kcol, c, lgnData(mem->dq_r),
+                 lgnData(mem->rdyn), mem->sigma);
+  }
+  return LGN_SUCCESS;
+}
+
+static int DampingDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunrealtype *v1 = lgnData(mem->v1);
+  sunrealtype *vp = lgnData(mem->dq_v), *w = mem->work_nv;
+  sunindextype c, i;
+  int ret;
+  for (c = 0; c < sp->Ccol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Ccol, c, v1, w);
+    for (i = 0; i < mem->nv; i++) vp[i] = v1[i] + w[i];
+    mem->ndq++;
+    N_VConst(SUN_RCONST(0.0), mem->dq_g);
+    ret = mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+    ScatterColor(&sp->Cdq, sp->Cdq.val, &sp->Ccol, c, lgnData(mem->dq_g),
+                 lgnData(mem->g), v1);
+  }
+  return LGN_SUCCESS;
+}
+
+/* D_q(B(q) v1) at q1 on the pattern of B (the CSC view sp->B). */
+int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  const sunindextype nnzB = sp->B.colptr[mem->nv];
+  sunrealtype *z0 = mem->work_m, *z = lgnData(mem->dq_z);
+  sunindextype c;
+  int flag;
+
+  if (nnzB > sp->Bvq_cap) {
+    sunrealtype *p = (sunrealtype *)realloc(sp->Bvq, (size_t)nnzB * sizeof *p);
+    if (p == NULL) {
+      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    sp->Bvq     = p;
+    sp->Bvq_cap = nnzB;
+  }
+  lgnMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  for (c = 0; c < sp->Kcol.ncolors; c++) {
+    ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
+    flag = ConstraintVelocityAt(mem, t, mem->q1, mem->work_nv, mem->v1, z);
+    if (flag != LGN_SUCCESS) return flag;
+    ScatterColor(&sp->B, sp->Bvq, &sp->Kcol, c, z, z0, mem->sigma);
+  }
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * K_t and C_t: the entry point
+ * ===========================================================================*/
+
+/* K and C at the current iterate: the user's callbacks, or difference
+ * quotients (column by column for dense matrices, by column colours for
+ * sparse ones). Shared by both assemblers. */
+int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
+{
+  int ret;
+  if (cK != SUN_RCONST(0.0)) {
+    if (mem->stiffness != NULL) {
+      lgnMatClear(mem->Kmat);
+      ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
+                           mem->Kmat, mem->user_data);
+      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
+    } else {
+      ret = mem->sparse ? StiffnessDQColored(mem, t) : StiffnessDQ(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
+    }
+  }
+  if (cC != SUN_RCONST(0.0)) {
+    if (mem->damping != NULL) {
+      lgnMatClear(mem->Cmat);
+      ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
+      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
+    } else {
+      ret = mem->sparse ? DampingDQColored(mem, t) : DampingDQ(mem, t);
+      if (ret != LGN_SUCCESS) return ret;
+    }
+  }
+  return LGN_SUCCESS;
+}
+

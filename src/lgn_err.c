@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "lgn_err.h"
-#include "lgn_impl.h"
 
 #define LGN_MSG_LEN 512
 
@@ -57,58 +56,3 @@ void lgnReport(const LGNErrSink *sink, int error_code, const char *func,
   va_end(ap);
 }
 
-void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
-                     const char *file, const char *msgfmt, ...)
-{
-  va_list ap;
-  (void)line;
-  (void)file;
-  va_start(ap, msgfmt);
-  lgnReportV(mem == NULL ? NULL : &mem->err, error_code, func, msgfmt, ap);
-  va_end(ap);
-}
-
-static const char *CallbackName(LGNCallbackId cb)
-{
-  static const char *names[LGN_CB_COUNT] = {
-    "mass matrix", "force", "constraint", "constraint Jacobian",
-    "stiffness", "damping", "curvature", "constraint force", "Lie group"};
-  return names[cb];
-}
-
-static int UnrecoverableFlag(LGNCallbackId cb)
-{
-  switch (cb) {
-  case LGN_CB_MASS:       return LGN_MASS_FAIL;
-  case LGN_CB_FORCE:      return LGN_FORCE_FAIL;
-  case LGN_CB_CONSTR:     return LGN_CONSTR_FAIL;
-  case LGN_CB_CONSTR_JAC:
-  case LGN_CB_CONSTR_FORCE: return LGN_CONSTR_JAC_FAIL;
-  case LGN_CB_GROUP:      return LGN_GROUP_FAIL;
-  default:                return LGN_TANGENT_FAIL;
-  }
-}
-
-/* Map the return value of a user callback (0 ok, > 0 recoverable, < 0 fatal)
- * to a flag and report it. With a fixed step size a recoverable failure
- * cannot be cured by a smaller step, so it is reported as
- * LGN_REPTD_CALLBACK_ERR; the state at t_n stays intact either way. */
-int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
-{
-  int flag;
-  if (retval == 0) return LGN_SUCCESS;
-  if (retval > 0) {
-    flag = LGN_REPTD_CALLBACK_ERR;
-    lgnProcessError(mem, flag, __LINE__, func, __FILE__,
-                    MSG_TIME "the %s function failed recoverably (returned %d)"
-                    " and the fixed step size cannot be reduced.",
-                    (double)mem->tn, CallbackName(cb), retval);
-  } else {
-    flag = UnrecoverableFlag(cb);
-    lgnProcessError(mem, flag, __LINE__, func, __FILE__,
-                    MSG_TIME "the %s function failed unrecoverably"
-                    " (returned %d).",
-                    (double)mem->tn, CallbackName(cb), retval);
-  }
-  return flag;
-}

@@ -19,6 +19,7 @@ static int SolveIndex1System(LGNMem mem)
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *rhs = lgnData(mem->rhs), *sol = lgnData(mem->sol);
   const sunrealtype *g = lgnData(mem->g);
+  LGNMatrixTerms terms;
   int ret, flag;
 
   /* evaluate at (q0, v0) through the iterate slots */
@@ -48,9 +49,10 @@ static int SolveIndex1System(LGNMem mem)
     return LGN_NONFINITE;
   }
 
-  lgnInvalidateMatrix(mem); /* A now holds the saddle-point matrix */
-  flag = lgnAssembleAndFactor(mem, mem->tn, SUN_RCONST(1.0), SUN_RCONST(0.0),
-                              SUN_RCONST(0.0), SUNFALSE);
+  lgnInvalidate(mem, LGN_CHANGE_MATRIX); /* A now holds the saddle-point matrix */
+  lgnSaddlePointTerms(&terms);
+  flag = lgnAssembleIterationMatrix(mem, mem->tn, &terms);
+  if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
   if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
   if (flag != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_IC_FAIL,

@@ -14,6 +14,7 @@
 #include <sundials/sundials_math.h>
 
 #include "lgn_err.h"
+#include "lgn_matops.h"
 
 /* =============================================================================
  * Defaults
@@ -85,6 +86,7 @@ typedef struct LGNMemRec {
   sunrealtype alpha_m, alpha_f, beta, gamma; /* Chung-Hulbert convention  */
   int constr_index;         /* LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2      */
   int kinematics;           /* LGN_KINEMATICS_*                            */
+  const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
   sunrealtype rtol, atol;   /* Newton stop test                            */
   int maxcor;               /* max Newton iterations per step              */
@@ -198,39 +200,53 @@ typedef struct LGNMemRec {
 } *LGNMem;
 
 /* =============================================================================
- * Shared internal functions
+ * Shared internal functions, by file from the bottom layer up
+ * (doc/architecture.md; calls go downward only, checked by the test
+ * check_layers). The pure helpers below this record have headers of their
+ * own: lgn_err.h, lgn_matops.h, lgn_sparse.h, lgn_klu_solve.h,
+ * groups/lgn_group_impl.h.
  * ===========================================================================*/
 
-/* lgn_err.c */
+/* ---- lgn_mem.c: the record's owner -------------------------------------- */
+
+/* What a setter changed, for lgnInvalidate (bits, or-ed). */
+#define LGN_CHANGE_GROUP   0x001u /* the Lie group (its blocks, maybe sizes)  */
+#define LGN_CHANGE_SIZES   0x002u /* the number of constraints m              */
+#define LGN_CHANGE_LINSOL  0x004u /* the linear solver or its matrix A        */
+#define LGN_CHANGE_PATTERN 0x008u /* the sparsity of the model's matrices     */
+#define LGN_CHANGE_MASS    0x010u /* the mass function or its constancy       */
+#define LGN_CHANGE_MODEL   0x020u /* another model callback                   */
+#define LGN_CHANGE_METHOD  0x040u /* coefficients, variant, index, Newton     */
+#define LGN_CHANGE_STATE   0x080u /* the state at t_n (LGNInit, LGNReInit...) */
+#define LGN_CHANGE_MATRIX  0x100u /* A overwritten (internal: not a setting)  */
+
+void lgnInvalidate(LGNMem mem, unsigned int what);
+int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
+int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
+                   const char *func);
 void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
                      const char *file, const char *msgfmt, ...);
 int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval,
                     const char *func);
+int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
+void lgnFreeState(LGNMem mem);
+int lgnAllocWork(LGNMem mem);
+void lgnFreeWork(LGNMem mem);
+int lgnAllocMatrices(LGNMem mem);
+void lgnFreeMatrices(LGNMem mem);
+void lgnFreeAll(LGNMem mem);
+int lgnSparseWorkCreate(LGNMem mem);
+void lgnSparseWorkFree(LGNMem mem);
+void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
+long int lgnIterationMatrixNnz(LGNMem mem);
+void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw);
 
 /* Report an error from inside a function: fills in line, function and file. */
 #define LGN_ERROR(mem, code, ...) \
   lgnProcessError((mem), (code), __LINE__, __func__, __FILE__, __VA_ARGS__)
 
-/* lgn_methods.c */
-int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
-                         sunrealtype beta, sunrealtype gamma,
-                         const char **why);
+/* ---- lgn_model.c: M, g, B and the residuals ----------------------------- */
 
-/* lgn.c */
-int lgnAllocWork(LGNMem mem);
-void lgnFreeWork(LGNMem mem);
-int lgnAllocMatrices(LGNMem mem);
-long int lgnIterationMatrixNnz(LGNMem mem);
-void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw);
-void lgnFreeMatrices(LGNMem mem);
-int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem);
-int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
-                   const char *func);
-
-/* lgn_step.c */
-int lgnStep(LGNMem mem, sunrealtype h);
-
-/* lgn_residual.c */
 sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix);
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B);
@@ -239,16 +255,9 @@ int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
                        N_Vector g, SUNMatrix B, N_Vector r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
                       sunrealtype cv, sunbooleantype for_matrix);
-void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-               sunbooleantype add);
-void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
-                sunbooleantype add);
-void lgnMatClear(SUNMatrix A);
-sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n);
 
-/* lgn_tangent.c */
-int lgnBlocksBuild(LGNMem mem);
-void lgnBlocksFree(LGNMem mem);
+/* ---- lgn_tangent.c: T(sigma) and the exact kinematics' derivatives ------ */
+
 int lgnTangentMatrices(LGNMem mem);
 int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
                                   sunrealtype beta_p);
@@ -256,37 +265,85 @@ void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
                           sunindextype nrow, const sunrealtype *T,
                           sunrealtype *Y, sunindextype ldy);
 
-/* lgn_assemble.c */
+/* ---- lgn_dq.c: K_t, C_t, D_q(B v), curvature: callbacks or quotients ---- */
+
 int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK);
-int lgnAssembleAndFactor(LGNMem mem, sunrealtype t, sunrealtype cM,
-                         sunrealtype cC, sunrealtype cK,
-                         sunbooleantype use_tangent);
-
-/* lgn_ic.c */
-int lgnInitialConditions(LGNMem mem);
-
-/* lgn_dq.c */
-int lgnStiffnessDQ(LGNMem mem, sunrealtype t);
-int lgnDampingDQ(LGNMem mem, sunrealtype t);
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    N_Vector z);
 int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t);
-int lgnDQResidualAt(LGNMem mem, sunrealtype t);
-int lgnConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
-                            const sunrealtype *w, N_Vector v, sunrealtype *z);
+int lgnBuildDQPatterns(LGNMem mem);
+int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t);
 
-/* lgn_ls.c */
+/* ---- lgn_kinematics.c: the kinematics variants -------------------------- */
+
+/* Per-step constants (lgn_step.c sets them). */
+typedef struct {
+  sunrealtype h, t1;
+  sunrealtype beta_p;  /* beta'  = (1-am)/(h^2 beta (1-af)): d sigma_ddot / d sigma */
+  sunrealtype gamma_p; /* gamma' = gamma/(h beta):           d sigma_dot  / d sigma */
+  sunrealtype scale;   /* beta h^2: scaling of the dynamic rows              */
+  sunrealtype qscale;  /* max(1, |q_n|_max): size of the configuration       */
+} LGNStepCoeffs;
+
+/* The scaled iteration matrix as a sum of terms (lgn_matrix.c):
+ *   [[ cM M TM + cC C TC + cK K TK ,  B^T ],  [ B TB + cBv D_q(B v) TK , 0 ]]
+ * with TM ... TB block diagonal in packed storage, NULL standing for I. */
+typedef struct {
+  sunrealtype cM, cC, cK, cBv;
+  const sunrealtype *TM, *TC, *TK, *TB;
+} LGNMatrixTerms;
+
+/* A kinematics variant: how the Newmark increments (sigma, sigma_dot,
+ * sigma_ddot) of the step map to the iterate (q1, v1, vdot1), and what that
+ * means for the predictor, the corrections and the iteration matrix. Adding
+ * a variant is adding one of these tables. */
+typedef struct LGNKinematicsOps {
+  const char *name;
+  sunbooleantype needs_tangent_dot;     /* group ops beyond compose_exp,    */
+  sunbooleantype needs_tangent_inverse; /* tangent_apply and tangent_matrix */
+  sunbooleantype extrapolates; /* LGN_PREDICTOR_EXTRAPOLATE applies        */
+  /* where sigma_dot and sigma_ddot live (at the start of every attempt) */
+  void (*bind)(LGNMem mem);
+  /* after the Newmark predictor: map the guess acc of vdot_{n+1} into the
+   * chart (extrapolate), or scale the increment (sigma variant) */
+  int (*predict)(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
+                 sunbooleantype extrapolate);
+  /* (q1, v1, vdot1) from the increments; with_tangent: also T(sigma) */
+  int (*iterate)(LGNMem mem, sunbooleantype with_tangent);
+  /* the terms of the iteration matrix at the current iterate */
+  int (*matrix)(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms);
+  /* after sigma += delta: anything else the variant carries (NULL: none) */
+  int (*correct)(LGNMem mem, const sunrealtype *delta);
+} LGNKinematicsOps;
+
+const LGNKinematicsOps *lgnKinematicsOps(int kinematics);
+void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
+void lgnSaddlePointTerms(LGNMatrixTerms *terms);
+
+/* ---- lgn_matrix_sparse.c, lgn_matrix.c: the iteration matrix ------------ */
+
+int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
+int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
+                               const LGNMatrixTerms *terms);
+
+/* ---- lgn_ls.c: the linear solver bridge --------------------------------- */
+
 int lgnLsCheck(LGNMem mem);
 int lgnLsSetup(LGNMem mem);
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
 
-/* The factorised matrix in A no longer fits the model or method: the next
- * step of a modified Newton iteration rebuilds it. */
-static inline void lgnInvalidateMatrix(struct LGNMemRec *mem)
-{
-  mem->lu_valid  = SUNFALSE;
-  mem->klu_valid = SUNFALSE; /* copied again after the next setup */
-}
+/* ---- lgn_ic.c: consistent initial values -------------------------------- */
+
+int lgnInitialConditions(LGNMem mem);
+
+/* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
+
+int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
+              sunbooleantype *used_old);
+
+/* ---- lgn_step.c: one step ----------------------------------------------- */
+
+int lgnStep(LGNMem mem, sunrealtype h);
 
 /* helpers */
 /* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */

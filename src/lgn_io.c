@@ -10,6 +10,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "lgn_impl.h"
+#include "lgn_methods.h"
 #include "lgn_sparse.h"
 
 /* Common preamble: the memory block must exist. */
@@ -54,8 +56,13 @@ int LGNSetGroup(void *lgn_mem, LGNGroup G)
               (long long)mem->nv);
     return LGN_ILL_INPUT;
   }
-  mem->G = G;
-  lgnInvalidateMatrix(mem);
+  if (G != mem->G) {
+    /* the block table, T's storage, the patterns and the matrices follow
+     * the group: rebuilt at the next LGNSolve, which also computes
+     * consistent accelerations and multipliers anew at the current state */
+    mem->G = G;
+    lgnInvalidate(mem, LGN_CHANGE_GROUP);
+  }
   return LGN_SUCCESS;
 }
 
@@ -64,6 +71,7 @@ int LGNSetUserData(void *lgn_mem, void *user_data)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->user_data = user_data;
+  lgnInvalidate(mem, LGN_CHANGE_MODEL); /* the callbacks may answer otherwise */
   return LGN_SUCCESS;
 }
 
@@ -76,8 +84,7 @@ int LGNSetMassFn(void *lgn_mem, LGNMassFn mass)
     return LGN_ILL_INPUT;
   }
   mem->mass = mass;
-  mem->mass_current = SUNFALSE;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MASS);
   return LGN_SUCCESS;
 }
 
@@ -90,7 +97,7 @@ int LGNSetForceFn(void *lgn_mem, LGNForceFn force)
     return LGN_ILL_INPUT;
   }
   mem->force = force;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
   return LGN_SUCCESS;
 }
 
@@ -109,14 +116,11 @@ int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
               phi == NULL ? "phi" : "B", (long long)m);
     return LGN_ILL_INPUT;
   }
-  if (m != mem->m) {
-    lgnFreeWork(mem); /* sizes change: reallocate at the next LGNSolve */
-    mem->user_vdot0 = SUNFALSE;
-  }
+  /* a new m: the work space is reallocated at the next LGNSolve */
+  lgnInvalidate(mem, m != mem->m ? LGN_CHANGE_SIZES : LGN_CHANGE_MODEL);
   mem->m          = m;
   mem->constr     = phi;
   mem->constr_jac = B;
-  lgnInvalidateMatrix(mem);
   return LGN_SUCCESS;
 }
 
@@ -125,7 +129,7 @@ int LGNSetStiffnessFn(void *lgn_mem, LGNStiffnessFn K)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->stiffness = K;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
   return LGN_SUCCESS;
 }
 
@@ -134,7 +138,7 @@ int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->damping = C;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
   return LGN_SUCCESS;
 }
 
@@ -143,7 +147,7 @@ int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->curvature = Z;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
   return LGN_SUCCESS;
 }
 
@@ -152,6 +156,7 @@ int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->constr_force = F;
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
   return LGN_SUCCESS;
 }
 
@@ -160,8 +165,7 @@ int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->mass_constant = constant ? SUNTRUE : SUNFALSE;
-  mem->mass_current  = SUNFALSE;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_MASS);
   return LGN_SUCCESS;
 }
 
@@ -197,7 +201,7 @@ static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
   mem->alpha_f = af;
   mem->beta    = beta;
   mem->gamma   = gamma;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
 
@@ -251,7 +255,7 @@ int LGNSetConstraintIndex(void *lgn_mem, int index)
     return LGN_ILL_INPUT;
   }
   mem->constr_index = index;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
 
@@ -267,7 +271,8 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
     return LGN_ILL_INPUT;
   }
   mem->kinematics = kinematics;
-  lgnInvalidateMatrix(mem);
+  mem->kin        = lgnKinematicsOps(kinematics);
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
 
@@ -325,7 +330,7 @@ int LGNSetNewtonMode(void *lgn_mem, int mode)
     return LGN_ILL_INPUT;
   }
   mem->newton_mode = mode;
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
 
@@ -365,8 +370,8 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   }
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
   if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */
   mem->user_vdot0 = SUNTRUE;
-  mem->ic_done    = SUNFALSE;
   return LGN_SUCCESS;
 }
 
@@ -503,11 +508,7 @@ int LGNResetSparsityPattern(void *lgn_mem)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (mem->sp != NULL) {
-    mem->sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
-    mem->sp->have_dq_patterns = SUNFALSE;
-  }
-  lgnInvalidateMatrix(mem);
+  lgnInvalidate(mem, LGN_CHANGE_PATTERN); /* rebuilt, not extended */
   return LGN_SUCCESS;
 }
 

@@ -41,6 +41,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sundials/sundials_math.h>
+
 #include "lgn_klu_solve.h"
 
 #if defined(LGN_KLU_COPY) /* else the stubs of lgn_klu_solve.h */

@@ -14,7 +14,7 @@
 
 #include <stdint.h>
 
-#include "lgn_impl.h"
+#include <lignum/lignum.h>
 
 /* KLU's factorisation of the n x n matrix S it was given (S = A, or A^T for
  * a CSR matrix A, whose arrays SUNDIALS hands to KLU as those of a CSC

@@ -14,6 +14,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
 #if defined(LGN_KLU_COPY)
@@ -62,12 +63,11 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
               "SUNLinSol_KLU needs a SUNSparseMatrix, not a dense one.");
     return LGN_LS_MISMATCH;
   }
-  mem->LS             = LS;
-  mem->A              = A;
-  mem->ls_initialized = SUNFALSE;
-  lgnInvalidateMatrix(mem);
-  lgnFreeMatrices(mem); /* reallocated for A's type at the next solve; frees
-                           the copy of the old solver's factors */
+  mem->LS = LS;
+  mem->A  = A;
+  /* the model matrices are reallocated for A's type at the next solve; the
+   * copy of the old solver's factors goes with them */
+  lgnInvalidate(mem, LGN_CHANGE_LINSOL);
   return LGN_SUCCESS;
 }
 
@@ -81,7 +81,7 @@ int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
     /* SUNLinSolSetup and SUNLinSolSolve from now on; the factors of the
      * matrix may be only in the copy (Lignum refactored), so the next
      * step sets the matrix up anew */
-    lgnInvalidateMatrix(mem);
+    lgnInvalidate(mem, LGN_CHANGE_MATRIX);
     lgnKluCopyFree(&mem->klu);
   } /* else the copy is made at the first solve after the next setup */
   return LGN_SUCCESS;

@@ -12,7 +12,8 @@
  * alpha_PETSc = 1 - alpha_CH.
  * ---------------------------------------------------------------------------*/
 
-#include "lgn_impl.h"
+#include "lgn_err.h"
+#include "lgn_methods.h"
 
 int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
                           sunrealtype *alpha_f, sunrealtype *beta,
@@ -20,11 +21,11 @@ int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
 {
   sunrealtype gp;
   if (alpha_m == NULL || alpha_f == NULL || beta == NULL || gamma == NULL) {
-    LGN_ERROR(NULL, LGN_ILL_INPUT, "An output argument is NULL.");
+    lgnReport(NULL, LGN_ILL_INPUT, __func__, "An output argument is NULL.");
     return LGN_ILL_INPUT;
   }
   if (!(rho_inf >= SUN_RCONST(0.0) && rho_inf <= SUN_RCONST(1.0))) {
-    LGN_ERROR(NULL, LGN_ILL_INPUT,
+    lgnReport(NULL, LGN_ILL_INPUT, __func__,
               "rho_inf = %g illegal: it must lie in [0, 1].", (double)rho_inf);
     return LGN_ILL_INPUT;
   }

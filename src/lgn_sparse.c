@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sundials/sundials_math.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_sparse.h"
@@ -261,72 +262,3 @@ int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c)
   return LGN_SUCCESS;
 }
 
-int lgnSparseWorkCreate(LGNMem mem)
-{
-  const sunindextype n = mem->nv + mem->m;
-  sunindextype i;
-  struct LGNSparseWorkRec *sp = (struct LGNSparseWorkRec *)calloc(1, sizeof *sp);
-  if (sp == NULL) return LGN_MEM_FAIL;
-  mem->sp  = sp;
-  sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
-  if (sp->mark == NULL || sp->list == NULL) {
-    lgnSparseWorkFree(mem);
-    return LGN_MEM_FAIL;
-  }
-  for (i = 0; i < n; i++) sp->mark[i] = -1;
-  return LGN_SUCCESS;
-}
-
-void lgnSparseWorkFree(LGNMem mem)
-{
-  struct LGNSparseWorkRec *sp = mem->sp;
-  int k;
-  if (sp == NULL) return;
-  for (k = 0; k < LGN_NMAPS; k++) free(sp->map[k].off);
-  lgnPatternMemoFree(&sp->Mseen);
-  lgnPatternMemoFree(&sp->Bseen);
-  lgnPatternMemoFree(&sp->Kseen);
-  lgnPatternMemoFree(&sp->Cseen);
-  lgnCscFree(&sp->A);
-  lgnCscFree(&sp->M);
-  lgnCscFree(&sp->B);
-  lgnCscFree(&sp->Bt);
-  lgnCscFree(&sp->K);
-  lgnCscFree(&sp->C);
-  lgnCscFree(&sp->Kdq);
-  lgnCscFree(&sp->Cdq);
-  lgnColoringFree(&sp->Kcol);
-  lgnColoringFree(&sp->Ccol);
-  free(sp->csr_perm);
-  free(sp->Bvq);
-  free(sp->mark);
-  free(sp->list);
-  free(sp);
-  mem->sp = NULL;
-}
-
-/* Reals and indices held by the sparse work space. */
-void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
-{
-  const struct LGNSparseWorkRec *sp = mem->sp;
-  const LGNCsc *all[8];
-  const LGNPatternMemo *seen[4];
-  int k;
-  if (sp == NULL) return;
-  all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
-  all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
-  for (k = 0; k < 8; k++) {
-    if (all[k]->val != NULL) *rw += (long int)all[k]->cap; /* not A's, if CSC */
-    *iw += (long int)(all[k]->cap + all[k]->capcol);
-  }
-  seen[0] = &sp->Mseen; seen[1] = &sp->Bseen; seen[2] = &sp->Kseen; seen[3] = &sp->Cseen;
-  for (k = 0; k < 4; k++)
-    *iw += (long int)(seen[k]->capp + (seen[k]->perm != NULL ? 2 : 1) * seen[k]->cap);
-  for (k = 0; k < LGN_NMAPS; k++) *iw += (long int)sp->map[k].cap;
-  *rw += (long int)sp->Bvq_cap;
-  *iw += 2L * (long int)(mem->nv + mem->m);
-  if (sp->csr_perm != NULL) *iw += (long int)sp->A.cap;
-  if (sp->Kcol.ptr != NULL) *iw += (long int)(sp->Kcol.ncolors + 1 + mem->nv);
-  if (sp->Ccol.ptr != NULL) *iw += (long int)(sp->Ccol.ncolors + 1 + mem->nv);
-}

@@ -11,7 +11,7 @@
 #ifndef LGN_SPARSE_H
 #define LGN_SPARSE_H
 
-#include "lgn_impl.h"
+#include <lignum/lignum.h>
 
 /* A compressed sparse column matrix. Either a view of a CSC SUNMatrix (cap =
  * 0, arrays not owned) or Lignum-owned storage (cap = allocated entries). */
@@ -116,18 +116,6 @@ int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
                   sunindextype nnz);
 void lgnColoringFree(LGNColoring *c);
 int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c);
-int lgnSparseWorkCreate(LGNMem mem);
-void lgnSparseWorkFree(LGNMem mem);
-void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
 
-/* lgn_dq_sparse.c */
-int lgnBuildDQPatterns(LGNMem mem);
-int lgnStiffnessDQColored(LGNMem mem, sunrealtype t);
-int lgnDampingDQColored(LGNMem mem, sunrealtype t);
-int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t);
-
-/* lgn_assemble_sparse.c */
-int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
-                      sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent);
 
 #endif

@@ -18,69 +18,6 @@
 #include "groups/lgn_group_impl.h"
 #include "lgn_impl.h"
 
-/* Count (pass 1, out == NULL) or record the leaves of G at offsets (qo, vo). */
-static int FlattenGroup(LGNGroup G, sunindextype qo, sunindextype vo,
-                        LGNMem out, int nblk)
-{
-  int nf, k;
-  const LGNGroup *f;
-  const sunindextype *qoff, *voff;
-  if (lgnGroupProductFactors(G, &nf, &f, &qoff, &voff) == 0) {
-    for (k = 0; k < nf; k++)
-      nblk = FlattenGroup(f[k], qo + qoff[k], vo + voff[k], out, nblk);
-    return nblk;
-  }
-  if (out != NULL) {
-    out->blk_group[nblk] = G;
-    out->blk_qoff[nblk]  = qo;
-    out->blk_voff[nblk]  = vo;
-  }
-  return nblk + 1;
-}
-
-void lgnBlocksFree(LGNMem mem)
-{
-  free(mem->blk_voff);
-  free(mem->blk_qoff);
-  free(mem->blk_toff);
-  free(mem->blk_of);
-  free(mem->blk_group);
-  mem->blk_voff = mem->blk_qoff = mem->blk_toff = mem->blk_of = NULL;
-  mem->blk_group = NULL;
-  mem->nblk = 0;
-  mem->blk_max = mem->tlen = 0;
-}
-
-int lgnBlocksBuild(LGNMem mem)
-{
-  int b, nblk = FlattenGroup(mem->G, 0, 0, NULL, 0);
-  sunindextype i, size;
-
-  lgnBlocksFree(mem);
-  mem->blk_voff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_qoff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_toff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_of    = (sunindextype *)malloc((size_t)mem->nv * sizeof(sunindextype));
-  mem->blk_group = (LGNGroup *)malloc((size_t)nblk * sizeof(LGNGroup));
-  if (mem->blk_voff == NULL || mem->blk_qoff == NULL || mem->blk_toff == NULL ||
-      mem->blk_of == NULL || mem->blk_group == NULL) {
-    lgnBlocksFree(mem);
-    return LGN_MEM_FAIL;
-  }
-  mem->nblk = FlattenGroup(mem->G, 0, 0, mem, 0);
-  mem->blk_voff[nblk] = mem->nv;
-  mem->blk_qoff[nblk] = mem->nq;
-  mem->blk_toff[0]    = 0;
-  for (b = 0; b < nblk; b++) {
-    size = mem->blk_voff[b + 1] - mem->blk_voff[b];
-    mem->blk_max = SUNMAX(mem->blk_max, size);
-    mem->blk_toff[b + 1] = mem->blk_toff[b] + (lgnBlockIsIdentity(mem, b) ? 0 : size * size);
-    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) mem->blk_of[i] = b;
-  }
-  mem->tlen = mem->blk_toff[nblk];
-  return LGN_SUCCESS;
-}
-
 /* Tm = T(sigma), block by block. */
 int lgnTangentMatrices(LGNMem mem)
 {
@@ -89,9 +26,9 @@ int lgnTangentMatrices(LGNMem mem)
     LGNGroup F = mem->blk_group[b];
     sunindextype o = mem->blk_voff[b], size = mem->blk_voff[b + 1] - o;
     if (lgnBlockIsIdentity(mem, b)) continue;
-    if (F->ops.tangent_matrix == NULL) return lgnCallbackFlag(mem, LGN_CB_GROUP, -1, "lgnStep");
+    if (F->ops.tangent_matrix == NULL) return lgnCallbackFlag(mem, LGN_CB_GROUP, -1, "LGNSolve");
     ret = F->ops.tangent_matrix(F, mem->sigma + o, mem->Tm + mem->blk_toff[b], size);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   }
   return LGN_SUCCESS;
 }
@@ -160,7 +97,7 @@ int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
   for (b = 0; b < mem->nblk; b++) {
     if (lgnBlockIsIdentity(mem, b)) continue; /* Tv = Ta = I */
     ret = ExactBlock(mem, b, gamma_p, beta_p);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "lgnStep");
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   }
   return LGN_SUCCESS;
 }

@@ -37,7 +37,8 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "lgn_klu_solve.h" /* private: the copy and the memory record */
+#include "lgn_impl.h"      /* private: the memory record */
+#include "lgn_klu_solve.h" /* private: the copy */
 #include "models/chain.h"
 #include "test_util.h"
 

@@ -31,6 +31,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "lgn_impl.h"   /* private: the memory record */
 #include "lgn_sparse.h" /* private: the maps and their counter */
 #include "models/chain.h"
 #include "test_util.h"

@@ -2,12 +2,12 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Sparse assembly of the scaled iteration matrix (the same blocks as the
- * dense lgn_assemble.c, spec numerics.md §2, modified-kinematics.md §2):
+ * Sparse assembly of the scaled iteration matrix from the table of terms
+ * of lgn_matrix.c (the same terms as the dense assembly):
  *
- *   [[ cM M Ta + cC C Tv + cK K T ,  B^T ],  [ B T_c (+ f D_q(Bv) T) , 0 ]]
+ *   [[ cM M TM + cC C TC + cK K TK ,  B^T ],  [ B TB + cBv D_q(B v) TK , 0 ]]
  *
- * T, Tv, Ta are block diagonal (lgn_tangent.c), so column j of X T combines
+ * The T-like factors are block diagonal (lgn_tangent.c), so column j of X T combines
  * the columns of X in j's block only (lgnTangentColumnRange: in R^3 x SO(3)
  * only those of its translation or its rotation part). The pattern of A is
  * the union of the closed patterns of M, K, C and B (column j gets the rows
@@ -31,7 +31,8 @@
 
 #include <sunmatrix/sunmatrix_sparse.h>
 
-#include "lgn_sparse.h" /* first: lignum_config.h says whether KLU is there */
+#include "lgn_impl.h" /* first: lignum_config.h says whether KLU is there */
+#include "lgn_sparse.h"
 #if defined(LGN_HAVE_KLU)
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
@@ -236,24 +237,21 @@ static int AddTerm(LGNMem mem, Term *t, int nt, const LGNCsc *X,
   return nt + 1;
 }
 
-/* The terms of A (spec §2), in the order of their additions into an entry. */
-static int Terms(LGNMem mem, const LGNCsc *K, const LGNCsc *C, sunrealtype cM,
-                 sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent, Term *t)
+/* The terms of A (lgn_matrix.c), in the order of their additions into an
+ * entry. */
+static int Terms(LGNMem mem, const LGNCsc *K, const LGNCsc *C,
+                 const LGNMatrixTerms *x, Term *t)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
-  const sunbooleantype exact = use_tangent && mem->kinematics == LGN_KINEMATICS_EXACT;
-  const sunbooleantype idx2 = mem->constr_index == LGN_CONSTR_INDEX2;
-  const sunrealtype *Tk = use_tangent ? mem->Tm : NULL;
-  const sunrealtype *Tb = !use_tangent ? NULL : (idx2 ? (exact ? mem->Tv : NULL) : mem->Tm);
   int nt = 0;
-  nt = AddTerm(mem, t, nt, &sp->M, NULL, exact ? mem->Ta : NULL, cM, LGN_MAP_M);
-  nt = AddTerm(mem, t, nt, C, NULL, exact ? mem->Tv : NULL, cC, LGN_MAP_C);
-  nt = AddTerm(mem, t, nt, K, NULL, Tk, cK, LGN_MAP_K);
+  nt = AddTerm(mem, t, nt, &sp->M, NULL, x->TM, x->cM, LGN_MAP_M);
+  nt = AddTerm(mem, t, nt, C, NULL, x->TC, x->cC, LGN_MAP_C);
+  nt = AddTerm(mem, t, nt, K, NULL, x->TK, x->cK, LGN_MAP_K);
   if (mem->m > 0) {
-    nt = AddTerm(mem, t, nt, &sp->B, NULL, Tb, SUN_RCONST(1.0), LGN_MAP_B);
-    /* index 2: + (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC */
-    if (use_tangent && idx2 && cC != SUN_RCONST(0.0))
-      nt = AddTerm(mem, t, nt, &sp->B, sp->Bvq, Tk, cK / cC, LGN_MAP_B);
+    nt = AddTerm(mem, t, nt, &sp->B, NULL, x->TB, SUN_RCONST(1.0), LGN_MAP_B);
+    /* index 2: + cBv D_q(B v) TK */
+    if (x->cBv != SUN_RCONST(0.0))
+      nt = AddTerm(mem, t, nt, &sp->B, sp->Bvq, x->TK, x->cBv, LGN_MAP_B);
   }
   return nt;
 }
@@ -381,8 +379,7 @@ static void FillValues(LGNMem mem, const Term *t, int nt, sunrealtype *val)
     for (p = 0; p < sp->B.colptr[nv]; p++) val[bt[p]] += sp->B.val[p];
 }
 
-int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
-                      sunrealtype cC, sunrealtype cK, sunbooleantype use_tangent)
+int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
   const LGNCsc *K, *C;
@@ -393,15 +390,14 @@ int lgnAssembleSparse(LGNMem mem, sunrealtype t, sunrealtype cM,
   int nt, flag;
 
   flag = RefreshViews(mem);
-  if (flag == LGN_SUCCESS) flag = lgnEvalTangents(mem, t, cC, cK);
+  if (flag == LGN_SUCCESS) flag = lgnEvalTangents(mem, t, x->cC, x->cK);
   if (flag == LGN_SUCCESS) flag = TangentViews(mem, &K, &C);
-  if (flag == LGN_SUCCESS && use_tangent && mem->constr_index == LGN_CONSTR_INDEX2 &&
-      mem->m > 0 && cC != SUN_RCONST(0.0))
+  if (flag == LGN_SUCCESS && mem->m > 0 && x->cBv != SUN_RCONST(0.0))
     flag = lgnConstraintVelocityDQColored(mem, t);
   if (flag != LGN_SUCCESS) return flag;
   mem->nje++;
 
-  nt = Terms(mem, K, C, cM, cC, cK, use_tangent, terms);
+  nt = Terms(mem, K, C, x, terms);
   if (!sp->have_pattern) flag = BuildPattern(mem, K, C);
   if (flag == LGN_SUCCESS) flag = MapTerms(mem, terms, nt, &miss);
   if (flag == LGN_SUCCESS && miss) {

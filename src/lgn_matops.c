@@ -1,0 +1,114 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Matrix and vector kernels on SUNDIALS' dense and sparse matrices that
+ * SUNDIALS 6.4 lacks (y (+)= A x, y (+)= A^T x, emptying a matrix) and the
+ * finiteness test. A pure helper: no integrator record.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <string.h>
+
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "lgn_matops.h"
+
+sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n)
+{
+  /* |x_i| <= SUN_BIG_REAL is false for an Inf and for a NaN; the flags are
+   * or-ed without a branch, so that the loop vectorises */
+  sunindextype i;
+  int bad = 0;
+  for (i = 0; i < n; i++) bad |= !(fabs(x[i]) <= SUN_BIG_REAL);
+  return bad ? SUNFALSE : SUNTRUE;
+}
+
+/* y (+)= A x and y (+)= A^T x for a dense (column-major) or sparse (CSC or
+ * CSR) matrix A. A CSC matrix is read by columns and a CSR matrix by rows,
+ * so "A x" of one is "A^T x" of the other with the roles of rows and
+ * columns swapped. */
+static void SparseCompressedMatvec(const sunindextype *ptr,
+                                   const sunindextype *ind,
+                                   const sunrealtype *val, sunindextype nptr,
+                                   const sunrealtype *x, sunrealtype *y,
+                                   sunbooleantype scatter)
+{
+  sunindextype k, p;
+  sunrealtype s;
+  for (k = 0; k < nptr; k++) {
+    if (scatter) { /* y(ind) += val * x(k) */
+      const sunrealtype xk = x[k];
+      for (p = ptr[k]; p < ptr[k + 1]; p++) y[ind[p]] += val[p] * xk;
+    } else {       /* y(k) += val . x(ind) */
+      s = SUN_RCONST(0.0);
+      for (p = ptr[k]; p < ptr[k + 1]; p++) s += val[p] * x[ind[p]];
+      y[k] += s;
+    }
+  }
+}
+
+static void Matvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                   sunbooleantype add, sunbooleantype transpose)
+{
+  sunindextype i, j, M, N;
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunbooleantype csc = SUNSparseMatrix_SparseType(A) == CSC_MAT;
+    M = transpose ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A);
+    if (!add)
+      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+    SparseCompressedMatvec(SUNSparseMatrix_IndexPointers(A),
+                           SUNSparseMatrix_IndexValues(A),
+                           SUNSparseMatrix_Data(A),
+                           csc ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A),
+                           x, y, csc != transpose);
+    return;
+  }
+  M = SM_ROWS_D(A);
+  N = SM_COLUMNS_D(A);
+  if (!transpose) {
+    if (!add)
+      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+    for (j = 0; j < N; j++) {
+      const sunrealtype *col = SM_COLUMN_D(A, j), xj = x[j];
+      for (i = 0; i < M; i++) y[i] += col[i] * xj;
+    }
+  } else {
+    for (j = 0; j < N; j++) {
+      const sunrealtype *col = SM_COLUMN_D(A, j);
+      sunrealtype s = add ? y[j] : SUN_RCONST(0.0);
+      for (i = 0; i < M; i++) s += col[i] * x[i];
+      y[j] = s;
+    }
+  }
+}
+
+void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+               sunbooleantype add)
+{
+  Matvec(A, x, y, add, SUNFALSE);
+}
+
+void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
+                sunbooleantype add)
+{
+  Matvec(A, x, y, add, SUNTRUE);
+}
+
+/* Empty a model matrix before a callback fills it: a dense one is zeroed
+ * (by memset: SUNMatZero costs several times more on small matrices);
+ * a sparse one gets no entries (its index pointers zeroed), since the
+ * callback writes its whole structure; zeroing all of its capacity, as
+ * SUNMatZero does, would cost more than the evaluation. */
+void lgnMatClear(SUNMatrix A)
+{
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunindextype np = SUNSparseMatrix_NP(A);
+    memset(SUNSparseMatrix_IndexPointers(A), 0, (size_t)(np + 1) * sizeof(sunindextype));
+  } else {
+    memset(SUNDenseMatrix_Data(A), 0,
+           (size_t)SUNDenseMatrix_LData(A) * sizeof(sunrealtype));
+  }
+}
+

@@ -1,0 +1,579 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * The owner of the integrator's memory record (the bottom layer of every
+ * file that sees it; doc/architecture.md):
+ *   - the guards of public functions (lgnAccessMem, lgnCheckVector) and
+ *     error reporting through the record (lgnProcessError, lgnCallbackFlag);
+ *   - allocation: the state (sized by the group), the work space (sized by
+ *     nv and m), the block table of the group, the model matrices of the
+ *     type of A and the sparse work space, and their sizes (lgnWorkSpace);
+ *   - lgnInvalidate, the one place that knows which cached item depends on
+ *     which setting: every setter calls it with what it changed.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "groups/lgn_group_impl.h"
+#include "lgn_impl.h"
+#include "lgn_klu_solve.h"
+#include "lgn_sparse.h"
+
+/* =============================================================================
+ * Invalidation: what each change makes stale
+ * ===========================================================================*/
+
+/* Every cache of the record and the changes that make it stale:
+ *
+ *   cache                                  dropped by
+ *   work space, block table (work_done)    GROUP, SIZES
+ *   model matrices, sparse work, KLU copy  GROUP, SIZES, LINSOL
+ *   (mat_done)
+ *   sparsity patterns of A and of the DQ   PATTERN (and with the matrices)
+ *   SUNLinSolInitialize done               LINSOL
+ *   consistent vdot, lambda, a (ic_done)   GROUP, SIZES, STATE
+ *   predictor history (h_prev)             GROUP, SIZES, STATE
+ *   constant M evaluated (mass_current)    GROUP, SIZES, LINSOL, MASS, STATE
+ *   factorised iteration matrix            every change, and MATRIX
+ *   (lu_valid, klu_valid), Newton's last
+ *   rate and multiplier noise level
+ *
+ * so that a setter only says what it changed, never which caches to drop. */
+void lgnInvalidate(LGNMem mem, unsigned int what)
+{
+  if (what & (LGN_CHANGE_GROUP | LGN_CHANGE_SIZES)) {
+    lgnFreeWork(mem); /* and the matrices; sizes or blocks are new */
+  } else if (what & LGN_CHANGE_LINSOL) {
+    lgnFreeMatrices(mem); /* reallocated for A's type at the next solve */
+  } else if ((what & LGN_CHANGE_PATTERN) && mem->sp != NULL) {
+    mem->sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
+    mem->sp->have_dq_patterns = SUNFALSE;
+  }
+  if (what & LGN_CHANGE_LINSOL) mem->ls_initialized = SUNFALSE;
+  if (what & LGN_CHANGE_STATE) {
+    mem->ic_done = SUNFALSE;
+    mem->h_prev  = SUN_RCONST(0.0);
+  }
+  if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
+  /* the factorised matrix in A no longer fits the model or method: the next
+   * step of a modified Newton iteration rebuilds it */
+  mem->lu_valid  = SUNFALSE;
+  mem->klu_valid = SUNFALSE; /* copied again after the next setup */
+  if (what != LGN_CHANGE_MATRIX) {
+    /* contraction rate and multiplier noise were seen with another model,
+     * method or matrix */
+    mem->newton_rate    = SUN_RCONST(0.0);
+    mem->lambda_noise   = SUN_RCONST(0.0);
+    mem->lambda_noise_h = SUN_RCONST(0.0);
+  }
+}
+
+/* =============================================================================
+ * Guards and error reporting
+ * ===========================================================================*/
+
+/* The guard every public function starts with. */
+int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem)
+{
+  if (lgn_mem == NULL) {
+    lgnProcessError(NULL, LGN_MEM_NULL, __LINE__, func, __FILE__, MSG_NO_MEM);
+    return LGN_MEM_NULL;
+  }
+  *mem = (LGNMem)lgn_mem;
+  return LGN_SUCCESS;
+}
+
+/* Check a vector argument of a public function: not NULL, with a data
+ * array (serial N_Vector) of the expected length. */
+int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
+                   const char *func)
+{
+  if (x == NULL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = NULL illegal.", name);
+    return LGN_ILL_INPUT;
+  }
+  if (N_VGetArrayPointer(x) == NULL && len > 0) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s has no data array (a serial N_Vector is required).",
+                    name);
+    return LGN_ILL_INPUT;
+  }
+  if (N_VGetLength(x) != len) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s has length %lld, but %lld is needed.", name,
+                    (long long)N_VGetLength(x), (long long)len);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
+                     const char *file, const char *msgfmt, ...)
+{
+  va_list ap;
+  (void)line;
+  (void)file;
+  va_start(ap, msgfmt);
+  lgnReportV(mem == NULL ? NULL : &mem->err, error_code, func, msgfmt, ap);
+  va_end(ap);
+}
+
+static const char *CallbackName(LGNCallbackId cb)
+{
+  static const char *names[LGN_CB_COUNT] = {
+    "mass matrix", "force", "constraint", "constraint Jacobian",
+    "stiffness", "damping", "curvature", "constraint force", "Lie group"};
+  return names[cb];
+}
+
+static int UnrecoverableFlag(LGNCallbackId cb)
+{
+  switch (cb) {
+  case LGN_CB_MASS:       return LGN_MASS_FAIL;
+  case LGN_CB_FORCE:      return LGN_FORCE_FAIL;
+  case LGN_CB_CONSTR:     return LGN_CONSTR_FAIL;
+  case LGN_CB_CONSTR_JAC:
+  case LGN_CB_CONSTR_FORCE: return LGN_CONSTR_JAC_FAIL;
+  case LGN_CB_GROUP:      return LGN_GROUP_FAIL;
+  default:                return LGN_TANGENT_FAIL;
+  }
+}
+
+/* Map the return value of a user callback (0 ok, > 0 recoverable, < 0 fatal)
+ * to a flag and report it. With a fixed step size a recoverable failure
+ * cannot be cured by a smaller step, so it is reported as
+ * LGN_REPTD_CALLBACK_ERR; the state at t_n stays intact either way. */
+int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
+{
+  int flag;
+  if (retval == 0) return LGN_SUCCESS;
+  if (retval > 0) {
+    flag = LGN_REPTD_CALLBACK_ERR;
+    lgnProcessError(mem, flag, __LINE__, func, __FILE__,
+                    MSG_TIME "the %s function failed recoverably (returned %d)"
+                    " and the fixed step size cannot be reduced.",
+                    (double)mem->tn, CallbackName(cb), retval);
+  } else {
+    flag = UnrecoverableFlag(cb);
+    lgnProcessError(mem, flag, __LINE__, func, __FILE__,
+                    MSG_TIME "the %s function failed unrecoverably"
+                    " (returned %d).",
+                    (double)mem->tn, CallbackName(cb), retval);
+  }
+  return flag;
+}
+
+/* =============================================================================
+ * The block table: the leaves of the group, on which T is block diagonal
+ * ===========================================================================*/
+
+/* Count (pass 1, out == NULL) or record the leaves of G at offsets (qo, vo). */
+static int FlattenGroup(LGNGroup G, sunindextype qo, sunindextype vo,
+                        LGNMem out, int nblk)
+{
+  int nf, k;
+  const LGNGroup *f;
+  const sunindextype *qoff, *voff;
+  if (lgnGroupProductFactors(G, &nf, &f, &qoff, &voff) == 0) {
+    for (k = 0; k < nf; k++)
+      nblk = FlattenGroup(f[k], qo + qoff[k], vo + voff[k], out, nblk);
+    return nblk;
+  }
+  if (out != NULL) {
+    out->blk_group[nblk] = G;
+    out->blk_qoff[nblk]  = qo;
+    out->blk_voff[nblk]  = vo;
+  }
+  return nblk + 1;
+}
+
+static void BlocksFree(LGNMem mem)
+{
+  free(mem->blk_voff);
+  free(mem->blk_qoff);
+  free(mem->blk_toff);
+  free(mem->blk_of);
+  free(mem->blk_group);
+  mem->blk_voff = mem->blk_qoff = mem->blk_toff = mem->blk_of = NULL;
+  mem->blk_group = NULL;
+  mem->nblk = 0;
+  mem->blk_max = mem->tlen = 0;
+}
+
+static int BlocksBuild(LGNMem mem)
+{
+  int b, nblk = FlattenGroup(mem->G, 0, 0, NULL, 0);
+  sunindextype i, size;
+
+  BlocksFree(mem);
+  mem->blk_voff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk_qoff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk_toff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk_of    = (sunindextype *)malloc((size_t)mem->nv * sizeof(sunindextype));
+  mem->blk_group = (LGNGroup *)malloc((size_t)nblk * sizeof(LGNGroup));
+  if (mem->blk_voff == NULL || mem->blk_qoff == NULL || mem->blk_toff == NULL ||
+      mem->blk_of == NULL || mem->blk_group == NULL) {
+    BlocksFree(mem);
+    return LGN_MEM_FAIL;
+  }
+  mem->nblk = FlattenGroup(mem->G, 0, 0, mem, 0);
+  mem->blk_voff[nblk] = mem->nv;
+  mem->blk_qoff[nblk] = mem->nq;
+  mem->blk_toff[0]    = 0;
+  for (b = 0; b < nblk; b++) {
+    size = mem->blk_voff[b + 1] - mem->blk_voff[b];
+    mem->blk_max = SUNMAX(mem->blk_max, size);
+    mem->blk_toff[b + 1] = mem->blk_toff[b] + (lgnBlockIsIdentity(mem, b) ? 0 : size * size);
+    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) mem->blk_of[i] = b;
+  }
+  mem->tlen = mem->blk_toff[nblk];
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Allocation and release
+ * ===========================================================================*/
+
+static void DestroyVector(N_Vector *x)
+{
+  if (*x != NULL) N_VDestroy(*x);
+  *x = NULL;
+}
+
+static void DestroyMatrix(SUNMatrix *A)
+{
+  if (*A != NULL) SUNMatDestroy(*A);
+  *A = NULL;
+}
+
+/* The state vectors (cloned from q0 and v0 by LGNInit). */
+void lgnFreeState(LGNMem mem)
+{
+  DestroyVector(&mem->q);
+  DestroyVector(&mem->v);
+  DestroyVector(&mem->vdot);
+  DestroyVector(&mem->a);
+  DestroyVector(&mem->q1);
+  DestroyVector(&mem->v1);
+  DestroyVector(&mem->vdot1);
+  DestroyVector(&mem->dq_q);
+  DestroyVector(&mem->dq_v);
+  mem->malloc_done = SUNFALSE;
+}
+
+void lgnFreeMatrices(LGNMem mem)
+{
+  DestroyMatrix(&mem->Mmat);
+  DestroyMatrix(&mem->Bmat);
+  DestroyMatrix(&mem->Kmat);
+  DestroyMatrix(&mem->Cmat);
+  DestroyMatrix(&mem->Mdq);
+  DestroyMatrix(&mem->Bdq);
+  free(mem->Bvq);
+  mem->Bvq = NULL;
+  lgnSparseWorkFree(mem);
+  lgnKluCopyFree(&mem->klu);
+  mem->klu_valid = SUNFALSE;
+  mem->mat_done = SUNFALSE;
+}
+
+void lgnFreeWork(LGNMem mem)
+{
+  lgnFreeMatrices(mem);
+  DestroyVector(&mem->lambda);
+  DestroyVector(&mem->lambda1);
+  DestroyVector(&mem->g);
+  DestroyVector(&mem->rdyn);
+  DestroyVector(&mem->phi);
+  DestroyVector(&mem->rhs);
+  DestroyVector(&mem->sol);
+  DestroyVector(&mem->dq_g);
+  DestroyVector(&mem->dq_r);
+  DestroyVector(&mem->dq_z);
+  free(mem->sigma);
+  mem->sigma = NULL;
+  mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
+  mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
+  mem->h_prev = SUN_RCONST(0.0);
+  free(mem->Tm);
+  mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
+  BlocksFree(mem);
+  mem->work_done = SUNFALSE;
+  mem->ic_done = SUNFALSE;
+  /* lambda_0 given with LGNSetInitialAcceleration went with the work space */
+  mem->user_vdot0 = SUNFALSE;
+}
+
+/* Everything the record holds (LGNFree). */
+void lgnFreeAll(LGNMem mem)
+{
+  lgnFreeWork(mem);
+  lgnFreeState(mem);
+}
+
+/* The state vectors, cloned from q0 and v0 (the sizes of the group). */
+int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
+{
+  lgnFreeWork(mem);
+  lgnFreeState(mem);
+  mem->nq    = mem->G->nq;
+  mem->nv    = mem->G->nv;
+  mem->q     = N_VClone(q0);
+  mem->q1    = N_VClone(q0);
+  mem->dq_q  = N_VClone(q0);
+  mem->v     = N_VClone(v0);
+  mem->vdot  = N_VClone(v0);
+  mem->a     = N_VClone(v0);
+  mem->v1    = N_VClone(v0);
+  mem->vdot1 = N_VClone(v0);
+  mem->dq_v  = N_VClone(v0);
+  if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
+      mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
+      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
+    lgnFreeState(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->malloc_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* Work space: everything whose size depends on nv and m (and the group's
+ * block structure). Allocated lazily at the first LGNSolve (so the model
+ * may be described in any order) and again after lgnInvalidate drops it. */
+
+int lgnAllocWork(LGNMem mem)
+{
+  sunindextype nv = mem->nv, m = mem->m;
+  SUNContext ctx = mem->sunctx;
+  int fail = 0;
+
+  lgnFreeWork(mem);
+  fail = BlocksBuild(mem) != LGN_SUCCESS;
+  if (!fail) {
+    mem->g    = N_VNew_Serial(nv, ctx);
+    mem->rdyn = N_VNew_Serial(nv, ctx);
+    mem->dq_g = N_VNew_Serial(nv, ctx);
+    mem->dq_r = N_VNew_Serial(nv, ctx);
+    mem->rhs  = N_VNew_Serial(nv + m, ctx);
+    mem->sol  = N_VNew_Serial(nv + m, ctx);
+    fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
+            mem->dq_r == NULL || mem->rhs == NULL ||
+            mem->sol == NULL);
+  }
+  if (m > 0 && !fail) {
+    mem->lambda  = N_VNew_Serial(m, ctx);
+    mem->lambda1 = N_VNew_Serial(m, ctx);
+    mem->phi     = N_VNew_Serial(m, ctx);
+    mem->dq_z    = N_VNew_Serial(m, ctx);
+    fail = (mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
+            mem->dq_z == NULL);
+  }
+  if (!fail) {
+    /* sigma, sigma_dot and sigma_ddot of the exact variant (BindIncrement
+     * in lgn_step.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag
+     * (nv each), lambda_prev and work_m (m each) in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(8 * nv + 2 * m), sizeof(sunrealtype));
+    /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
+    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
+                                       sizeof(sunrealtype));
+    fail       = (mem->sigma == NULL || mem->Tm == NULL);
+  }
+  if (fail) {
+    lgnFreeWork(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->Tv         = mem->Tm + mem->tlen;
+  mem->Ta         = mem->Tm + 2 * mem->tlen;
+  mem->blk_work   = mem->Tm + 3 * mem->tlen;
+  mem->sigma_dot  = mem->sigma + nv;
+  mem->sigma_ddot = mem->sigma + 2 * nv;
+  mem->a_pred     = mem->sigma + 3 * nv;
+  mem->work_nv    = mem->sigma + 4 * nv;
+  mem->work2_nv   = mem->sigma + 5 * nv;
+  mem->vdot_prev  = mem->sigma + 6 * nv;
+  mem->mass_diag  = mem->sigma + 7 * nv;
+  mem->lambda_prev = m > 0 ? mem->sigma + 8 * nv : NULL;
+  mem->work_m      = m > 0 ? mem->sigma + 8 * nv + m : NULL;
+  if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
+  mem->work_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* A model matrix of the type of the iteration matrix: dense, or sparse in
+ * A's format with room for nnz entries (a callback needing more calls
+ * SUNSparseMatrix_Reallocate). */
+static SUNMatrix NewModelMatrix(LGNMem mem, sunindextype rows,
+                                sunindextype cols, sunindextype nnz)
+{
+  SUNMatrix S;
+  if (!mem->sparse) return SUNDenseMatrix(rows, cols, mem->sunctx);
+  S = SUNSparseMatrix(rows, cols, SUNMAX(SUNMIN(nnz, rows * cols), 1),
+                      mem->sparsetype, mem->sunctx);
+  if (S != NULL) SUNMatZero(S);
+  return S;
+}
+
+/* The model matrices (M, B, K, C and their difference-quotient twins) of
+ * the type of A; for the sparse path, first guesses of their sizes: a
+ * body's blocks for M, K and C, 12 entries (two bodies) per constraint row. */
+int lgnAllocMatrices(LGNMem mem)
+{
+  sunindextype nv = mem->nv, m = mem->m, nnzM = 0;
+  int b, fail;
+
+  lgnFreeMatrices(mem);
+  mem->mass_current = SUNFALSE;
+  mem->sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  if (mem->sparse) mem->sparsetype = (int)SUNSparseMatrix_SparseType(mem->A);
+  for (b = 0; b < mem->nblk; b++) {
+    sunindextype size = mem->blk_voff[b + 1] - mem->blk_voff[b];
+    nnzM += lgnBlockIsIdentity(mem, b) ? size : size * size;
+  }
+  mem->Mmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Kmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Cmat = NewModelMatrix(mem, nv, nv, nnzM);
+  mem->Mdq  = NewModelMatrix(mem, nv, nv, nnzM);
+  fail = (mem->Mmat == NULL || mem->Kmat == NULL || mem->Cmat == NULL ||
+          mem->Mdq == NULL);
+  if (m > 0 && !fail) {
+    mem->Bmat = NewModelMatrix(mem, m, nv, 12 * m);
+    mem->Bdq  = NewModelMatrix(mem, m, nv, 12 * m);
+    if (!mem->sparse) mem->Bvq = (sunrealtype *)calloc((size_t)(m * nv), sizeof(sunrealtype));
+    fail = (mem->Bmat == NULL || mem->Bdq == NULL || (!mem->sparse && mem->Bvq == NULL));
+  }
+  if (!fail && mem->sparse) fail = lgnSparseWorkCreate(mem) != LGN_SUCCESS;
+  if (fail) {
+    lgnFreeMatrices(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->mat_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+long int lgnIterationMatrixNnz(LGNMem mem)
+{
+  const long int n = (long int)(mem->nv + mem->m);
+  if (mem->sp != NULL) return mem->sp->have_pattern ? (long int)mem->sp->A.colptr[n] : 0L;
+  return n * n;
+}
+
+/* Reals and integers of one model matrix. */
+static void MatrixSpace(SUNMatrix S, long int *rw, long int *iw)
+{
+  long int lrw = 0, liw = 0;
+  if (S != NULL && SUNMatSpace(S, &lrw, &liw) == 0) {
+    *rw += lrw;
+    *iw += liw;
+  }
+}
+
+void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
+{
+  const long int nq = (long int)mem->nq, nv = (long int)mem->nv, m = (long int)mem->m;
+  long int rw = 0, iw = 0;
+  if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
+  if (mem->work_done) {
+    rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
+    rw += 8 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
+  }
+  if (mem->mat_done) {
+    MatrixSpace(mem->Mmat, &rw, &iw);
+    MatrixSpace(mem->Kmat, &rw, &iw);
+    MatrixSpace(mem->Cmat, &rw, &iw);
+    MatrixSpace(mem->Mdq, &rw, &iw);
+    MatrixSpace(mem->Bmat, &rw, &iw);
+    MatrixSpace(mem->Bdq, &rw, &iw);
+    if (mem->Bvq != NULL) rw += m * nv;
+    lgnSparseWorkSpace(mem, &rw, &iw);
+    lgnKluCopySpace(mem->klu, &rw, &iw);
+  }
+  *lenrw = rw;
+  *leniw = iw;
+}
+
+
+/* =============================================================================
+ * The sparse work space (lgn_sparse.h): patterns, maps and colourings
+ * ===========================================================================*/
+
+int lgnSparseWorkCreate(LGNMem mem)
+{
+  const sunindextype n = mem->nv + mem->m;
+  sunindextype i;
+  struct LGNSparseWorkRec *sp = (struct LGNSparseWorkRec *)calloc(1, sizeof *sp);
+  if (sp == NULL) return LGN_MEM_FAIL;
+  mem->sp  = sp;
+  sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
+  if (sp->mark == NULL || sp->list == NULL) {
+    lgnSparseWorkFree(mem);
+    return LGN_MEM_FAIL;
+  }
+  for (i = 0; i < n; i++) sp->mark[i] = -1;
+  return LGN_SUCCESS;
+}
+
+void lgnSparseWorkFree(LGNMem mem)
+{
+  struct LGNSparseWorkRec *sp = mem->sp;
+  int k;
+  if (sp == NULL) return;
+  for (k = 0; k < LGN_NMAPS; k++) free(sp->map[k].off);
+  lgnPatternMemoFree(&sp->Mseen);
+  lgnPatternMemoFree(&sp->Bseen);
+  lgnPatternMemoFree(&sp->Kseen);
+  lgnPatternMemoFree(&sp->Cseen);
+  lgnCscFree(&sp->A);
+  lgnCscFree(&sp->M);
+  lgnCscFree(&sp->B);
+  lgnCscFree(&sp->Bt);
+  lgnCscFree(&sp->K);
+  lgnCscFree(&sp->C);
+  lgnCscFree(&sp->Kdq);
+  lgnCscFree(&sp->Cdq);
+  lgnColoringFree(&sp->Kcol);
+  lgnColoringFree(&sp->Ccol);
+  free(sp->csr_perm);
+  free(sp->Bvq);
+  free(sp->mark);
+  free(sp->list);
+  free(sp);
+  mem->sp = NULL;
+}
+
+/* Reals and indices held by the sparse work space. */
+void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
+{
+  const struct LGNSparseWorkRec *sp = mem->sp;
+  const LGNCsc *all[8];
+  const LGNPatternMemo *seen[4];
+  int k;
+  if (sp == NULL) return;
+  all[0] = &sp->A;  all[1] = &sp->M;  all[2] = &sp->B;   all[3] = &sp->Bt;
+  all[4] = &sp->K;  all[5] = &sp->C;  all[6] = &sp->Kdq; all[7] = &sp->Cdq;
+  for (k = 0; k < 8; k++) {
+    if (all[k]->val != NULL) *rw += (long int)all[k]->cap; /* not A's, if CSC */
+    *iw += (long int)(all[k]->cap + all[k]->capcol);
+  }
+  seen[0] = &sp->Mseen; seen[1] = &sp->Bseen; seen[2] = &sp->Kseen; seen[3] = &sp->Cseen;
+  for (k = 0; k < 4; k++)
+    *iw += (long int)(seen[k]->capp + (seen[k]->perm != NULL ? 2 : 1) * seen[k]->cap);
+  for (k = 0; k < LGN_NMAPS; k++) *iw += (long int)sp->map[k].cap;
+  *rw += (long int)sp->Bvq_cap;
+  *iw += 2L * (long int)(mem->nv + mem->m);
+  if (sp->csr_perm != NULL) *iw += (long int)sp->A.cap;
+  if (sp->Kcol.ptr != NULL) *iw += (long int)(sp->Kcol.ncolors + 1 + mem->nv);
+  if (sp->Ccol.ptr != NULL) *iw += (long int)(sp->Ccol.ncolors + 1 + mem->nv);
+}
