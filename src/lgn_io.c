@@ -71,7 +71,8 @@ int LGNSetUserData(void *lgn_mem, void *user_data)
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
   mem->user_data = user_data;
-  lgnInvalidate(mem, LGN_CHANGE_MODEL); /* the callbacks may answer otherwise */
+  /* the callbacks, the mass function too, may answer otherwise */
+  lgnInvalidate(mem, LGN_CHANGE_MODEL | LGN_CHANGE_MASS);
   return LGN_SUCCESS;
 }
 
