@@ -10,8 +10,9 @@
 ! to call from the constraint callbacks).
 !
 ! Names are the C names, types as in flignum_mod:
-!   LGNJoints, LGNGroup, N_Vector, SUNMatrix, void *lgn_mem
+!   LGNJoints, LGNGroup, N_Vector, SUNMatrix, FILE *
 !                          -> type(c_ptr), value
+!   LGNErrHandlerFn        -> type(c_funptr), value
 !   LGNJoints *J (LGNJoints_Destroy)
 !                          -> type(c_ptr), by reference (set to c_null_ptr)
 !   int (body indices, flags) -> integer(c_int)
@@ -37,14 +38,36 @@ module flignum_joints_mod
     ! =========================================================================
 
     !> Create an empty joint set for the bodies of G (R^3 x SO(3), SE(3) or
-    !! a product of them; G is referenced and must outlive the set). Bad
-    !! input of every LGNJoints function is reported through the error
-    !! handler of lgn_mem (c_null_ptr: flags only). Returns c_null_ptr if G
-    !! has another leaf group or memory ran out.
-    type(c_ptr) function LGNJoints_Create(lgn_mem, G) bind(c, name="LGNJoints_Create")
+    !! a product of them; G is referenced and must outlive the set). The set
+    !! reports bad input of every LGNJoints function through its own error
+    !! handler (LGNJoints_SetErrHandlerFn, LGNJoints_SetErrFile; default:
+    !! stderr) and holds no integrator memory. Returns c_null_ptr (message
+    !! on stderr) if G is c_null_ptr, has another leaf group or memory ran
+    !! out.
+    type(c_ptr) function LGNJoints_Create(G) bind(c, name="LGNJoints_Create")
       import :: c_ptr
-      type(c_ptr), value :: lgn_mem, G
+      type(c_ptr), value :: G
     end function LGNJoints_Create
+
+    !> Error handler of the joint set (an LGNErrHandlerFn of flignum_mod:
+    !! c_funloc of a bind(c) subroutine); c_null_funptr restores the
+    !! default. LGN_ILL_INPUT for J = c_null_ptr.
+    integer(c_int) function LGNJoints_SetErrHandlerFn(J, ehfun, eh_data) &
+        bind(c, name="LGNJoints_SetErrHandlerFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: J
+      type(c_funptr), value :: ehfun
+      type(c_ptr), value :: eh_data
+    end function LGNJoints_SetErrHandlerFn
+
+    !> Stream of the joint set's default error handler (a C FILE *:
+    !! FLGNStderr(), FLGNFopen(...) of flignum_mod); c_null_ptr silences it.
+    !! LGN_ILL_INPUT for J = c_null_ptr.
+    integer(c_int) function LGNJoints_SetErrFile(J, errfp) &
+        bind(c, name="LGNJoints_SetErrFile")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J, errfp
+    end function LGNJoints_SetErrFile
 
     !> Free a joint set and set J = c_null_ptr; c_null_ptr is allowed.
     subroutine LGNJoints_Destroy(J) bind(c, name="LGNJoints_Destroy")

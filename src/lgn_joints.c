@@ -18,9 +18,13 @@
  * (FillRotations). The pattern of a sparse B depends only on the joints: it
  * is built on the first call and kept, and later calls write the values
  * straight to their positions.
+ * A pure helper layer: it knows nothing of the integrator's memory record
+ * (lgn_impl.h) and reports errors through its own sink (lgn_err.h), always
+ * under the name of the public function that was called.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,7 +33,11 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
-#include "lgn_impl.h"
+#include "lgn_err.h"
+
+#ifdef LGN_IMPL_H
+#error "lgn_joints.c is a pure helper: it must not see the integrator's memory record"
+#endif
 
 typedef enum { PRIM_POINT = 0, PRIM_PERP = 1 } PrimKind;
 
@@ -42,7 +50,7 @@ typedef struct {
 } Primitive;
 
 struct LGNJointsRec {
-  LGNMem mem;                 /* for error messages (may be NULL)          */
+  LGNErrSink err;             /* where error messages go                   */
   LGNGroup G;
   int nb;                     /* bodies                                    */
   sunindextype *qoff, *voff;  /* offsets of each body                      */
@@ -67,10 +75,33 @@ struct LGNJointsRec {
 #define NO_PATTERN (-1) /* bfmt before the first sparse B and after an Add */
 #define ROT_STRIDE 13   /* R(p) and p per body in rot                       */
 
-#define JERR(J, code, ...)                                                  \
-  do {                                                                      \
-    if ((J)->mem != NULL) LGN_ERROR((J)->mem, (code), __VA_ARGS__);         \
-  } while (0)
+#define MSG_MEM_FAIL "A memory request failed." /* as the integrator's */
+
+#if defined(__GNUC__) || defined(__clang__)
+#define JERR_FORMAT __attribute__((format(printf, 4, 5)))
+#else
+#define JERR_FORMAT
+#endif
+
+/* Report an error of the public function func through J's own sink. */
+static void JErr(const struct LGNJointsRec *J, int code, const char *func,
+                 const char *msgfmt, ...) JERR_FORMAT;
+static void JErr(const struct LGNJointsRec *J, int code, const char *func,
+                 const char *msgfmt, ...)
+{
+  va_list ap;
+  va_start(ap, msgfmt);
+  lgnReportV(&J->err, code, func, msgfmt, ap);
+  va_end(ap);
+}
+
+/* J = NULL given to the public function func: there is no sink to find, so
+ * the message goes to stderr. Returns the flag. */
+static int NullJoints(const char *func)
+{
+  lgnReport(NULL, LGN_ILL_INPUT, func, "J = NULL illegal.");
+  return LGN_ILL_INPUT;
+}
 
 /* ---------------------------------------------------------------------------
  * Small 3-vector kernels (R row-major, as LGNQuaternionToRotation writes it)
@@ -189,25 +220,29 @@ static int CountBodies(LGNGroup G, sunindextype qo, sunindextype vo,
   return k + 1;
 }
 
-LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
+/* A new joint set reports to stderr (its sink's default) until the user
+ * sets a handler or stream; so do its failures, which have no set yet. */
+LGNJoints LGNJoints_Create(LGNGroup G)
 {
   struct LGNJointsRec *J;
-  LGNMem mem = (LGNMem)lgn_mem;
   size_t k;
   int nb;
   if (G == NULL) {
-    if (mem != NULL) LGN_ERROR(mem, LGN_ILL_INPUT, "G = NULL illegal.");
+    lgnReport(NULL, LGN_ILL_INPUT, __func__, "G = NULL illegal.");
     return NULL;
   }
   J = (struct LGNJointsRec *)calloc(1, sizeof *J);
-  if (J == NULL) return NULL;
-  J->mem = mem;
-  J->G   = G;
-  nb     = CountBodies(G, 0, 0, J, 0);
+  if (J == NULL) {
+    lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    return NULL;
+  }
+  lgnErrSinkInit(&J->err);
+  J->G = G;
+  nb   = CountBodies(G, 0, 0, J, 0);
   if (nb < 1) {
-    JERR(J, LGN_ILL_INPUT,
-         "The joint helpers need bodies on R^3 x SO(3) or SE(3) (or a "
-         "product of them).");
+    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+              "G: the joint helpers need bodies on R^3 x SO(3) or SE(3) (or a "
+              "product of them).");
     free(J);
     return NULL;
   }
@@ -221,6 +256,7 @@ LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G)
   if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->injoint == NULL ||
       J->rot == NULL) {
     LGNJoints_Destroy(&J);
+    lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return NULL;
   }
   CountBodies(G, 0, 0, J, 0);
@@ -263,35 +299,61 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   *Jp = NULL;
 }
 
+/* The joint set's own handler, as LGNSetErrHandlerFn for the integrator. */
+int LGNJoints_SetErrHandlerFn(LGNJoints J, LGNErrHandlerFn ehfun, void *eh_data)
+{
+  if (J == NULL) return NullJoints(__func__);
+  J->err.ehfun   = ehfun;
+  J->err.eh_data = eh_data;
+  return LGN_SUCCESS;
+}
+
+/* The stream of its default handler, as LGNSetErrFile. */
+int LGNJoints_SetErrFile(LGNJoints J, FILE *errfp)
+{
+  if (J == NULL) return NullJoints(__func__);
+  J->err.errfp = errfp;
+  return LGN_SUCCESS;
+}
+
 int LGNJoints_NumBodies(LGNJoints J) { return J != NULL ? J->nb : 0; }
 
 sunindextype LGNJoints_NumConstraints(LGNJoints J) { return J != NULL ? J->m : 0; }
 
-static int CheckBodies(struct LGNJointsRec *J, int a, int b, const void *p1,
-                       const void *p2, const char *func)
+/* The bodies a, b of a joint added by the public function func. */
+static int CheckBodies(const struct LGNJointsRec *J, int a, int b, const char *func)
 {
   if (a < LGN_GROUND || a >= J->nb || b < LGN_GROUND || b >= J->nb || a == b) {
-    JERR(J, LGN_ILL_INPUT,
-         "%s: bodies a = %d, b = %d illegal (0..%d or LGN_GROUND, a != b).",
-         func, a, b, J->nb - 1);
-    return LGN_ILL_INPUT;
-  }
-  if (p1 == NULL || p2 == NULL) {
-    JERR(J, LGN_ILL_INPUT, "%s: a point or axis is NULL.", func);
+    JErr(J, LGN_ILL_INPUT, func,
+         "bodies a = %d, b = %d illegal (0..%d or LGN_GROUND, a != b).",
+         a, b, J->nb - 1);
     return LGN_ILL_INPUT;
   }
   return LGN_SUCCESS;
 }
 
+/* A point or axis (named name) given to the public function func. */
+static int CheckPoint(const struct LGNJointsRec *J, const sunrealtype *x,
+                      const char *name, const char *func)
+{
+  if (x == NULL) {
+    JErr(J, LGN_ILL_INPUT, func, "%s = NULL illegal.", name);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+/* Append a primitive for the public function func. */
 static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
-                        const sunrealtype *u, int b, const sunrealtype *w)
+                        const sunrealtype *u, int b, const sunrealtype *w,
+                        const char *func)
 {
   Primitive *p;
   if (J->nprim == J->cap) {
     int cap = J->cap > 0 ? 2 * J->cap : 16;
     Primitive *np = (Primitive *)realloc(J->prim, (size_t)cap * sizeof *np);
     if (np == NULL) {
-      JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      JErr(J, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
       return LGN_MEM_FAIL;
     }
     J->prim = np;
@@ -321,18 +383,21 @@ int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
                            const sunrealtype sb[3])
 {
   int flag;
-  if (J == NULL) return LGN_ILL_INPUT;
-  flag = CheckBodies(J, a, b, sa, sb, __func__);
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckBodies(J, a, b, __func__);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sa, "sa", __func__);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sb, "sb", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  return AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
+  return AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
 }
 
-static int Normalised(struct LGNJointsRec *J, const sunrealtype *x,
-                      sunrealtype *y, const char *func)
+/* y = x / |x| for the axis (named name) given to the public function func. */
+static int Normalised(const struct LGNJointsRec *J, const sunrealtype *x,
+                      sunrealtype *y, const char *name, const char *func)
 {
   sunrealtype n = sqrt(Dot(x, x));
   if (!(n > SUN_RCONST(0.0)) || !isfinite(n)) {
-    JERR(J, LGN_ILL_INPUT, "%s: an axis is zero or not finite.", func);
+    JErr(J, LGN_ILL_INPUT, func, "%s is zero or not finite.", name);
     return LGN_ILL_INPUT;
   }
   y[0] = x[0] / n;
@@ -341,27 +406,40 @@ static int Normalised(struct LGNJointsRec *J, const sunrealtype *x,
   return LGN_SUCCESS;
 }
 
+/* Bodies, points and axes of a revolute or universal joint (func). */
+static int CheckJointArgs(const struct LGNJointsRec *J, int a,
+                          const sunrealtype *sa, const sunrealtype *axis_a, int b,
+                          const sunrealtype *sb, const sunrealtype *axis_b,
+                          const char *func)
+{
+  int flag = CheckBodies(J, a, b, func);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sa, "sa", func);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, axis_a, "axis_a", func);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sb, "sb", func);
+  if (flag == LGN_SUCCESS) flag = CheckPoint(J, axis_b, "axis_b", func);
+  return flag;
+}
+
 int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
                           const sunrealtype axis_a[3], int b,
                           const sunrealtype sb[3], const sunrealtype axis_b[3])
 {
   sunrealtype n[3], c[3], e1[3], e2[3], t[3];
   int flag;
-  if (J == NULL) return LGN_ILL_INPUT;
-  flag = CheckBodies(J, a, b, sa, sb, __func__);
-  if (flag == LGN_SUCCESS) flag = CheckBodies(J, a, b, axis_a, axis_b, __func__);
-  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, __func__);
-  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, __func__);
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
   if (flag != LGN_SUCCESS) return flag;
   /* e1, e2: an orthonormal pair perpendicular to axis_a */
   t[0] = t[1] = t[2] = SUN_RCONST(0.0);
   t[fabs(n[0]) < SUN_RCONST(0.6) ? 0 : (fabs(n[1]) < SUN_RCONST(0.6) ? 1 : 2)] = SUN_RCONST(1.0);
   Cross(n, t, e1);
-  Normalised(J, e1, e1, __func__);
+  Normalised(J, e1, e1, "e1", __func__); /* |n x t| >= 0.8: cannot fail */
   Cross(n, e1, e2);
-  flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c);
+  flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, __func__);
   return flag;
 }
 
@@ -371,13 +449,12 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
 {
   sunrealtype e[3], c[3];
   int flag;
-  if (J == NULL) return LGN_ILL_INPUT;
-  flag = CheckBodies(J, a, b, sa, sb, __func__);
-  if (flag == LGN_SUCCESS) flag = CheckBodies(J, a, b, axis_a, axis_b, __func__);
-  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, e, __func__);
-  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, __func__);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e, b, c);
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, e, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e, b, c, __func__);
   return flag;
 }
 
@@ -385,12 +462,14 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
  * Evaluation
  * ------------------------------------------------------------------------ */
 
-static int CheckVec(struct LGNJointsRec *J, N_Vector x, sunindextype len,
+/* The vector x (named name) given to the public function func: serial data
+ * of length len. */
+static int CheckVec(const struct LGNJointsRec *J, N_Vector x, sunindextype len,
                     const char *name, const char *func)
 {
   if (x == NULL || N_VGetArrayPointer(x) == NULL || N_VGetLength(x) != len) {
-    JERR(J, LGN_ILL_INPUT, "%s: %s is NULL or does not have length %lld.",
-         func, name, (long long)len);
+    JErr(J, LGN_ILL_INPUT, func, "%s is NULL or does not have length %lld.",
+         name, (long long)len);
     return LGN_ILL_INPUT;
   }
   return LGN_SUCCESS;
@@ -402,7 +481,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   sunrealtype *f, ya[3], yb[3];
   Pose A, B;
   int k, i, flag;
-  if (J == NULL) return LGN_ILL_INPUT;
+  if (J == NULL) return NullJoints(__func__);
   flag = CheckVec(J, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = CheckVec(J, phi, J->m, "phi", __func__);
   if (flag != LGN_SUCCESS) return flag;
@@ -604,14 +683,15 @@ static int BuildJacobianPattern(struct LGNJointsRec *J, const sunrealtype *qd, i
 /* Sparse B: the kept pattern, copied in whole (the caller may have cleared
  * B, as Lignum does before an LGNConstrJacFn), and the values written
  * straight to their positions. */
-static int SparseJacobian(struct LGNJointsRec *J, const sunrealtype *qd, SUNMatrix B)
+static int SparseJacobian(struct LGNJointsRec *J, const sunrealtype *qd, SUNMatrix B,
+                          const char *func)
 {
   const int fmt = SUNSparseMatrix_SparseType(B);
   const sunindextype n = fmt == CSC_MAT ? J->G->nv : J->m;
   Sink s = {SINK_VALUES, 0, NULL, NULL, NULL, NULL, NULL};
   if ((J->bfmt != fmt && BuildJacobianPattern(J, qd, fmt) != LGN_SUCCESS) ||
       (SUNSparseMatrix_NNZ(B) < J->nnzB && SUNSparseMatrix_Reallocate(B, J->nnzB) != 0)) {
-    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    JErr(J, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
   memcpy(SUNSparseMatrix_IndexPointers(B), J->bptr, (size_t)(n + 1) * sizeof *J->bptr);
@@ -629,7 +709,7 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
   const sunindextype nv = J != NULL ? J->G->nv : 0;
   const sunrealtype *qd;
   int flag;
-  if (J == NULL) return LGN_ILL_INPUT;
+  if (J == NULL) return NullJoints(__func__);
   flag = CheckVec(J, q, J->G->nq, "q", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (B == NULL ||
@@ -638,8 +718,8 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
       (SUNMatGetID(B) == SUNMATRIX_SPARSE &&
        (SUNSparseMatrix_Rows(B) != J->m || SUNSparseMatrix_Columns(B) != nv)) ||
       (SUNMatGetID(B) != SUNMATRIX_DENSE && SUNMatGetID(B) != SUNMATRIX_SPARSE)) {
-    JERR(J, LGN_ILL_INPUT, "%s: B must be a dense or sparse %lld x %lld matrix.",
-         __func__, (long long)J->m, (long long)nv);
+    JErr(J, LGN_ILL_INPUT, __func__, "B must be a dense or sparse %lld x %lld matrix.",
+         (long long)J->m, (long long)nv);
     return LGN_ILL_INPUT;
   }
   qd = N_VGetArrayPointer(q);
@@ -650,7 +730,7 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
     JacobianEntries(J, qd, &s);
     return LGN_SUCCESS;
   }
-  return SparseJacobian(J, qd, B);
+  return SparseJacobian(J, qd, B, __func__);
 }
 
 /* ---------------------------------------------------------------------------
@@ -668,7 +748,7 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
   sunrealtype *fd, mu[3], t[3], g[2][3];
   Pose P[2];
   int k, i, side, flag;
-  if (J == NULL) return LGN_ILL_INPUT;
+  if (J == NULL) return NullJoints(__func__);
   flag = CheckVec(J, q, J->G->nq, "q", __func__);
   /* no joints: lambda has no entries (and may have no data) */
   if (flag == LGN_SUCCESS && J->m > 0) flag = CheckVec(J, lambda, J->m, "lambda", __func__);
@@ -726,7 +806,7 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
   sunrealtype *zd, aa[3], ab[3], t1[3], t2[3], ra[3], rb[3], da[3], db[3];
   Pose A, B;
   int k, i, flag;
-  if (J == NULL) return LGN_ILL_INPUT;
+  if (J == NULL) return NullJoints(__func__);
   flag = CheckVec(J, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = CheckVec(J, v, J->G->nv, "v", __func__);
   if (flag == LGN_SUCCESS) flag = CheckVec(J, z, J->m, "z", __func__);
@@ -932,7 +1012,7 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
   const sunrealtype *qd, *ld;
   sunindextype nv, nnz, pos = 0;
   int k, b, i, r, c;
-  if (J == NULL) return LGN_ILL_INPUT;
+  if (J == NULL) return NullJoints(__func__);
   nv = J->G->nv;
   if (CheckVec(J, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
       (J->m > 0 && CheckVec(J, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
@@ -942,12 +1022,12 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
       (SUNMatGetID(K) == SUNMATRIX_SPARSE &&
        (SUNSparseMatrix_Rows(K) != nv || SUNSparseMatrix_Columns(K) != nv)) ||
       (SUNMatGetID(K) != SUNMATRIX_DENSE && SUNMatGetID(K) != SUNMATRIX_SPARSE)) {
-    JERR(J, LGN_ILL_INPUT, "%s: K must be a dense or sparse %lld x %lld matrix.",
-         __func__, (long long)nv, (long long)nv);
+    JErr(J, LGN_ILL_INPUT, __func__, "K must be a dense or sparse %lld x %lld matrix.",
+         (long long)nv, (long long)nv);
     return LGN_ILL_INPUT;
   }
   if (J->kptr == NULL && BuildStiffnessStructure(J) != LGN_SUCCESS) {
-    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    JErr(J, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
   if (J->m == 0) return LGN_SUCCESS;
@@ -968,7 +1048,7 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
   }
   nnz = LGNJoints_StiffnessNnz(J);
   if (SUNSparseMatrix_NNZ(K) < nnz && SUNSparseMatrix_Reallocate(K, nnz) != 0) {
-    JERR(J, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    JErr(J, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
   {

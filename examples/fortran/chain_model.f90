@@ -94,7 +94,7 @@ contains
     sys%G = LGNGroup_Product(int(n, c_int), factors)
     deallocate (factors)
     if (.not. c_associated(sys%G)) return
-    sys%joints = LGNJoints_Create(c_null_ptr, sys%G)
+    sys%joints = LGNJoints_Create(sys%G)
     sys%q0 = N_VNew_Serial(7_c_int64_t * n, ctx)
     sys%v0 = N_VNew_Serial(6_c_int64_t * n, ctx)
     if (.not. (c_associated(sys%joints) .and. c_associated(sys%q0) &

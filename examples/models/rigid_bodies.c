@@ -63,7 +63,7 @@ RigidSystem *rigid_create(int n, RigidFormulation formulation, SUNContext ctx)
     rigid_free(&sys);
     return NULL;
   }
-  sys->joints = LGNJoints_Create(NULL, sys->G);
+  sys->joints = LGNJoints_Create(sys->G);
   sys->q0     = N_VNew_Serial(sys->G->nq, ctx);
   sys->v0     = N_VNew_Serial(sys->G->nv, ctx);
   if (sys->joints == NULL || sys->q0 == NULL || sys->v0 == NULL) {

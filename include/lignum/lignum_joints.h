@@ -23,6 +23,13 @@
  *
  * A joint set keeps workspace for its evaluations (the bodies' rotations, the
  * pattern of the sparse B): evaluate one set from one thread at a time.
+ *
+ * Errors: the functions returning a flag return LGN_SUCCESS, LGN_ILL_INPUT
+ * (bad argument, named in the message) or LGN_MEM_FAIL, and report the
+ * failure through the joint set's own error handler (stderr by default;
+ * LGNJoints_SetErrHandlerFn, LGNJoints_SetErrFile). A joint set does not
+ * refer to any integrator memory. With J = NULL there is no handler to find:
+ * the message goes to stderr.
  * ---------------------------------------------------------------------------*/
 
 #ifndef LIGNUM_JOINTS_H
@@ -41,19 +48,39 @@ extern "C" {
 typedef struct LGNJointsRec *LGNJoints;
 
 /**
- * Create an empty joint set for the bodies of G.
- * @param lgn_mem integrator memory whose error handler reports bad input of
- *                every LGNJoints function (may be NULL: flags only)
- * @param G       R^3 x SO(3), SE(3) or a product of them; referenced, must
- *                outlive the joint set
- * @return the joint set, or NULL if G has another leaf group or memory ran out.
+ * Create an empty joint set for the bodies of G. The set reports bad input
+ * of every LGNJoints function itself, through its own error handler
+ * (LGNJoints_SetErrHandlerFn, LGNJoints_SetErrFile; default: stderr, in the
+ * format of the integrator's messages). It holds no integrator memory, so
+ * it may outlive any integrator it is used with.
+ * @param G R^3 x SO(3), SE(3) or a product of them; referenced, must
+ *          outlive the joint set
+ * @return the joint set, or NULL (message on stderr) if G is NULL, has
+ *         another leaf group, or memory ran out.
  */
-LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G);
+LGNJoints LGNJoints_Create(LGNGroup G);
+
+/**
+ * Replace the error handler of a joint set (NULL restores the default,
+ * which writes to the stream of LGNJoints_SetErrFile). The handler gets the
+ * public function that failed (e.g. "LGNJoints_AddSpherical") and a
+ * message naming the bad argument.
+ * @return LGN_SUCCESS, or LGN_ILL_INPUT if J is NULL (message on stderr).
+ */
+int LGNJoints_SetErrHandlerFn(LGNJoints J, LGNErrHandlerFn ehfun, void *eh_data);
+
+/**
+ * Set the stream of the joint set's default error handler (stderr at
+ * creation; NULL silences it). Not used while a handler of
+ * LGNJoints_SetErrHandlerFn is set.
+ * @return LGN_SUCCESS, or LGN_ILL_INPUT if J is NULL (message on stderr).
+ */
+int LGNJoints_SetErrFile(LGNJoints J, FILE *errfp);
 
 /** Free a joint set and set *J to NULL; NULL is allowed. */
 void LGNJoints_Destroy(LGNJoints *J);
 
-/** Number of bodies (leaves of G). */
+/** Number of bodies (leaves of G); 0 for J = NULL. */
 int LGNJoints_NumBodies(LGNJoints J);
 
 /**

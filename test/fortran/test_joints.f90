@@ -17,8 +17,11 @@
 !    the dense B as a Fortran array, to round-off;
 !  - bad input: an out-of-range body, a == b, a zero axis, vectors and
 !    matrices of the wrong size, a group without rigid bodies; each returns
-!    LGN_ILL_INPUT (or c_null_ptr) and is reported to the error handler of
-!    the memory block given to LGNJoints_Create; Destroy nulls the handle.
+!    LGN_ILL_INPUT (or c_null_ptr) and is reported to the joint set's own
+!    error handler (LGNJoints_SetErrHandlerFn), also after the integrator
+!    it was used with is freed, under the public function's name; the
+!    handler and stream setters refuse c_null_ptr, LGNJoints_SetErrFile
+!    with c_null_ptr silences; Destroy nulls the handle.
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 program test_joints
@@ -71,7 +74,7 @@ contains
     body = LGNGroup_R3xSO3()
     factors = [body, body]
     G = LGNGroup_Product(2_c_int, factors)
-    J = LGNJoints_Create(c_null_ptr, G)
+    J = LGNJoints_Create(G)
     call expect(c_associated(J), "LGNJoints_Create on (R^3 x SO(3))^2")
     call expect(LGNJoints_NumBodies(J) == 2, "NumBodies = 2")
     call expect(LGNJoints_NumConstraints(J) == 0, "no constraints before a joint")
@@ -161,7 +164,7 @@ contains
     b2 = LGNGroup_SE3()
     factors = [b1, b2]
     G = LGNGroup_Product(2_c_int, factors)
-    J = LGNJoints_Create(c_null_ptr, G)
+    J = LGNJoints_Create(G)
     call expect(LGNJoints_AddRevolute(J, 0_c_int, pa, axy, 1_c_int, pb, ax) == LGN_SUCCESS, &
                 "AddRevolute(0, 1)")
     call expect(LGNJoints_AddUniversal(J, LGN_GROUND, pb, ax, 1_c_int, pa, axy) &
@@ -281,31 +284,44 @@ contains
     call LGNGroup_Destroy(b2)
   end subroutine test_derivatives
 
-  !> Bad input: LGN_ILL_INPUT or c_null_ptr, reported to the error handler.
+  !> Bad input: LGN_ILL_INPUT or c_null_ptr, reported to the joint set's
+  !! own error handler (the integrator's sees nothing, and may be freed).
   subroutine test_bad_input()
     real(c_double), parameter :: s(3) = [0.0_c_double, 0.0_c_double, 0.5_c_double]
     real(c_double), parameter :: zero(3) = 0.0_c_double
-    type(error_record), target :: rec
+    type(error_record), target :: rec, mem_rec
     type(c_ptr) :: mem, body, Rn, G, J, JR, qv, phiv, lv, B
     type(c_ptr) :: factors(2)
     integer :: nerr
 
     mem = LGNCreate(ctx)
-    call expect(LGNSetErrHandlerFn(mem, c_funloc(record_error), c_loc(rec)) == 0, &
+    call expect(LGNSetErrHandlerFn(mem, c_funloc(record_error), c_loc(mem_rec)) == 0, &
                 "LGNSetErrHandlerFn")
     body = LGNGroup_R3xSO3()
     factors = [body, body]
     G = LGNGroup_Product(2_c_int, factors)
-    J = LGNJoints_Create(mem, G)
-    call expect(c_associated(J), "LGNJoints_Create with a memory block")
+    J = LGNJoints_Create(G)
+    call expect(c_associated(J), "LGNJoints_Create")
+    call expect_flag(LGNJoints_SetErrHandlerFn(J, c_funloc(record_error), c_loc(rec)), &
+                     LGN_SUCCESS, "LGN_SUCCESS", "LGNJoints_SetErrHandlerFn")
+    call expect_flag(LGNJoints_SetErrHandlerFn(c_null_ptr, c_funloc(record_error), c_loc(rec)), &
+                     LGN_ILL_INPUT, "LGN_ILL_INPUT", "LGNJoints_SetErrHandlerFn(c_null_ptr, ...)")
+    call expect_flag(LGNJoints_SetErrFile(c_null_ptr, FLGNStderr()), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNJoints_SetErrFile(c_null_ptr, ...)")
+    call expect(rec%count == 0, "a refused setter does not call the joint set's handler")
+    ! the integrator is gone: the joint set reports without it
+    call LGNFree(mem)
 
     call expect_flag(LGNJoints_AddSpherical(J, 2_c_int, s, 0_c_int, s), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "AddSpherical with body 2 of 0..1")
     call expect(rec%count == 1 .and. rec%code == LGN_ILL_INPUT, &
-                "the error handler saw LGN_ILL_INPUT")
+                "the joint set's error handler saw LGN_ILL_INPUT")
     if (rec%count > 0) &
-      call expect(index(rec%msg, "LGNJoints_AddSpherical") > 0 .and. index(rec%msg, "b = 0") > 0, &
-                  "the message names the function and the bodies: "//rec%msg)
+      call expect(rec%function_name == "LGNJoints_AddSpherical" .and. &
+                  index(rec%msg, "a = 2") > 0 .and. index(rec%msg, "b = 0") > 0, &
+                  "the message names the function and the bodies: "//rec%function_name// &
+                  ": "//rec%msg)
+    call expect(mem_rec%count == 0, "the integrator's handler saw none of it")
     call expect_flag(LGNJoints_AddSpherical(J, -2_c_int, s, 0_c_int, s), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "AddSpherical with body -2")
     call expect_flag(LGNJoints_AddSpherical(J, 1_c_int, s, 1_c_int, s), LGN_ILL_INPUT, &
@@ -315,6 +331,9 @@ contains
     call expect_flag(LGNJoints_AddUniversal(J, 0_c_int, s, s, 3_c_int, s, s), &
                      LGN_ILL_INPUT, "LGN_ILL_INPUT", "AddUniversal with body 3")
     call expect(rec%count == 5, "each refused joint was reported")
+    if (rec%count > 0) &
+      call expect(rec%function_name == "LGNJoints_AddUniversal" .and. index(rec%msg, "a = 0") > 0, &
+                  "the last message names LGNJoints_AddUniversal: "//rec%function_name)
     call expect(LGNJoints_NumConstraints(J) == 0, "refused joints add no constraint")
 
     ! vectors and matrices of the wrong size
@@ -328,6 +347,9 @@ contains
                      "Residual into phi of length 4 /= m = 3")
     call expect(rec%count == nerr + 1 .and. index(rec%msg, "phi") > 0, &
                 "the message names phi: "//rec%msg)
+    if (rec%count > 0) &
+      call expect(rec%function_name == "LGNJoints_Residual", &
+                  "reported under LGNJoints_Residual: "//rec%function_name)
     B = SUNDenseMatrix(3_c_int64_t, 6_c_int64_t, ctx)
     call expect_flag(LGNJoints_Jacobian(J, qv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "Jacobian into a 3 x 6 matrix (nv = 12)")
@@ -347,22 +369,28 @@ contains
     call expect(LGNJoints_JacobianNnz(c_null_ptr) == 0, "JacobianNnz(c_null_ptr) = 0")
     call expect(LGNJoints_StiffnessNnz(c_null_ptr) == 0, "StiffnessNnz(c_null_ptr) = 0")
 
-    ! a group without rigid bodies
-    Rn = LGNGroup_Rn(3_c_int64_t)
+    ! c_null_ptr silences the default handler; c_null_funptr restores it
+    call expect_flag(LGNJoints_SetErrFile(J, c_null_ptr), LGN_SUCCESS, "LGN_SUCCESS", &
+                     "LGNJoints_SetErrFile(J, c_null_ptr)")
+    call expect_flag(LGNJoints_SetErrHandlerFn(J, c_null_funptr, c_null_ptr), LGN_SUCCESS, &
+                     "LGN_SUCCESS", "LGNJoints_SetErrHandlerFn(J, c_null_funptr)")
     nerr = rec%count
-    JR = LGNJoints_Create(mem, Rn)
+    call expect_flag(LGNJoints_AddSpherical(J, 5_c_int, s, 0_c_int, s), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "AddSpherical with body 5, silenced")
+    call expect(rec%count == nerr, "the replaced handler is not called")
+
+    ! a group without rigid bodies, no group (reported on stderr)
+    Rn = LGNGroup_Rn(3_c_int64_t)
+    JR = LGNJoints_Create(Rn)
     call expect(.not. c_associated(JR), "LGNJoints_Create on R^3 returns c_null_ptr")
-    call expect(rec%count == nerr + 1 .and. rec%code == LGN_ILL_INPUT, &
-                "LGNJoints_Create on R^3 is reported")
-    call expect(.not. c_associated(LGNJoints_Create(mem, c_null_ptr)), &
-                "LGNJoints_Create(mem, c_null_ptr) returns c_null_ptr")
+    call expect(.not. c_associated(LGNJoints_Create(c_null_ptr)), &
+                "LGNJoints_Create(c_null_ptr) returns c_null_ptr")
 
     call SUNMatDestroy(B)
     call N_VDestroy(qv)
     call N_VDestroy(phiv)
     call N_VDestroy(lv)
     call LGNJoints_Destroy(J)
-    call LGNFree(mem)
     call LGNGroup_Destroy(Rn)
     call LGNGroup_Destroy(G)
     call LGNGroup_Destroy(body)

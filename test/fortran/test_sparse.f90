@@ -224,7 +224,7 @@ contains
     body = LGNGroup_R3xSO3()
     factors = [body, body, body]
     G = LGNGroup_Product(3_c_int, factors)
-    J = LGNJoints_Create(c_null_ptr, G)
+    J = LGNJoints_Create(G)
     call expect(LGNJoints_AddSpherical(J, LGN_GROUND, pa, 0_c_int, pb) == 0, "AddSpherical")
     call expect(LGNJoints_AddRevolute(J, 0_c_int, pa, ax, 1_c_int, pb, ax) == 0, "AddRevolute")
     call expect(LGNJoints_AddUniversal(J, 2_c_int, pa, ax, 1_c_int, pb, pa) == 0, &

@@ -106,7 +106,7 @@ program lignum_consumer_fortran
 
   ! the joint helpers: a rigid body hanging from the ground
   body = LGNGroup_R3xSO3()
-  J = LGNJoints_Create(c_null_ptr, body)
+  J = LGNJoints_Create(body)
   call expect(LGNJoints_NumBodies(J) == 1, "LGNJoints_NumBodies")
   call expect(LGNJoints_AddSpherical(J, LGN_GROUND, [0.0_c_double, 0.0_c_double, &
                                      0.0_c_double], 0_c_int, [0.0_c_double, 0.0_c_double, &
