@@ -28,7 +28,7 @@ fi
 : > "$tmp/uses"
 : > "$tmp/files"
 for o in "$@"; do
-  f=$(printf '%s\n' "$o" | sed 's|.*/lignum[^/]*\.dir/||; s|\.o$||; s|\.obj$||')
+  f=$(printf '%s\n' "$o" | sed 's|.*\.dir/||; s|\.o$||; s|\.obj$||')
   echo "$f" >> "$tmp/files"
   nm "$o" | awk -v f="$f" '$2 ~ /^[TDBR]$/ { print $3, f }' >> "$tmp/defs"
   nm "$o" | awk -v f="$f" '$1 == "U" { print $2, f }' >> "$tmp/uses"
@@ -82,7 +82,7 @@ awk -v tmp="$tmp" '
 # pure helpers (layers 0..2) never see the memory record
 while read -r f r; do
   if [ "$r" -le 2 ] && [ -f "$src/$f" ] &&
-     grep -n -E 'lgn_impl\.h|LGNMem\b|LGNMemRec' "$src/$f" > "$tmp/grep"; then
+     grep -n -E '#include *"lgn_impl\.h"|\<LGNMem\>|struct LGNMemRec' "$src/$f" > "$tmp/grep"; then
     echo "check_layers: $f is a pure helper (layer $r) but sees the memory record:"
     sed 's/^/    /' "$tmp/grep"
     status=1
