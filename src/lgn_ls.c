@@ -77,6 +77,8 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
 #define LGN_STR_(x) #x
 #define LGN_STR(x)  LGN_STR_(x)
 
+/* Exactly the versions of lgn_klu_solve.h's LGN_KLU_COPY_* (the reason
+ * names the first library whose version differs). */
 int lgnKluCopySupported(int klu_major, int klu_minor, int sun_major,
                         int sun_minor, const char **why)
 {
