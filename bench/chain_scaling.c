@@ -3,6 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  *   chain_scaling [--n N1,N2,...] [--steps S] [--repeat R] [--dense-max N]
+ *                 [--klu-solve lignum|klu]
  *                 [--csv FILE] [--memory-csv FILE] [--floor-csv FILE] [--quick]
  *
  * The chain of examples/models/chain.h (generalized-alpha rho_inf = 0.9,
@@ -29,6 +30,10 @@
  * one solve and one factorisation by SUNDIALS' KLU with the last iteration
  * matrix ("KLU solve", "KLU factor"; Lignum's own solves on its copy of the
  * factors, LGNSetOwnKLUSolves, take about 0.6 of KLU's), to a third.
+ * The KLU runs use Lignum's solves on a copy of KLU's factors (and, CSC,
+ * its refactorisations; LGNSetOwnKLUSolves, off by default in the library,
+ * opted in by rigid_run), or with --klu-solve klu SUNDIALS' own
+ * SUNLinSolSetup and SUNLinSolSolve, to measure what the copy buys.
  * Never fails on timing.
  * ---------------------------------------------------------------------------*/
 
@@ -71,7 +76,7 @@ static double SteadyPerStep(const RigidRunResult *r, long int *steps, double *se
 int main(int argc, char **argv)
 {
   int ns[MAXN] = {10, 100, 1000, 10000}, nn = 4, steps = 100, dense_max = 100, i, k, s;
-  int repeat = 3, rep;
+  int repeat = 3, rep, klu_solve_sundials = 0;
   const char *csv_name = "chain_scaling.csv", *mem_name = "chain_memory.csv";
   const char *floor_name = "chain_floor.csv";
   double klu_n[2][MAXN], klu_t[2][MAXN]; /* full, modified Newton */
@@ -94,6 +99,9 @@ int main(int argc, char **argv)
       repeat = atoi(argv[++i]);
     } else if (strcmp(argv[i], "--dense-max") == 0 && i + 1 < argc) {
       dense_max = atoi(argv[++i]);
+    } else if (strcmp(argv[i], "--klu-solve") == 0 && i + 1 < argc &&
+               (strcmp(argv[i + 1], "lignum") == 0 || strcmp(argv[i + 1], "klu") == 0)) {
+      klu_solve_sundials = strcmp(argv[++i], "klu") == 0;
     } else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) {
       csv_name = argv[++i];
     } else if (strcmp(argv[i], "--memory-csv") == 0 && i + 1 < argc) {
@@ -108,6 +116,7 @@ int main(int argc, char **argv)
       repeat = 1;
     } else {
       fprintf(stderr, "usage: %s [--n N1,N2,...] [--steps S] [--repeat R] [--dense-max N] "
+                      "[--klu-solve lignum|klu] "
                       "[--csv FILE] [--memory-csv FILE] [--floor-csv FILE] [--quick]\n",
               argv[0]);
       return 2;
@@ -127,7 +136,9 @@ int main(int argc, char **argv)
                "first_call_seconds,first_call_steps\n");
 
   printf("chain scaling: generalized-alpha 0.9, index 3, h = 1e-3, %d steps, "
-         "analytic tangents\n\n", steps);
+         "analytic tangents; KLU with %s\n\n", steps,
+         klu_solve_sundials ? "SUNDIALS' setups and solves (--klu-solve klu)"
+                            : "Lignum's solves on a copy of its factors");
   printf("%7s %-6s %6s %9s %10s %10s %9s %7s %9s %10s %10s %11s\n", "N", "solver",
          "steps", "cpu [s]", "first [ms]", "ms/step", "Newton/st", "setups", "nnz",
          "KLU solve", "KLU factor", "bytes/body");
@@ -147,6 +158,7 @@ int main(int argc, char **argv)
       opt.newton  = s == 2 ? LGN_NEWTON_MODIFIED : LGN_NEWTON_FULL;
       opt.predictor = s == 2 ? LGN_PREDICTOR_EXTRAPOLATE : LGN_PREDICTOR_ZERO;
       opt.time_linear_algebra = 1;
+      opt.klu_solve_sundials  = klu_solve_sundials;
       snprintf(label, sizeof label, "%s%s", rigid_solver_name(opt.solver),
                s == 2 ? "-mN" : "");
       opt.h       = 1e-3;

@@ -375,14 +375,57 @@ module flignum_mod
     end function LGNSetLinearSolver
 
     !> With SUNLinSol_KLU: solve with Lignum's own triangular solves on a
-    !! copy of KLU's factors (own = 1, default) or with SUNLinSolSolve
-    !! (own = 0). own: 0 or 1 (sunbooleantype).
+    !! copy of KLU's factors (own = 1) or with SUNLinSolSolve (own = 0,
+    !! default). own: 0 or 1 (sunbooleantype). own = 1 gives LGN_ILL_INPUT
+    !! (and the setting stays off) for versions of KLU and SUNDIALS other
+    !! than KLU 1.3 with SUNDIALS 6.4, or without KLU.
     integer(c_int) function LGNSetOwnKLUSolves(lgn_mem, own) &
         bind(c, name="LGNSetOwnKLUSolves")
       import :: c_int, c_ptr
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: own
     end function LGNSetOwnKLUSolves
+
+    !> Whole copies of KLU's factors (LGNSetOwnKLUSolves).
+    integer(c_int) function LGNGetNumKLUFactorCopies(lgn_mem, ncopies) &
+        bind(c, name="LGNGetNumKLUFactorCopies")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: ncopies
+    end function LGNGetNumKLUFactorCopies
+
+    !> Copies of the values only of KLU's factors (after klu_l_refactor).
+    integer(c_int) function LGNGetNumKLUValueCopies(lgn_mem, nvalues) &
+        bind(c, name="LGNGetNumKLUValueCopies")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nvalues
+    end function LGNGetNumKLUValueCopies
+
+    !> Lignum's refactorisations into the copy in place of KLU's (CSC).
+    integer(c_int) function LGNGetNumOwnKLURefactors(lgn_mem, nrefactors) &
+        bind(c, name="LGNGetNumOwnKLURefactors")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nrefactors
+    end function LGNGetNumOwnKLURefactors
+
+    !> Linear solves with the copy instead of SUNLinSolSolve.
+    integer(c_int) function LGNGetNumOwnKLUSolves(lgn_mem, nsolves) &
+        bind(c, name="LGNGetNumOwnKLUSolves")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nsolves
+    end function LGNGetNumOwnKLUSolves
+
+    !> KLU factored in the copy's place, by cause: a pivot below the rcond
+    !! threshold, a new pattern of A, no copy possible.
+    integer(c_int) function LGNGetNumKLUFallbacks(lgn_mem, npivot, npattern, nnocopy) &
+        bind(c, name="LGNGetNumKLUFallbacks")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: npivot, npattern, nnocopy
+    end function LGNGetNumKLUFallbacks
 
     !> Fixed step size h > 0 (required).
     integer(c_int) function LGNSetStepSize(lgn_mem, h) bind(c, name="LGNSetStepSize")

@@ -42,7 +42,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->msbp         = LGN_MSBP_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
-  mem->own_klu_solves = SUNTRUE;
+  mem->own_klu_solves = SUNFALSE;
   lgnErrSinkInit(&mem->err);
   return mem;
 }

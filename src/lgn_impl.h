@@ -159,12 +159,21 @@ typedef struct LGNMemRec {
   long int last_lin_flag;
 
   /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
-  sunbooleantype own_klu_solves; /* LGNSetOwnKLUSolves (default SUNTRUE)   */
+  sunbooleantype own_klu_solves; /* LGNSetOwnKLUSolves (default SUNFALSE)  */
   sunbooleantype klu_valid;      /* klu holds the factors now in LS         */
   long int klu_nsolve;           /* solves with LS's factors since its setup */
   struct LGNKluCopyRec *klu;     /* the copy (NULL: none)                   */
   long int klu_pattern;          /* A's pattern number when KLU last factored */
-  long int nklu_fallback;        /* own refactorisations handed back to KLU */
+  /* its counters (lgn_ls.c, LGNGetNumKLU*, LGNGetNumOwnKLU*; restarted at
+   * the first setup after LGNInit / LGNReInit) */
+  long int nklu_fallback;        /* own refactorisations handed back to KLU:
+                                    a pivot below the rcond threshold      */
+  long int nklu_copy;            /* whole copies of KLU's factors           */
+  long int nklu_values;          /* copies of their values only             */
+  long int nklu_refactor;        /* Lignum's refactorisations, KLU's stead  */
+  long int nklu_solve;           /* solves with the copy                    */
+  long int nklu_newpattern;      /* KLU factored: a new pattern of A        */
+  long int nklu_nocopy;          /* no copy possible (sizes, memory, A)     */
 
   /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
   sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */

@@ -571,6 +571,21 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
     fprintf(outfile, fmt_l, "Iteration matrix nonzeros", lgnIterationMatrixNnz(mem));
     fprintf(outfile, fmt_l, "DQ column colours", (long int)mem->sp->Kcol.ncolors);
   }
+  if (mem->own_klu_solves) { /* LGNSetOwnKLUSolves: the getters of lgn_ls.c */
+    long int ncopy, nvalue, nrefactor, nsolve, npivot, npattern, nnocopy;
+    (void)LGNGetNumKLUFactorCopies(mem, &ncopy);
+    (void)LGNGetNumKLUValueCopies(mem, &nvalue);
+    (void)LGNGetNumOwnKLURefactors(mem, &nrefactor);
+    (void)LGNGetNumOwnKLUSolves(mem, &nsolve);
+    (void)LGNGetNumKLUFallbacks(mem, &npivot, &npattern, &nnocopy);
+    fprintf(outfile, fmt_l, "KLU factor copies", ncopy);
+    fprintf(outfile, fmt_l, "KLU factor value copies", nvalue);
+    fprintf(outfile, fmt_l, "Own KLU refactorisations", nrefactor);
+    fprintf(outfile, fmt_l, "Own KLU solves", nsolve);
+    fprintf(outfile, fmt_l, "KLU fallbacks: small pivot", npivot);
+    fprintf(outfile, fmt_l, "KLU fallbacks: new pattern", npattern);
+    fprintf(outfile, fmt_l, "KLU fallbacks: no copy", nnocopy);
+  }
   return LGN_SUCCESS;
 }
 

@@ -2,7 +2,9 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Lignum's own solves with KLU's factors (LGNSetOwnKLUSolves). When a
+ * Lignum's own solves with KLU's factors (LGNSetOwnKLUSolves: opt-in, and
+ * only for the versions of KLU and SUNDIALS whose unpublished layouts this
+ * file reads, lgnKluCopySupported in lgn_ls.c). When a
  * factorisation by SUNLinSol_KLU is solved with a second time (lgn_ls.c),
  * lgnKluCopyRefresh copies the factors out of KLU's Numeric object
  * (klu_l_extract) into compressed columns with 32-bit indices, and

@@ -94,6 +94,23 @@ static inline int32_t lgnKluCopyPlace(const LGNKluCopy *c, int lower, int32_t k,
 #define LGN_KLU_NO_COPY 1 /* no factors, sizes beyond 32 bits, or unknown */
 #define LGN_KLU_PIVOT   2 /* a refactorisation with a pivot too small      */
 
+/* The versions whose unpublished layouts the copy reads, the only ones it
+ * accepts (LGNSetOwnKLUSolves): KLU's Numeric and Symbolic objects and
+ * its packed columns (klu_l_extract's input, GatherColumn), as in KLU 1.3
+ * (SuiteSparse 5), and SUNLinSol_KLU's content (its solve function
+ * klu_solver), as in SUNDIALS 6.4. */
+#define LGN_KLU_COPY_KLU_MAJOR 1
+#define LGN_KLU_COPY_KLU_MINOR 3
+#define LGN_KLU_COPY_SUN_MAJOR 6
+#define LGN_KLU_COPY_SUN_MINOR 4
+
+/* 1 if KLU klu_major.klu_minor with SUNDIALS sun_major.sun_minor are the
+ * versions above, else 0 with the reason in *why (a static string; also
+ * "supported" on success; why may be NULL). Pure, in every build
+ * (lgn_ls.c). */
+int lgnKluCopySupported(int klu_major, int klu_minor, int sun_major,
+                        int sun_minor, const char **why);
+
 #if defined(LGN_HAVE_KLU) && defined(SUNDIALS_INT64_T)
 #define LGN_KLU_COPY
 

@@ -3,14 +3,17 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * The bridge to SUNDIALS' SUNLinearSolver: LGNSetLinearSolver,
- * LGNSetOwnKLUSolves, the check of matrix and solver against the problem
- * size, setup (factorisation) and solve. The iteration matrix is filled by
- * lgn_assemble.c (dense) or lgn_assemble_sparse.c (SUNSparseMatrix, CSC or
- * CSR, with SUNLinSol_KLU). With KLU, the solves use a copy of KLU's
- * factors (lgn_klu_solve.c), made when a factorisation is solved with a
- * second time, unless switched off.
+ * LGNSetOwnKLUSolves and the getters of its counters, the check of matrix
+ * and solver against the problem size, setup (factorisation) and solve.
+ * The iteration matrix is filled by lgn_assemble.c (dense) or
+ * lgn_assemble_sparse.c (SUNSparseMatrix, CSC or CSR, with SUNLinSol_KLU).
+ * With KLU, and when switched on (off by default: it reads layouts that
+ * KLU and SUNDIALS do not publish, so only the versions of
+ * lgnKluCopySupported are accepted), the solves use a copy of KLU's
+ * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
  * ---------------------------------------------------------------------------*/
 
+#include <sundials/sundials_version.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -71,12 +74,82 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
   return LGN_SUCCESS;
 }
 
+#define LGN_STR_(x) #x
+#define LGN_STR(x)  LGN_STR_(x)
+
+/* Exactly the versions of lgn_klu_solve.h's LGN_KLU_COPY_* (the reason
+ * names the first library whose version differs). */
+int lgnKluCopySupported(int klu_major, int klu_minor, int sun_major,
+                        int sun_minor, const char **why)
+{
+  const char *reason = NULL;
+  if (klu_major != LGN_KLU_COPY_KLU_MAJOR || klu_minor != LGN_KLU_COPY_KLU_MINOR)
+    reason = "KLU's internal factor layout (klu_l_numeric, klu_l_symbolic, "
+             "the packed columns) is known for KLU "
+             LGN_STR(LGN_KLU_COPY_KLU_MAJOR) "." LGN_STR(LGN_KLU_COPY_KLU_MINOR)
+             " only";
+  else if (sun_major != LGN_KLU_COPY_SUN_MAJOR ||
+           sun_minor != LGN_KLU_COPY_SUN_MINOR)
+    reason = "SUNLinSol_KLU's private content (its klu_solver) is known for "
+             "SUNDIALS " LGN_STR(LGN_KLU_COPY_SUN_MAJOR) "."
+             LGN_STR(LGN_KLU_COPY_SUN_MINOR) " only";
+  if (why != NULL) *why = reason != NULL ? reason : "supported";
+  return reason == NULL;
+}
+
+/* Whether the copy of KLU's factors can be switched on: Lignum built with
+ * KLU, SUNDIALS with 64-bit indices (klu_l_*), and lgnKluCopySupported for
+ * the KLU compiled against (KLU has no version call) with the SUNDIALS
+ * found at run time and the one compiled against. Else reports why, with
+ * the versions found and those supported, and returns LGN_ILL_INPUT. */
+static int KluCopyAvailable(LGNMem mem)
+{
+#if defined(LGN_KLU_COPY)
+  int major = -1, minor = -1, patch = -1;
+  char label[64];
+  const char *why = NULL;
+  if (SUNDIALSGetVersionNumber(&major, &minor, &patch, label,
+                               (int)sizeof label) != 0)
+    major = minor = patch = -1;
+  if (lgnKluCopySupported(KLU_MAIN_VERSION, KLU_SUB_VERSION, major, minor,
+                          &why) &&
+      lgnKluCopySupported(KLU_MAIN_VERSION, KLU_SUB_VERSION,
+                          SUNDIALS_VERSION_MAJOR, SUNDIALS_VERSION_MINOR, &why))
+    return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "Lignum's solves on a copy of KLU's factors read layouts that "
+            "KLU and SUNDIALS do not publish, and %s: found KLU %d.%d.%d "
+            "(compiled against) with SUNDIALS %d.%d.%d (run time; compiled "
+            "against %d.%d.%d); supported: KLU %d.%d.x with SUNDIALS %d.%d.x. "
+            "The setting stays off (KLU's own solves).",
+            why, KLU_MAIN_VERSION, KLU_SUB_VERSION, KLU_SUBSUB_VERSION, major,
+            minor, patch, SUNDIALS_VERSION_MAJOR, SUNDIALS_VERSION_MINOR,
+            SUNDIALS_VERSION_PATCH, LGN_KLU_COPY_KLU_MAJOR,
+            LGN_KLU_COPY_KLU_MINOR, LGN_KLU_COPY_SUN_MAJOR,
+            LGN_KLU_COPY_SUN_MINOR);
+  return LGN_ILL_INPUT;
+#elif defined(LGN_HAVE_KLU)
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "Lignum's solves on a copy of KLU's factors need SUNDIALS with "
+            "64-bit indices (KLU's klu_l_* interface); this SUNDIALS has "
+            "%d-bit sunindextype. The setting stays off (KLU's own solves).",
+            (int)(8 * sizeof(sunindextype)));
+  return LGN_ILL_INPUT;
+#else
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "Lignum was built without KLU (LGN_ENABLE_KLU=OFF): there are no "
+            "KLU factors to copy. The setting stays off.");
+  return LGN_ILL_INPUT;
+#endif
+}
+
 int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
 {
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  mem->own_klu_solves = own ? SUNTRUE : SUNFALSE;
+  if (own) flag = KluCopyAvailable(mem);
+  mem->own_klu_solves = own && flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
   if (!mem->own_klu_solves && mem->klu != NULL) {
     /* SUNLinSolSetup and SUNLinSolSolve from now on; the factors of the
      * matrix may be only in the copy (Lignum refactored), so the next
@@ -84,6 +157,90 @@ int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
     lgnInvalidate(mem, LGN_CHANGE_MATRIX);
     lgnKluCopyFree(&mem->klu);
   } /* else the copy is made at the first solve after the next setup */
+  return flag;
+}
+
+/* A counter of the copy as of now: Lignum's counters restart at LGNInit
+ * and LGNReInit, which reset nlsetup; the copy's restart with them at the
+ * first setup after (RestartKluCounters), before which nothing can be
+ * copied, refactored or solved with, so until then they are 0. */
+static long int KluCount(LGNMem mem, long int count)
+{
+  return mem->nlsetup > 0 ? count : 0L;
+}
+
+/* The counters of the copy, at the first setup of a run. */
+static void RestartKluCounters(LGNMem mem)
+{
+  mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
+  mem->nklu_refactor = mem->nklu_solve = 0;
+  mem->nklu_newpattern = mem->nklu_nocopy = 0;
+}
+
+/* The common part of the getters below: the memory block, and the output
+ * argument `name` (out) not NULL. */
+static int KluGetter(void *lgn_mem, const char *func, const long int *out,
+                     const char *name, LGNMem *mem)
+{
+  int flag = lgnAccessMem(lgn_mem, func, mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (out == NULL) {
+    lgnProcessError(*mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = NULL illegal.", name);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumKLUFactorCopies(void *lgn_mem, long int *ncopies)
+{
+  LGNMem mem;
+  int flag = KluGetter(lgn_mem, __func__, ncopies, "ncopies", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *ncopies = KluCount(mem, mem->nklu_copy);
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumKLUValueCopies(void *lgn_mem, long int *nvalues)
+{
+  LGNMem mem;
+  int flag = KluGetter(lgn_mem, __func__, nvalues, "nvalues", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *nvalues = KluCount(mem, mem->nklu_values);
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumOwnKLURefactors(void *lgn_mem, long int *nrefactors)
+{
+  LGNMem mem;
+  int flag = KluGetter(lgn_mem, __func__, nrefactors, "nrefactors", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *nrefactors = KluCount(mem, mem->nklu_refactor);
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumOwnKLUSolves(void *lgn_mem, long int *nsolves)
+{
+  LGNMem mem;
+  int flag = KluGetter(lgn_mem, __func__, nsolves, "nsolves", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *nsolves = KluCount(mem, mem->nklu_solve);
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
+                          long int *nnocopy)
+{
+  LGNMem mem;
+  int flag = KluGetter(lgn_mem, __func__, npivot, "npivot", &mem);
+  if (flag == LGN_SUCCESS)
+    flag = KluGetter(lgn_mem, __func__, npattern, "npattern", &mem);
+  if (flag == LGN_SUCCESS)
+    flag = KluGetter(lgn_mem, __func__, nnocopy, "nnocopy", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *npivot   = KluCount(mem, mem->nklu_fallback);
+  *npattern = KluCount(mem, mem->nklu_newpattern);
+  *nnocopy  = KluCount(mem, mem->nklu_nocopy);
   return LGN_SUCCESS;
 }
 
@@ -128,13 +285,24 @@ int lgnLsCheck(LGNMem mem)
  * integration goes on, only slower, and the copy's memory is released. */
 static void CopyKLUFactors(LGNMem mem)
 {
+  long int nfull = 0, nvalues = 0;
   int flag;
   if (!mem->own_klu_solves || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU ||
       mem->klu_nsolve != (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT ? 0 : 1))
     return;
+  if (mem->klu != NULL) {
+    nfull   = mem->klu->nfull;
+    nvalues = mem->klu->nvalues;
+  }
   flag = lgnKluCopyRefresh(&mem->klu, mem->LS);
   mem->klu_valid = flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
-  if (flag != LGN_SUCCESS) lgnKluCopyFree(&mem->klu);
+  if (flag == LGN_SUCCESS) {
+    mem->nklu_copy   += mem->klu->nfull - nfull;
+    mem->nklu_values += mem->klu->nvalues - nvalues;
+  } else {
+    mem->nklu_nocopy++;
+    lgnKluCopyFree(&mem->klu);
+  }
 }
 
 /* The number of A's sparsity pattern (changes when the assembly builds a
@@ -147,23 +315,29 @@ static long int PatternNumber(LGNMem mem)
 /* Lignum's refactorisation of A into the copy of KLU's factors, with KLU's
  * pivots and scaling (lgnKluCopyRefactor), while the copy is of A's
  * pattern. Returns SUNTRUE when it took the place of SUNLinSolSetup; on a
- * pivot that became too small, or anything else, KLU factors (and may
- * pivot anew), and its factors are copied again at the next solve. */
+ * new pattern, a pivot that became too small, or anything else (counted
+ * by cause), KLU factors (and may pivot anew), and its factors are copied
+ * again at the next solve. */
 static sunbooleantype OwnRefactor(LGNMem mem)
 {
 #if defined(LGN_KLU_COPY)
   int flag;
   if (!mem->own_klu_solves || mem->klu == NULL || !mem->klu->rows ||
-      mem->klu_pattern != PatternNumber(mem) ||
       SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
     return SUNFALSE;
+  if (mem->klu_pattern != PatternNumber(mem)) {
+    mem->nklu_newpattern++;
+    return SUNFALSE;
+  }
   flag = lgnKluCopyRefactor(mem->klu, mem->A, mem->klu_pattern,
                             SUNLinSol_KLUGetCommon(mem->LS)->scale);
   if (flag == LGN_MEM_FAIL) lgnKluCopyFree(&mem->klu);
   if (flag != LGN_SUCCESS) {
-    mem->nklu_fallback++;
+    if (flag == LGN_KLU_PIVOT) mem->nklu_fallback++;
+    else mem->nklu_nocopy++;
     return SUNFALSE;
   }
+  mem->nklu_refactor++;
   mem->klu_valid = SUNTRUE; /* the factors are the copy's: nothing to copy */
   return SUNTRUE;
 #else
@@ -175,7 +349,7 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 int lgnLsSetup(LGNMem mem)
 {
   int ret;
-  mem->nlsetup++;
+  if (++mem->nlsetup == 1) RestartKluCounters(mem);
   if (OwnRefactor(mem)) return LGN_SUCCESS;
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
@@ -199,6 +373,7 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
   mem->klu_nsolve++;
   mem->nlsolve++;
   if (mem->klu_valid) { /* Lignum's solve on its copy of the factors */
+    mem->nklu_solve++;
     lgnKluCopySolve(mem->klu, lgnData(b), lgnData(x));
     mem->last_lin_flag = 0;
     return LGN_SUCCESS;

@@ -104,6 +104,10 @@ program chain_f
     call check(LGNSetCurvatureFn(mem, c_funloc(chain_curvature)), "LGNSetCurvatureFn")
   end if
   call check(LGNSetLinearSolver(mem, LS, A), "LGNSetLinearSolver")
+  ! Lignum's solves on a copy of KLU's factors (off by default), opted in as
+  ! rigid_run does; KLU's own solves if the versions are not the copy's
+  flag = LGNSetOwnKLUSolves(mem, 1_c_int)
+  if (flag /= LGN_ILL_INPUT) call check(flag, "LGNSetOwnKLUSolves")
   call check(LGNSetStepSize(mem, h), "LGNSetStepSize")
   if (newmark) then
     call check(LGNSetNewmark(mem, beta, gamma), "LGNSetNewmark")

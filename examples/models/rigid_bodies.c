@@ -505,7 +505,14 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     if (flag == 0) flag = LGNSetCurvatureFn(mem, Curvature);
   }
   if (flag == 0) flag = LGNSetLinearSolver(mem, LS, A);
-  if (flag == 0) flag = LGNSetOwnKLUSolves(mem, !opt->klu_solve_sundials);
+  /* Lignum's solves on a copy of KLU's factors, off by default in the
+   * library: the examples opt in (--klu-solve lignum) unless the versions
+   * of KLU and SUNDIALS are not those the copy accepts (LGN_ILL_INPUT, with
+   * a message naming them: KLU's own solves then) */
+  if (flag == 0 && opt->solver != RB_DENSE) {
+    flag = LGNSetOwnKLUSolves(mem, !opt->klu_solve_sundials);
+    if (flag == LGN_ILL_INPUT) flag = 0;
+  }
   if (flag == 0) flag = LGNSetStepSize(mem, opt->h);
   if (flag == 0)
     flag = opt->method == 1 ? LGNSetGenAlpha(mem, opt->rho_inf)

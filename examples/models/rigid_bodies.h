@@ -61,7 +61,8 @@ typedef struct {
   int klu_ordering;         /* KLU ordering: 0 AMD (default), 1 COLAMD, 2 natural */
   int klu_solve_sundials;   /* 1: solves by SUNLinSolSolve (KLU's own);
                                0 (default): Lignum's on a copy of the
-                               factors (LGNSetOwnKLUSolves)              */
+                               factors (LGNSetOwnKLUSolves, opted in; KLU's
+                               if the versions are not the copy's)      */
   int plain_residual;       /* 1: M evaluated every iteration and B^T lambda
                                from B (no LGNSetMassConstant,
                                LGNSetConstraintForceFn); 0 (default): both */

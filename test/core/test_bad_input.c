@@ -3,11 +3,14 @@
  * argument, a failing callback (error code or NaN) is reported with its flag,
  * and afterwards the integrator is still usable and continues from the last
  * accepted state exactly as if nothing had happened. Leaks are caught by the
- * ASan build and valgrind. Model: a planar pendulum on R^2 with
- * Phi = (x^2 + y^2 - 1)/2. */
+ * ASan build and valgrind. LGNSetOwnKLUSolves(SUNTRUE) is refused in a
+ * build without KLU (LGN_ENABLE_KLU=OFF) with a message, and the getters
+ * of the copy's counters name a NULL output. Model: a planar pendulum on
+ * R^2 with Phi = (x^2 + y^2 - 1)/2. */
 #include <string.h>
 
 #include <lignum/lignum.h>
+#include <lignum/lignum_config.h> /* LGN_HAVE_KLU */
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -173,6 +176,11 @@ static void NullMemory(void)
   CHECK(LGNSetMassConstant(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetMassConstant(NULL)");
   CHECK(LGNSetLinearSolver(NULL, NULL, NULL) == LGN_MEM_NULL, "LGNSetLinearSolver(NULL)");
   CHECK(LGNSetOwnKLUSolves(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetOwnKLUSolves(NULL)");
+  CHECK(LGNGetNumKLUFactorCopies(NULL, &l) == LGN_MEM_NULL, "LGNGetNumKLUFactorCopies(NULL)");
+  CHECK(LGNGetNumKLUValueCopies(NULL, &l) == LGN_MEM_NULL, "LGNGetNumKLUValueCopies(NULL)");
+  CHECK(LGNGetNumOwnKLURefactors(NULL, &l) == LGN_MEM_NULL, "LGNGetNumOwnKLURefactors(NULL)");
+  CHECK(LGNGetNumOwnKLUSolves(NULL, &l) == LGN_MEM_NULL, "LGNGetNumOwnKLUSolves(NULL)");
+  CHECK(LGNGetNumKLUFallbacks(NULL, &l, &l, &l) == LGN_MEM_NULL, "LGNGetNumKLUFallbacks(NULL)");
   CHECK(LGNSetStepSize(NULL, 0.1) == LGN_MEM_NULL, "LGNSetStepSize(NULL)");
   CHECK(LGNSetNewmark(NULL, 0.25, 0.5) == LGN_MEM_NULL, "LGNSetNewmark(NULL)");
   CHECK(LGNSetGenAlpha(NULL, 0.9) == LGN_MEM_NULL, "LGNSetGenAlpha(NULL)");
@@ -243,6 +251,31 @@ static void IllegalArguments(void)
   CHECK(LGNSetMaxNewtonIters(f.mem, -2) == LGN_ILL_INPUT && strstr(last_msg, "maxiters"), "maxiters < 0");
   CHECK(LGNSetLinearSolver(f.mem, NULL, f.A) == LGN_ILL_INPUT && strstr(last_msg, "LS"), "LS = NULL");
   CHECK(LGNSetMassFn(f.mem, NULL) == LGN_ILL_INPUT && strstr(last_msg, "mass"), "mass = NULL");
+  /* Lignum's solves on a copy of KLU's factors: off always works; on is
+   * refused without KLU (with a message saying so; the setting stays
+   * off) and, with KLU, only recorded for this dense solver (the
+   * versions it accepts: test_klu_solve) */
+  CHECK(LGNSetOwnKLUSolves(f.mem, SUNFALSE) == LGN_SUCCESS, "LGNSetOwnKLUSolves(SUNFALSE)");
+#if defined(LGN_HAVE_KLU)
+  CHECK(LGNSetOwnKLUSolves(f.mem, SUNTRUE) == LGN_SUCCESS,
+        "LGNSetOwnKLUSolves(SUNTRUE) with KLU (KLU 1.3, SUNDIALS 6.4): '%s'", last_msg);
+  CHECK(LGNSetOwnKLUSolves(f.mem, SUNFALSE) == LGN_SUCCESS, "and off again");
+#else
+  last_msg[0] = '\0';
+  CHECK(LGNSetOwnKLUSolves(f.mem, SUNTRUE) == LGN_ILL_INPUT &&
+            strstr(last_msg, "LGN_ENABLE_KLU=OFF") != NULL &&
+            strstr(last_msg, "stays off") != NULL,
+        "LGNSetOwnKLUSolves(SUNTRUE) without KLU is refused: '%s'", last_msg);
+#endif
+  {
+    long int n = -1;
+    CHECK(LGNGetNumOwnKLUSolves(f.mem, NULL) == LGN_ILL_INPUT && strstr(last_msg, "nsolves = NULL"),
+          "nsolves = NULL: '%s'", last_msg);
+    CHECK(LGNGetNumKLUFallbacks(f.mem, &n, NULL, &n) == LGN_ILL_INPUT &&
+              strstr(last_msg, "npattern = NULL"),
+          "npattern = NULL: '%s'", last_msg);
+    CHECK(LGNGetNumOwnKLUSolves(f.mem, &n) == LGN_SUCCESS && n == 0, "no solve with a copy");
+  }
 
   /* missing pieces are reported at LGNSolve, and completing them works */
   CHECK(LGNInit(f.mem, 0.0, f.q, f.v) == LGN_SUCCESS, "LGNInit");
@@ -271,6 +304,18 @@ static void IllegalArguments(void)
   CHECK(LGNSolve(f.mem, 0.05, &t, f.q, f.v, LGN_NORMAL) == LGN_BAD_TOUT, "tout behind t");
   CHECK(LGNSolve(f.mem, 0.2, &t, f.q, f.v, LGN_NORMAL) == LGN_SUCCESS && fabs(t - 0.2) < 1e-15,
         "and continues after LGN_BAD_TOUT");
+#if !defined(LGN_HAVE_KLU)
+  {
+    long int ncopy = -1, nsolve = -1, np = -1, npat = -1, nno = -1;
+    CHECK(LGNSetOwnKLUSolves(f.mem, SUNTRUE) == LGN_ILL_INPUT &&
+              LGNSolve(f.mem, 0.3, &t, f.q, f.v, LGN_NORMAL) == LGN_SUCCESS &&
+              LGNGetNumKLUFactorCopies(f.mem, &ncopy) == LGN_SUCCESS &&
+              LGNGetNumOwnKLUSolves(f.mem, &nsolve) == LGN_SUCCESS &&
+              LGNGetNumKLUFallbacks(f.mem, &np, &npat, &nno) == LGN_SUCCESS &&
+              ncopy == 0 && nsolve == 0 && np == 0 && npat == 0 && nno == 0,
+          "without KLU, refused during a run, which goes on; the copy's counters are 0");
+  }
+#endif
   N_VDestroy(q3);
   Teardown(&f);
 }

@@ -28,7 +28,13 @@
  *      factorisations solved with once (full Newton); the switch off
  *      releases it and leaves Lignum on SUNLinSolSolve; it can be flipped
  *      during a run; the copy is counted in LGNGetWorkSpace; the
- *      refreshes after refactorisations take the values only. */
+ *      refreshes after refactorisations take the values only; the public
+ *      getters (LGNGetNumKLUFactorCopies, ...) count what the copy did;
+ *  (d) the versions the copy accepts (lgnKluCopySupported, fake versions):
+ *      exactly KLU 1.3 (the one installed here) with SUNDIALS 6.4;
+ *  (e) the copy is off by default (LGNCreate); switched on, its counters
+ *      are in LGNPrintAllStats and restart at LGNReInit; the getters name
+ *      a NULL output argument. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1139,7 +1145,8 @@ typedef struct {
 } PChain;
 
 /* The chain at 30 degrees from the vertical, at rest; modified Newton with
- * the extrapolating predictor (matrices reused over steps) or full Newton. */
+ * the extrapolating predictor (matrices reused over steps) or full Newton;
+ * LGNSetOwnKLUSolves(own), or the default for own < 0. */
 static void PChainSetup(PChain *c, SUNContext ctx, int type, int newton, int own)
 {
   const sunindextype nv = 2 * NMASS, n = nv + NMASS;
@@ -1169,7 +1176,7 @@ static void PChainSetup(PChain *c, SUNContext ctx, int type, int newton, int own
   if (!flag) flag = LGNSetStepSize(c->mem, 1e-3);
   if (!flag) flag = LGNSetNewtonMode(c->mem, newton);
   if (!flag) flag = LGNSetPredictor(c->mem, LGN_PREDICTOR_EXTRAPOLATE);
-  if (!flag) flag = LGNSetOwnKLUSolves(c->mem, own);
+  if (!flag && own >= 0) flag = LGNSetOwnKLUSolves(c->mem, own);
   CHECK(flag == LGN_SUCCESS, "point chain: set-up (%d)", flag);
 }
 
@@ -1182,6 +1189,26 @@ static void PChainFree(PChain *c)
   N_VDestroy(c->v);
   N_VDestroy(c->tmpl);
   LGNGroup_Destroy(c->G);
+}
+
+/* The public counters of the copy, and the linear solver's. */
+typedef struct {
+  long int ncopy, nvalue, nrefactor, nsolve, npivot, npattern, nnocopy;
+  long int nlsetup, nlsolve;
+} Counts;
+
+static Counts GetCounts(void *mem)
+{
+  Counts k;
+  int flag = LGNGetNumKLUFactorCopies(mem, &k.ncopy);
+  flag |= LGNGetNumKLUValueCopies(mem, &k.nvalue);
+  flag |= LGNGetNumOwnKLURefactors(mem, &k.nrefactor);
+  flag |= LGNGetNumOwnKLUSolves(mem, &k.nsolve);
+  flag |= LGNGetNumKLUFallbacks(mem, &k.npivot, &k.npattern, &k.nnocopy);
+  flag |= LGNGetNumLinSolvSetups(mem, &k.nlsetup);
+  flag |= LGNGetNumLinSolves(mem, &k.nlsolve);
+  CHECK(flag == LGN_SUCCESS, "the copy's getters succeed (%d)", flag);
+  return k;
 }
 
 static void Switch(SUNContext ctx, int type, int newton)
@@ -1241,6 +1268,29 @@ static void Switch(SUNContext ctx, int type, int newton)
           "point chain %s %s: on, factors solved with once are not copied", fmt, nwt);
   CHECK(moff->klu == NULL && !moff->klu_valid,
         "point chain %s %s: off, no copy (SUNLinSolSolve)", fmt, nwt);
+  {
+    Counts on_c = GetCounts(on.mem), off_c = GetCounts(off.mem);
+    CHECK(on_c.ncopy == nfull && on_c.nvalue == nvalues &&
+              on_c.nrefactor == nrefactor && on_c.npivot == 0 &&
+              on_c.npattern == 0 && on_c.nnocopy == 0,
+          "point chain %s %s: the getters count the copy's refreshes and "
+          "refactorisations (%ld/%ld, %ld/%ld, %ld/%ld)", fmt, nwt, on_c.ncopy,
+          nfull, on_c.nvalue, nvalues, on_c.nrefactor, nrefactor);
+    CHECK(on_c.nsolve > 0 ? (newton == LGN_NEWTON_MODIFIED || byrows)
+                          : (newton == LGN_NEWTON_FULL && !byrows),
+          "point chain %s %s: Lignum's solves counted (%ld of %ld)", fmt, nwt,
+          on_c.nsolve, on_c.nlsolve);
+    /* CSC: every setup after KLU's first is Lignum's, every solve too */
+    if (byrows)
+      CHECK(on_c.nrefactor == on_c.nlsetup - 1 && on_c.nsolve == on_c.nlsolve,
+            "point chain %s %s: all setups but KLU's first are Lignum's (%ld of "
+            "%ld), all solves (%ld of %ld)", fmt, nwt, on_c.nrefactor,
+            on_c.nlsetup, on_c.nsolve, on_c.nlsolve);
+    CHECK(off_c.ncopy == 0 && off_c.nvalue == 0 && off_c.nrefactor == 0 &&
+              off_c.nsolve == 0 && off_c.npivot == 0 && off_c.npattern == 0 &&
+              off_c.nnocopy == 0,
+          "point chain %s %s: off, the copy's counters stay 0", fmt, nwt);
+  }
   d = MaxDiff(N_VGetArrayPointer(on.q), N_VGetArrayPointer(off.q), 2 * NMASS);
   LGNGetNumNewtonIters(on.mem, &nni_on);
   LGNGetNumNewtonIters(off.mem, &nni_off);
@@ -1316,6 +1366,162 @@ static void RigidChain(SUNContext ctx, RigidSolver solver, int newton)
   rigid_free(&sys);
 }
 
+/* (d) The versions the copy accepts (lgnKluCopySupported), with fake ones:
+ * exactly KLU 1.3 with SUNDIALS 6.4, the KLU installed here. */
+static void Versions(void)
+{
+  static const struct {
+    int klu_major, klu_minor, sun_major, sun_minor, ok;
+    const char *blame; /* in the reason */
+  } cases[] = {
+      {1, 3, 6, 4, 1, "supported"},
+      {1, 2, 6, 4, 0, "KLU"},   /* older KLU */
+      {1, 4, 6, 4, 0, "KLU"},
+      {2, 0, 6, 4, 0, "KLU"},   /* SuiteSparse 6: KLU 2.0 */
+      {2, 3, 7, 1, 0, "KLU"},   /* both: KLU named first */
+      {1, 3, 6, 3, 0, "SUNDIALS"},
+      {1, 3, 6, 5, 0, "SUNDIALS"},
+      {1, 3, 7, 0, 0, "SUNDIALS"},
+      {1, 3, 5, 4, 0, "SUNDIALS"},
+      {1, 3, -1, -1, 0, "SUNDIALS"}, /* no version found */
+  };
+  size_t i;
+  const char *why;
+  CHECK(LGN_KLU_COPY_KLU_MAJOR == KLU_MAIN_VERSION &&
+            LGN_KLU_COPY_KLU_MINOR == KLU_SUB_VERSION,
+        "(d) the copy accepts the KLU installed here (%d.%d; accepts %d.%d)",
+        KLU_MAIN_VERSION, KLU_SUB_VERSION, LGN_KLU_COPY_KLU_MAJOR,
+        LGN_KLU_COPY_KLU_MINOR);
+  for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    why = NULL;
+    CHECK(lgnKluCopySupported(cases[i].klu_major, cases[i].klu_minor,
+                              cases[i].sun_major, cases[i].sun_minor, &why) ==
+                  cases[i].ok &&
+              why != NULL && strstr(why, cases[i].blame) != NULL,
+          "(d) KLU %d.%d with SUNDIALS %d.%d: %s (%s)", cases[i].klu_major,
+          cases[i].klu_minor, cases[i].sun_major, cases[i].sun_minor,
+          cases[i].ok ? "accepted" : "refused", why != NULL ? why : "no reason");
+  }
+  CHECK(lgnKluCopySupported(1, 3, 6, 4, NULL) == 1 &&
+            lgnKluCopySupported(1, 3, 6, 5, NULL) == 0,
+        "(d) why = NULL is allowed");
+  printf("(d) versions: KLU %d.%d with SUNDIALS %d.%d accepted, others refused\n",
+         LGN_KLU_COPY_KLU_MAJOR, LGN_KLU_COPY_KLU_MINOR, LGN_KLU_COPY_SUN_MAJOR,
+         LGN_KLU_COPY_SUN_MINOR);
+}
+
+static char last_msg[512];
+static void Capture(int code, const char *mod, const char *fn, const char *msg,
+                    void *d)
+{
+  (void)code; (void)mod; (void)d;
+  snprintf(last_msg, sizeof last_msg, "%s: %s", fn, msg);
+}
+
+/* Whether LGNPrintAllStats prints the copy's counters. */
+static int StatsShowCopy(void *mem)
+{
+  FILE *f = tmpfile();
+  char line[256];
+  int found = 0;
+  if (f == NULL) return -1;
+  LGNPrintAllStats(mem, f, SUN_OUTPUTFORMAT_TABLE);
+  rewind(f);
+  while (fgets(line, sizeof line, f) != NULL)
+    if (strstr(line, "Own KLU solves") != NULL) found = 1;
+  fclose(f);
+  return found;
+}
+
+/* (e) Through the public API: the copy is off by default (no copy, its
+ * counters 0, not in LGNPrintAllStats); switched on it is counted, and
+ * the counters restart at LGNReInit (0 until the next setup; after it,
+ * with the copy kept, every setup is Lignum's and so is every solve);
+ * the getters check their arguments. */
+static void DefaultAndCounters(SUNContext ctx)
+{
+  PChain c;
+  LGNMem m;
+  Counts k;
+  sunrealtype t;
+  long int x;
+  int flag;
+
+  PChainSetup(&c, ctx, CSC_MAT, LGN_NEWTON_FULL, -1);
+  m    = (LGNMem)c.mem;
+  flag = LGNSolve(c.mem, 0.05, &t, c.q, c.v, LGN_NORMAL);
+  k    = GetCounts(c.mem);
+  CHECK(flag == LGN_SUCCESS && !m->own_klu_solves && m->klu == NULL &&
+            k.ncopy == 0 && k.nrefactor == 0 && k.nsolve == 0 &&
+            k.nlsolve > 0 && StatsShowCopy(c.mem) == 0,
+        "(e) default: no copy of KLU's factors (own %d, %ld copies, %ld own "
+        "solves of %ld), none in LGNPrintAllStats",
+        (int)m->own_klu_solves, k.ncopy, k.nsolve, k.nlsolve);
+
+  CHECK(LGNSetOwnKLUSolves(c.mem, SUNTRUE) == LGN_SUCCESS && m->own_klu_solves,
+        "(e) switched on (KLU %d.%d.%d with SUNDIALS %d.%d)", KLU_MAIN_VERSION,
+        KLU_SUB_VERSION, KLU_SUBSUB_VERSION, SUNDIALS_VERSION_MAJOR,
+        SUNDIALS_VERSION_MINOR);
+  flag = LGNSolve(c.mem, 0.1, &t, c.q, c.v, LGN_NORMAL);
+  k    = GetCounts(c.mem);
+  CHECK(flag == LGN_SUCCESS && k.ncopy == 1 && k.nrefactor > 0 &&
+            k.nsolve > 0 && k.nsolve < k.nlsolve && StatsShowCopy(c.mem) == 1,
+        "(e) on: %ld copy, %ld refactorisations, %ld of %ld solves, in "
+        "LGNPrintAllStats", k.ncopy, k.nrefactor, k.nsolve, k.nlsolve);
+
+  flag = LGNReInit(c.mem, t, c.q, c.v);
+  k    = GetCounts(c.mem);
+  CHECK(flag == LGN_SUCCESS && k.ncopy == 0 && k.nrefactor == 0 &&
+            k.nsolve == 0 && k.nvalue == 0 && k.npivot == 0,
+        "(e) LGNReInit restarts the counters (%ld, %ld, %ld)", k.ncopy,
+        k.nrefactor, k.nsolve);
+  flag = LGNSolve(c.mem, t + 0.05, &t, c.q, c.v, LGN_NORMAL);
+  k    = GetCounts(c.mem);
+  CHECK(flag == LGN_SUCCESS && m->klu != NULL && k.ncopy == 0 &&
+            k.nrefactor == k.nlsetup && k.nsolve == k.nlsolve && k.nlsolve > 0,
+        "(e) after LGNReInit the copy is kept: setups %ld of %ld and solves "
+        "%ld of %ld Lignum's, %ld copies", k.nrefactor, k.nlsetup, k.nsolve,
+        k.nlsolve, k.ncopy);
+
+  /* the getters' arguments: each NULL output is named */
+  LGNSetErrHandlerFn(c.mem, Capture, NULL);
+  CHECK(LGNGetNumKLUFactorCopies(c.mem, NULL) == LGN_ILL_INPUT &&
+            strstr(last_msg, "ncopies = NULL") != NULL,
+        "(e) ncopies = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumKLUValueCopies(c.mem, NULL) == LGN_ILL_INPUT &&
+            strstr(last_msg, "nvalues = NULL") != NULL,
+        "(e) nvalues = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumOwnKLURefactors(c.mem, NULL) == LGN_ILL_INPUT &&
+            strstr(last_msg, "nrefactors = NULL") != NULL,
+        "(e) nrefactors = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumOwnKLUSolves(c.mem, NULL) == LGN_ILL_INPUT &&
+            strstr(last_msg, "LGNGetNumOwnKLUSolves") != NULL &&
+            strstr(last_msg, "nsolves = NULL") != NULL,
+        "(e) nsolves = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumKLUFallbacks(c.mem, NULL, &x, &x) == LGN_ILL_INPUT &&
+            strstr(last_msg, "npivot = NULL") != NULL,
+        "(e) npivot = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumKLUFallbacks(c.mem, &x, NULL, &x) == LGN_ILL_INPUT &&
+            strstr(last_msg, "npattern = NULL") != NULL,
+        "(e) npattern = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumKLUFallbacks(c.mem, &x, &x, NULL) == LGN_ILL_INPUT &&
+            strstr(last_msg, "nnocopy = NULL") != NULL,
+        "(e) nnocopy = NULL: '%s'", last_msg);
+  CHECK(LGNGetNumKLUFactorCopies(NULL, &x) == LGN_MEM_NULL &&
+            LGNGetNumKLUValueCopies(NULL, &x) == LGN_MEM_NULL &&
+            LGNGetNumOwnKLURefactors(NULL, &x) == LGN_MEM_NULL &&
+            LGNGetNumOwnKLUSolves(NULL, &x) == LGN_MEM_NULL &&
+            LGNGetNumKLUFallbacks(NULL, &x, &x, &x) == LGN_MEM_NULL,
+        "(e) the getters refuse a NULL memory block");
+
+  /* off again: the copy is freed, nothing more is counted */
+  CHECK(LGNSetOwnKLUSolves(c.mem, SUNFALSE) == LGN_SUCCESS && m->klu == NULL &&
+            !m->own_klu_solves && StatsShowCopy(c.mem) == 0,
+        "(e) switched off: the copy is freed, not in LGNPrintAllStats");
+  PChainFree(&c);
+  printf("(e) default off, counters, LGNReInit, arguments: checked\n");
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -1331,6 +1537,8 @@ int main(void)
   RigidChain(ctx, RB_KLU_CSC, LGN_NEWTON_MODIFIED);
   RigidChain(ctx, RB_KLU_CSR, LGN_NEWTON_MODIFIED);
   RigidChain(ctx, RB_KLU_CSC, LGN_NEWTON_FULL);
+  Versions();
+  DefaultAndCounters(ctx);
   CHECK(LGNSetOwnKLUSolves(NULL, SUNTRUE) == LGN_MEM_NULL, "LGNSetOwnKLUSolves(NULL)");
   printf("every comparison with KLU's solve by columns (CSR), solves and "
          "trajectories, %s\n",

@@ -15,7 +15,11 @@
  *      analysis, more entries, the new entries closed over T's blocks)
  *      and stay equal;
  *  (c) for CSC and CSR, full and modified Newton, index 3 and index 2 with
- *      the exact kinematics, analytic and difference-quotient tangents.
+ *      the exact kinematics, analytic and difference-quotient tangents;
+ *  (d) with Lignum's solves on a copy of KLU's factors (opted in): for CSC
+ *      each new pattern is one fallback to KLU (LGNGetNumKLUFallbacks) and
+ *      one more whole copy, and Lignum refactors in between; for CSR
+ *      nothing is refactored into the copy.
  * With full Newton A also equals the dense run's A to round-off, and the
  * final states agree with the dense run's.
  * SPDX-License-Identifier: BSD-3-Clause
@@ -305,6 +309,9 @@ static int RunCreate(Run *r, RigidSystem *sys, const Config *c, int dense, int f
     flag = LGNSetStiffnessFn(r->mem, Stiffness);
   if (!flag && c->tangents) flag = LGNSetDampingFn(r->mem, Damping);
   if (!flag) flag = LGNSetLinearSolver(r->mem, r->LS, r->A);
+  /* Lignum's solves on a copy of KLU's factors, off by default: opted in,
+   * as when this test was written */
+  if (!flag && !dense) flag = LGNSetOwnKLUSolves(r->mem, SUNTRUE);
   if (!flag) flag = LGNSetStepSize(r->mem, 2e-3);
   if (!flag) flag = LGNSetGenAlpha(r->mem, 0.9);
   if (!flag) flag = LGNSetNewtonMode(r->mem, c->newton);
@@ -476,6 +483,29 @@ static void Check(const Config *c, SUNContext ctx)
   if (c->newton == LGN_NEWTON_FULL)
     CHECK(dA <= 1e-9 * Amax, "%s: sparse A = dense A: max |dA| = %.3e (max |A| = %.3e)",
           c->name, dA, Amax);
+  /* (d) the copy of KLU's factors (opted in): by rows (CSC) Lignum
+   * refactors into it, and each new pattern made KLU factor (and analyse)
+   * again, counted as such, and its factors be copied anew; by columns
+   * (CSR) KLU refactors and the copy is never refactored into */
+  {
+    long int npivot = -1, npattern = -1, nnocopy = -1;
+    const long int ncopy = Get(fast.mem, LGNGetNumKLUFactorCopies);
+    const long int nref  = Get(fast.mem, LGNGetNumOwnKLURefactors);
+    const long int nan   = Get(fast.mem, LGNGetNumSparsityAnalyses);
+    LGNGetNumKLUFallbacks(fast.mem, &npivot, &npattern, &nnocopy);
+    if (c->sparsetype == CSC_MAT)
+      CHECK(npattern == nan - 1 && ncopy == 1 + npattern + npivot && nref > 0 &&
+                nnocopy == 0,
+            "%s: (d) the copy: %ld new patterns handed to KLU (%ld analyses), "
+            "%ld copies, %ld refactorisations, %ld pivot and %ld no-copy fallbacks",
+            c->name, npattern, nan, ncopy, nref, npivot, nnocopy);
+    else
+      CHECK(npattern == 0 && npivot == 0 && nref == 0 && nnocopy == 0 &&
+                (c->newton == LGN_NEWTON_FULL ? ncopy == 0 : ncopy >= 1),
+            "%s: (d) the copy by columns: %ld copies, no refactorisation (%ld), "
+            "no fallback (%ld, %ld, %ld)", c->name, ncopy, nref, npivot, npattern,
+            nnocopy);
+  }
   dq = 0.0;
   for (step = 0; step < 7 * NBODY; step++)
     dq = fmax(dq, fabs(N_VGetArrayPointer(fast.q)[step] - N_VGetArrayPointer(dense.q)[step]));

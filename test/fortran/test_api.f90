@@ -182,6 +182,7 @@ contains
   !> Flags of usage errors, the error handler and the error file.
   subroutine test_usage_errors()
     type(c_ptr) :: ctx, mem, q, v, fp
+    integer(c_long) :: nnull
     type(error_record), target :: rec
     real(c_double) :: t
     integer(c_int) :: flag
@@ -198,6 +199,8 @@ contains
                      "LGN_MEM_NULL", "LGNSetStepSize(NULL)")
     call expect_flag(LGNSetOwnKLUSolves(c_null_ptr, 1_c_int), LGN_MEM_NULL, &
                      "LGN_MEM_NULL", "LGNSetOwnKLUSolves(NULL)")
+    call expect_flag(LGNGetNumOwnKLUSolves(c_null_ptr, nnull), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNGetNumOwnKLUSolves(NULL)")
 
     mem = LGNCreate(ctx)
     call expect(c_associated(mem), "LGNCreate")
@@ -365,6 +368,7 @@ contains
     real(c_double) :: t, am, af, beta, gamma, h
     integer(c_long) :: nsteps, nni, nncf, nsf, nres, ndq, nje, nls, nlsolves, lflag
     integer(c_long) :: nreuse, nrestart
+    integer(c_long) :: ncopies, nvalues, nrefactors, nsolves, npivot, npattern, nnocopy
     integer(c_int) :: flag
     real(c_double), parameter :: tol = 1.0e-6_c_double
 
@@ -406,8 +410,13 @@ contains
     call expect(LGNSetMassConstant(mem, 0_c_int) == 0, "LGNSetMassConstant(0)")
     call expect(LGNInit(mem, 0.0_c_double, q, v) == 0, "LGNInit")
     call expect(LGNSetLinearSolver(mem, LS, A1) == 0, "LGNSetLinearSolver")
-    ! with a dense solver the switch is only recorded
-    call expect(LGNSetOwnKLUSolves(mem, 1_c_int) == 0, "LGNSetOwnKLUSolves(1)")
+    ! with a dense solver the switch is only recorded: off (the default)
+    ! always; on where the copy of KLU's factors is available (else
+    ! LGN_ILL_INPUT, built without KLU, and it stays off); then off again
+    flag = LGNSetOwnKLUSolves(mem, 1_c_int)
+    call expect(flag == 0 .or. flag == LGN_ILL_INPUT, &
+                "LGNSetOwnKLUSolves(1): recorded, or refused (built without KLU)")
+    call expect(LGNSetOwnKLUSolves(mem, 0_c_int) == 0, "LGNSetOwnKLUSolves(0)")
     call expect(LGNSetGenAlphaParams(mem, 0.0_c_double, 0.0_c_double, 0.3_c_double, &
                                      0.6_c_double) == 0, "LGNSetGenAlphaParams")
     call expect(LGNGetMethodParams(mem, am, af, beta, gamma) == 0, "LGNGetMethodParams")
@@ -463,6 +472,12 @@ contains
     call expect(LGNGetLastLinFlag(mem, lflag) == 0, "LGNGetLastLinFlag")
     call expect(LGNGetNumMatrixReuses(mem, nreuse) == 0, "LGNGetNumMatrixReuses")
     call expect(LGNGetNumNewtonRestarts(mem, nrestart) == 0, "LGNGetNumNewtonRestarts")
+    call expect(LGNGetNumKLUFactorCopies(mem, ncopies) == 0, "LGNGetNumKLUFactorCopies")
+    call expect(LGNGetNumKLUValueCopies(mem, nvalues) == 0, "LGNGetNumKLUValueCopies")
+    call expect(LGNGetNumOwnKLURefactors(mem, nrefactors) == 0, "LGNGetNumOwnKLURefactors")
+    call expect(LGNGetNumOwnKLUSolves(mem, nsolves) == 0, "LGNGetNumOwnKLUSolves")
+    call expect(LGNGetNumKLUFallbacks(mem, npivot, npattern, nnocopy) == 0, &
+                "LGNGetNumKLUFallbacks")
     call expect(nsteps == 1000, "1000 steps")
     call expect(nni >= nsteps, "at least one Newton iteration per step")
     call expect(nncf == 0 .and. nsf == 0, "no Newton or step failures")
@@ -473,6 +488,9 @@ contains
                 "modified Newton: iterations with a reused matrix, fewer setups")
     call expect(nrestart >= 0, "Newton restarts counted")
     call expect(lflag == 0, "last linear solver flag 0")
+    call expect(ncopies == 0 .and. nvalues == 0 .and. nrefactors == 0 .and. nsolves == 0 &
+                .and. npivot == 0 .and. npattern == 0 .and. nnocopy == 0, &
+                "dense: no copy of KLU's factors counted")
 
     ! statistics on C streams: CSV into a file, the table on stdout
     fp = FLGNFopen("test_api_stats.csv", "w")

@@ -12,7 +12,10 @@
 !  - an integration with KLU whose Fortran callbacks fill CSC matrices
 !    through the helpers: M q'' + K q = 0 on R^2 with a full 2x2 M and K,
 !    Newmark (1/4, 1/2), against the same run with dense matrices (to
-!    1e-12) and against the modal solution.
+!    1e-12) and against the modal solution; with KLU Lignum's solves on a
+!    copy of KLU's factors are opted in (LGNSetOwnKLUSolves, off by
+!    default), and their getters count one copy, Lignum's refactorisations
+!    and every solve (dense: all 0).
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 
@@ -298,6 +301,8 @@ contains
     integer(c_long), intent(out) :: nanalyses
     type(c_ptr) :: G, qv, vv, A, tmpl, LS, mem
     real(c_double), pointer :: q(:)
+    integer(c_long) :: ncopies, nvalues, nrefactors, nsolves, nlsolves
+    integer(c_long) :: npivot, npattern, nnocopy
     real(c_double) :: t
 
     G = LGNGroup_Rn(2_c_int64_t)
@@ -323,11 +328,30 @@ contains
     call expect(LGNSetDampingFn(mem, c_funloc(damping)) == 0, "LGNSetDampingFn")
     call expect(LGNInit(mem, 0.0_c_double, qv, vv) == 0, "LGNInit")
     call expect(LGNSetLinearSolver(mem, LS, A) == 0, "LGNSetLinearSolver")
+    ! Lignum's solves on a copy of KLU's factors (off by default): opted in
+    if (sparse) call expect(LGNSetOwnKLUSolves(mem, 1_c_int) == 0, "LGNSetOwnKLUSolves(1)")
     call expect(LGNSetNewmark(mem, 0.25_c_double, 0.5_c_double) == 0, "LGNSetNewmark")
     call expect(LGNSetStepSize(mem, 1.0e-3_c_double) == 0, "LGNSetStepSize")
     call expect_flag(LGNSolve(mem, 1.0_c_double, t, qv, vv, LGN_NORMAL), LGN_SUCCESS, &
                      "LGN_SUCCESS", "LGNSolve")
     call expect(LGNGetNumSparsityAnalyses(mem, nanalyses) == 0, "LGNGetNumSparsityAnalyses")
+    ! the copy's counters: CSC, so one copy, then Lignum refactors into it
+    call expect(LGNGetNumKLUFactorCopies(mem, ncopies) == 0, "LGNGetNumKLUFactorCopies")
+    call expect(LGNGetNumKLUValueCopies(mem, nvalues) == 0, "LGNGetNumKLUValueCopies")
+    call expect(LGNGetNumOwnKLURefactors(mem, nrefactors) == 0, "LGNGetNumOwnKLURefactors")
+    call expect(LGNGetNumOwnKLUSolves(mem, nsolves) == 0, "LGNGetNumOwnKLUSolves")
+    call expect(LGNGetNumKLUFallbacks(mem, npivot, npattern, nnocopy) == 0, &
+                "LGNGetNumKLUFallbacks")
+    call expect(LGNGetNumLinSolves(mem, nlsolves) == 0, "LGNGetNumLinSolves")
+    if (sparse) then
+      call expect(ncopies == 1 .and. nvalues == 0 .and. nrefactors > 0 .and. &
+                  nsolves == nlsolves .and. npivot == 0 .and. npattern == 0 .and. &
+                  nnocopy == 0, "KLU CSC, copy on: one copy, Lignum's refactorisations and solves")
+    else
+      call expect(ncopies == 0 .and. nvalues == 0 .and. nrefactors == 0 .and. &
+                  nsolves == 0 .and. npivot == 0 .and. npattern == 0 .and. &
+                  nnocopy == 0, "dense: the copy's counters are 0")
+    end if
     qend = q
     call LGNFree(mem)
     call expect(SUNLinSolFree(LS) == 0, "SUNLinSolFree")
