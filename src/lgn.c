@@ -66,6 +66,9 @@ static void ResetCounters(LGNMem mem)
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
   mem->nreuse = mem->nrestart = 0;
+  mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
+  mem->nklu_refactor = mem->nklu_solve = 0;
+  mem->nklu_newpattern = mem->nklu_nocopy = 0;
   mem->lambda_noise = mem->lambda_noise_h = SUN_RCONST(0.0);
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;

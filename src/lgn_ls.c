@@ -160,23 +160,6 @@ int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
   return flag;
 }
 
-/* A counter of the copy as of now: Lignum's counters restart at LGNInit
- * and LGNReInit, which reset nlsetup; the copy's restart with them at the
- * first setup after (RestartKluCounters), before which nothing can be
- * copied, refactored or solved with, so until then they are 0. */
-static long int KluCount(LGNMem mem, long int count)
-{
-  return mem->nlsetup > 0 ? count : 0L;
-}
-
-/* The counters of the copy, at the first setup of a run. */
-static void RestartKluCounters(LGNMem mem)
-{
-  mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
-  mem->nklu_refactor = mem->nklu_solve = 0;
-  mem->nklu_newpattern = mem->nklu_nocopy = 0;
-}
-
 /* The common part of the getters below: the memory block, and the output
  * argument `name` (out) not NULL. */
 static int KluGetter(void *lgn_mem, const char *func, const long int *out,
@@ -197,7 +180,7 @@ int LGNGetNumKLUFactorCopies(void *lgn_mem, long int *ncopies)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, ncopies, "ncopies", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *ncopies = KluCount(mem, mem->nklu_copy);
+  *ncopies = mem->nklu_copy;
   return LGN_SUCCESS;
 }
 
@@ -206,7 +189,7 @@ int LGNGetNumKLUValueCopies(void *lgn_mem, long int *nvalues)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nvalues, "nvalues", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nvalues = KluCount(mem, mem->nklu_values);
+  *nvalues = mem->nklu_values;
   return LGN_SUCCESS;
 }
 
@@ -215,7 +198,7 @@ int LGNGetNumOwnKLURefactors(void *lgn_mem, long int *nrefactors)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nrefactors, "nrefactors", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nrefactors = KluCount(mem, mem->nklu_refactor);
+  *nrefactors = mem->nklu_refactor;
   return LGN_SUCCESS;
 }
 
@@ -224,7 +207,7 @@ int LGNGetNumOwnKLUSolves(void *lgn_mem, long int *nsolves)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nsolves, "nsolves", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nsolves = KluCount(mem, mem->nklu_solve);
+  *nsolves = mem->nklu_solve;
   return LGN_SUCCESS;
 }
 
@@ -238,9 +221,9 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
   if (flag == LGN_SUCCESS)
     flag = KluGetter(lgn_mem, __func__, nnocopy, "nnocopy", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *npivot   = KluCount(mem, mem->nklu_fallback);
-  *npattern = KluCount(mem, mem->nklu_newpattern);
-  *nnocopy  = KluCount(mem, mem->nklu_nocopy);
+  *npivot   = mem->nklu_fallback;
+  *npattern = mem->nklu_newpattern;
+  *nnocopy  = mem->nklu_nocopy;
   return LGN_SUCCESS;
 }
 
@@ -349,7 +332,7 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 int lgnLsSetup(LGNMem mem)
 {
   int ret;
-  if (++mem->nlsetup == 1) RestartKluCounters(mem);
+  mem->nlsetup++;
   if (OwnRefactor(mem)) return LGN_SUCCESS;
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
