@@ -43,6 +43,10 @@ void *LGNCreate(SUNContext sunctx)
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
   mem->own_klu_solves = SUNFALSE;
+  mem->step_control = LGN_STEP_FIXED;
+  mem->epcon        = LGN_EPCON_DEFAULT;
+  mem->maxnef       = LGN_MAXNEF_DEFAULT;
+  mem->maxncf       = LGN_MAXNCF_DEFAULT;
   lgnErrSinkInit(&mem->err);
   return mem;
 }
@@ -65,7 +69,8 @@ static void ResetCounters(LGNMem mem)
 {
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
-  mem->nreuse = mem->nrestart = 0;
+  mem->nreuse = mem->nrestart = mem->netf = 0;
+  mem->err_norm = mem->h0_actual = SUN_RCONST(0.0);
   mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
   mem->nklu_refactor = mem->nklu_solve = 0;
   mem->nklu_newpattern = mem->nklu_nocopy = 0;
@@ -185,9 +190,26 @@ static int CheckReadyToSolve(LGNMem mem)
               mem->kin->needs_tangent_inverse ? ", tangent_inverse_apply" : "");
     return LGN_ILL_INPUT;
   }
-  if (!(mem->h > SUN_RCONST(0.0))) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "No step size: call LGNSetStepSize.");
+  if (mem->step_control == LGN_STEP_FIXED && !(mem->h > SUN_RCONST(0.0))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "No step size: call LGNSetStepSize (or LGNSetStepControl with "
+              "LGN_STEP_ADAPTIVE).");
     return LGN_ILL_INPUT;
+  }
+  if (mem->step_control == LGN_STEP_ADAPTIVE) {
+    if (!mem->tols_set) {
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "Error control needs tolerances: call LGNSStolerances or "
+                "LGNSVtolerances.");
+      return LGN_ILL_INPUT;
+    }
+    if (mem->G->ops.tangent_dot_apply == NULL ||
+        mem->G->ops.tangent_inverse_apply == NULL) {
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "Error control needs the Lie group's tangent_dot_apply (error "
+                "estimate) and tangent_inverse_apply (output between steps).");
+      return LGN_ILL_INPUT;
+    }
   }
   if (mem->LS == NULL || mem->A == NULL) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
@@ -202,6 +224,13 @@ static int CheckReadyToSolve(LGNMem mem)
   if (flag != LGN_SUCCESS) return flag;
   if (!mem->ic_done) {
     flag = lgnInitialConditions(mem);
+    if (flag == LGN_RECOVERABLE) {
+      /* no smaller step can help the initial values */
+      LGN_ERROR(mem, LGN_REPTD_CALLBACK_ERR,
+                MSG_TIME "a callback failed recoverably while the consistent "
+                "initial values were computed.", (double)mem->tn);
+      flag = LGN_REPTD_CALLBACK_ERR;
+    }
     if (flag != LGN_SUCCESS) return flag;
   }
   return LGN_SUCCESS;
@@ -212,6 +241,80 @@ static void CopyOut(LGNMem mem, sunrealtype *tret, N_Vector q, N_Vector v)
   *tret = mem->tn;
   N_VScale(SUN_RCONST(1.0), mem->q, q);
   N_VScale(SUN_RCONST(1.0), mem->v, v);
+}
+
+/* The output at t of the last step: the state itself at its end, else the
+ * dense output (lgn_dense.c). */
+static int OutputAt(LGNMem mem, sunrealtype t, sunrealtype *tret, N_Vector q,
+                    N_Vector v)
+{
+  int flag;
+  if (t == mem->tn) {
+    CopyOut(mem, tret, q, v);
+    return LGN_SUCCESS;
+  }
+  *tret = t;
+  flag = lgnDenseOutput(mem, t, 0, lgnData(q));
+  if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 1, lgnData(v));
+  return flag;
+}
+
+/* LGNSolve with error control, IDA's semantics: LGN_NORMAL steps past tout
+ * and interpolates there (a stop time is landed on exactly and returns
+ * LGN_TSTOP_RETURN); LGN_ONE_STEP takes one step. */
+static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
+                         N_Vector q, N_Vector v, int itask)
+{
+  const sunrealtype troundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
+                                SUNMAX(fabs(mem->tn), fabs(tout));
+  long int nstloc = 0;
+  int flag = LGN_SUCCESS;
+
+  /* tout inside the last step (already passed): interpolate */
+  if (itask == LGN_NORMAL && tout < mem->tn - troundoff) {
+    if (mem->dense_valid && tout >= mem->tprev - troundoff)
+      return OutputAt(mem, SUNMAX(tout, mem->tprev), tret, q, v);
+    LGN_ERROR(mem, LGN_BAD_TOUT,
+              "tout = %.17g is behind the last step [%.17g, %.17g].",
+              (double)tout, (double)(mem->dense_valid ? mem->tprev : mem->tn),
+              (double)mem->tn);
+    CopyOut(mem, tret, q, v);
+    return LGN_BAD_TOUT;
+  }
+  if (mem->tstop_set && mem->tstop < mem->tn - troundoff) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The stop time %.17g is behind the current time t = %.17g.",
+              (double)mem->tstop, (double)mem->tn);
+    CopyOut(mem, tret, q, v);
+    return LGN_ILL_INPUT;
+  }
+
+  for (;;) {
+    /* at the stop time: return there (and forget it, as IDA does) */
+    if (mem->tstop_set && fabs(mem->tn - mem->tstop) <= troundoff &&
+        (itask == LGN_ONE_STEP || nstloc > 0 || tout >= mem->tstop - troundoff)) {
+      mem->tn        = mem->tstop;
+      mem->tstop_set = SUNFALSE;
+      CopyOut(mem, tret, q, v);
+      return LGN_TSTOP_RETURN;
+    }
+    if (itask == LGN_NORMAL && mem->tn >= tout - troundoff) break;
+    if (itask == LGN_ONE_STEP && nstloc > 0) break;
+    if (mem->mxstep > 0 && nstloc >= mem->mxstep) {
+      LGN_ERROR(mem, LGN_TOO_MUCH_WORK,
+                MSG_TIME "mxstep = %ld steps taken before reaching tout.",
+                (double)mem->tn, mem->mxstep);
+      flag = LGN_TOO_MUCH_WORK;
+      break;
+    }
+    flag = lgnAdaptiveStep(mem, tout);
+    if (flag != LGN_SUCCESS) break;
+    nstloc++;
+  }
+  if (flag == LGN_SUCCESS && itask == LGN_NORMAL && mem->tn > tout)
+    return OutputAt(mem, tout, tret, q, v);
+  CopyOut(mem, tret, q, v);
+  return flag;
 }
 
 int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
@@ -247,6 +350,9 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     CopyOut(mem, tret, q, v);
     return flag;
   }
+
+  if (mem->step_control == LGN_STEP_ADAPTIVE)
+    return SolveAdaptive(mem, tout, tret, q, v, itask);
 
   if (itask == LGN_ONE_STEP) {
     flag = lgnStep(mem, mem->h);

@@ -26,12 +26,15 @@
 #define LGN_MAXCOR_DEFAULT    20
 #define LGN_MSBP_DEFAULT      10L  /* modified Newton: steps between setups */
 #define LGN_MXSTEP_DEFAULT    1000000L
+#define LGN_EPCON_DEFAULT     SUN_RCONST(0.33) /* Newton / error-test tolerance */
+#define LGN_MAXNEF_DEFAULT    10  /* error-test failures per step         */
+#define LGN_MAXNCF_DEFAULT    10  /* Newton or callback failures per step */
 
 /* =============================================================================
  * Internal return codes of the step (never returned to the user)
  * ===========================================================================*/
 
-#define LGN_RECOVERABLE 1 /* a callback asked for a retry */
+#define LGN_RECOVERABLE 100 /* a callback asked for a retry (error control) */
 
 /* Which callback produced an error: used to pick the flag and message. */
 typedef enum {
@@ -189,6 +192,36 @@ typedef struct LGNMemRec {
   sunbooleantype mat_done;    /* model matrices allocated for the type of A */
   sunrealtype hlast;
 
+  /* ---- error control (LGN_STEP_ADAPTIVE; lgn_adapt.c, lgn_errtest.c) ---- */
+  int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
+  sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
+  N_Vector atol_vec;        /* per-component atol (NULL: the scalar atol)  */
+  sunrealtype epcon;        /* Newton tolerance / error-test tolerance     */
+  sunrealtype h0_user;      /* LGNSetInitStep (0: estimated)               */
+  sunrealtype hmin, hmax;   /* step size limits (hmax 0: none)             */
+  int maxnef, maxncf;       /* failures per step                           */
+  sunrealtype hnext;        /* the step size to try next (0: none yet)     */
+  sunrealtype h0_actual;    /* the first step size tried                   */
+  sunrealtype tstop;        /* LGNSetStopTime                              */
+  sunbooleantype tstop_set;
+  sunrealtype err_norm;     /* |e| of the last step attempted              */
+  sunrealtype *ele;         /* its local error estimate (nv)               */
+  sunrealtype *ewt;         /* ... and error weights (nv)                  */
+  sunrealtype *a_scaled;    /* a_n rescaled to the step size (nv)          */
+  const sunrealtype *a_step;/* a_n as the step uses it: a or a_scaled      */
+  sunrealtype nls_rtol;     /* Newton's tolerances in this step            */
+  sunrealtype nls_atol;
+  const sunrealtype *nls_atolv; /* ... per component (NULL: nls_atol)     */
+  long int netf;            /* error-test failures                         */
+
+  /* ---- the last step, for dense output (lgn_dense.c) ---- */
+  sunrealtype tprev;        /* its start t_n; it ends at tn                */
+  sunbooleantype dense_valid; /* q1, v1, vdot1 hold its start, and the    */
+                              /* increment its chart coordinate            */
+  sunrealtype *incr;        /* sigma variant: log(q_n^-1 q1), tracked (nv) */
+  sunrealtype *zero_nv;     /* zeros (nv), the algebra's origin            */
+  sunrealtype *dense_work;  /* the dense output's scratch (4 nv)           */
+
   /* ---- counters ---- */
   long int nst;      /* steps                                              */
   long int nni;      /* Newton iterations                                  */
@@ -323,6 +356,8 @@ typedef struct LGNKinematicsOps {
   int (*matrix)(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms);
   /* after sigma += delta: anything else the variant carries (NULL: none) */
   int (*correct)(LGNMem mem, const sunrealtype *delta);
+  /* the chart coordinate of the iterate, log(q_n^{-1} q1) */
+  const sunrealtype *(*increment)(LGNMem mem);
 } LGNKinematicsOps;
 
 const LGNKinematicsOps *lgnKinematicsOps(int kinematics);
@@ -350,9 +385,26 @@ int lgnInitialConditions(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
+/* ---- lgn_errtest.c: the local error of a step --------------------------- */
+
+int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
+sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);
+void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w);
+
+/* ---- lgn_dense.c: output between steps ---------------------------------- */
+
+int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+
 /* ---- lgn_step.c: one step ----------------------------------------------- */
 
+LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h);
+int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c);
+void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);
+
+/* ---- lgn_adapt.c: one error-controlled step ----------------------------- */
+
+int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 
 /* helpers */
 /* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */

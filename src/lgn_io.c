@@ -303,9 +303,249 @@ int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
     LGN_ERROR(mem, LGN_ILL_INPUT, "atol = %g illegal: must be >= 0.", (double)atol);
     return LGN_ILL_INPUT;
   }
-  mem->rtol = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
-  mem->atol = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
+  mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
+  mem->atol     = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
+  mem->tols_set = SUNTRUE;
+  if (mem->atol_vec != NULL) {
+    N_VDestroy(mem->atol_vec); /* the scalar replaces the vector */
+    mem->atol_vec = NULL;
+  }
   return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * Error control
+ * ===========================================================================*/
+
+int LGNSetStepControl(void *lgn_mem, int control)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (control != LGN_STEP_FIXED && control != LGN_STEP_ADAPTIVE) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "control = %d illegal: use LGN_STEP_FIXED or LGN_STEP_ADAPTIVE.",
+              control);
+    return LGN_ILL_INPUT;
+  }
+  if (control != mem->step_control) {
+    mem->step_control = control;
+    mem->hnext = SUN_RCONST(0.0); /* error control starts anew */
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
+{
+  LGNMem mem;
+  const sunrealtype *a;
+  sunrealtype sum = SUN_RCONST(0.0);
+  sunindextype i;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
+    return LGN_ILL_INPUT;
+  }
+  flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  a = N_VGetArrayPointer(atol);
+  for (i = 0; i < mem->nv; i++) {
+    if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
+                (long long)i, (double)a[i]);
+      return LGN_ILL_INPUT;
+    }
+    sum += a[i];
+  }
+  if (mem->atol_vec == NULL) {
+    mem->atol_vec = N_VClone(atol);
+    if (mem->atol_vec == NULL) {
+      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+  }
+  N_VScale(SUN_RCONST(1.0), atol, mem->atol_vec);
+  mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
+  mem->atol     = sum / (sunrealtype)mem->nv; /* the multipliers' (mean) */
+  mem->tols_set = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* Check a step size argument: finite and >= 0. */
+static int CheckStepArg(LGNMem mem, sunrealtype x, const char *name, const char *func)
+{
+  if (!(x >= SUN_RCONST(0.0)) || !isfinite(x)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %g illegal: must be >= 0 and finite.", name, (double)x);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
+int LGNSetInitStep(void *lgn_mem, sunrealtype h0)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MEM(lgn_mem, mem);
+  flag = CheckStepArg(mem, h0, "h0", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  mem->h0_user = h0;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMinStep(void *lgn_mem, sunrealtype hmin)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MEM(lgn_mem, mem);
+  flag = CheckStepArg(mem, hmin, "hmin", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->hmax > SUN_RCONST(0.0) && hmin > mem->hmax) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "hmin = %g illegal: above hmax = %g.",
+              (double)hmin, (double)mem->hmax);
+    return LGN_ILL_INPUT;
+  }
+  mem->hmin = hmin;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax)
+{
+  LGNMem mem;
+  int flag;
+  ACCESS_MEM(lgn_mem, mem);
+  flag = CheckStepArg(mem, hmax, "hmax", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (hmax > SUN_RCONST(0.0) && hmax < mem->hmin) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "hmax = %g illegal: below hmin = %g.",
+              (double)hmax, (double)mem->hmin);
+    return LGN_ILL_INPUT;
+  }
+  mem->hmax = hmax;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (maxnef < 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "maxnef = %d illegal: must be >= 0.", maxnef);
+    return LGN_ILL_INPUT;
+  }
+  mem->maxnef = maxnef == 0 ? LGN_MAXNEF_DEFAULT : maxnef;
+  return LGN_SUCCESS;
+}
+
+int LGNSetMaxConvFails(void *lgn_mem, int maxncf)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (maxncf < 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "maxncf = %d illegal: must be >= 0.", maxncf);
+    return LGN_ILL_INPUT;
+  }
+  mem->maxncf = maxncf == 0 ? LGN_MAXNCF_DEFAULT : maxncf;
+  return LGN_SUCCESS;
+}
+
+int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!(epcon >= SUN_RCONST(0.0) && epcon <= SUN_RCONST(1.0))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "epcon = %g illegal: must lie in [0, 1].",
+              (double)epcon);
+    return LGN_ILL_INPUT;
+  }
+  mem->epcon = epcon == SUN_RCONST(0.0) ? LGN_EPCON_DEFAULT : epcon;
+  return LGN_SUCCESS;
+}
+
+int LGNSetStopTime(void *lgn_mem, sunrealtype tstop)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (!isfinite(tstop)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "tstop is not finite.");
+    return LGN_ILL_INPUT;
+  }
+  if (mem->malloc_done && tstop < mem->tn) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "tstop = %.17g illegal: behind the current time t = %.17g.",
+              (double)tstop, (double)mem->tn);
+    return LGN_ILL_INPUT;
+  }
+  mem->tstop     = tstop;
+  mem->tstop_set = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+int LGNClearStopTime(void *lgn_mem)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->tstop_set = SUNFALSE;
+  return LGN_SUCCESS;
+}
+
+int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky)
+{
+  LGNMem mem;
+  sunrealtype fuzz;
+  int flag;
+  ACCESS_MALLOC(lgn_mem, mem);
+  if (k < 0 || k > 2) {
+    LGN_ERROR(mem, LGN_BAD_K, "k = %d illegal: use 0 (q), 1 (v) or 2 (vdot).", k);
+    return LGN_BAD_K;
+  }
+  flag = lgnCheckVector(mem, dky, k == 0 ? mem->nq : mem->nv, "dky", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->dense_valid || !mem->work_done) {
+    LGN_ERROR(mem, LGN_BAD_T, "No step to interpolate: take a step first.");
+    return LGN_BAD_T;
+  }
+  fuzz = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(mem->tprev));
+  if (!(t >= mem->tprev - fuzz && t <= mem->tn + fuzz)) {
+    LGN_ERROR(mem, LGN_BAD_T,
+              "t = %.17g illegal: outside the last step [%.17g, %.17g].",
+              (double)t, (double)mem->tprev, (double)mem->tn);
+    return LGN_BAD_T;
+  }
+  t = SUNMIN(SUNMAX(t, mem->tprev), mem->tn);
+  return lgnDenseOutput(mem, t, k, N_VGetArrayPointer(dky));
+}
+
+/* Copy an array of length nv (a getter's output) into a checked vector. */
+static int GetArray(void *lgn_mem, N_Vector out, const char *name,
+                    const char *func, sunbooleantype error_control)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, func, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->malloc_done) {
+    lgnProcessError(mem, LGN_NO_MALLOC, __LINE__, func, __FILE__, MSG_NO_MALLOC);
+    return LGN_NO_MALLOC;
+  }
+  flag = lgnCheckVector(mem, out, mem->nv, name, func);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->work_done && error_control)
+    memcpy(N_VGetArrayPointer(out), strcmp(name, "ele") == 0 ? mem->ele : mem->ewt,
+           (size_t)mem->nv * sizeof(sunrealtype));
+  else
+    N_VConst(SUN_RCONST(0.0), out); /* no step attempted yet */
+  return LGN_SUCCESS;
+}
+
+int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele)
+{
+  return GetArray(lgn_mem, ele, "ele", __func__, SUNTRUE);
+}
+
+int LGNGetErrWeights(void *lgn_mem, N_Vector eweight)
+{
+  return GetArray(lgn_mem, eweight, "eweight", __func__, SUNTRUE);
 }
 
 int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
@@ -474,6 +714,12 @@ int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a)
 
 SCALAR_GETTER(LGNGetCurrentTime, sunrealtype, tcur, mem->tn)
 SCALAR_GETTER(LGNGetLastStep, sunrealtype, hlast, mem->hlast)
+SCALAR_GETTER(LGNGetCurrentStep, sunrealtype, hcur,
+              mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h)
+SCALAR_GETTER(LGNGetActualInitStep, sunrealtype, hinused,
+              mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h)
+SCALAR_GETTER(LGNGetNumErrTestFails, long int, netfails, mem->netf)
+SCALAR_GETTER(LGNGetLastErrNorm, sunrealtype, errnorm, mem->err_norm)
 SCALAR_GETTER(LGNGetNumSteps, long int, nsteps, mem->nst)
 SCALAR_GETTER(LGNGetNumNewtonIters, long int, nniters, mem->nni)
 SCALAR_GETTER(LGNGetNumNewtonConvFails, long int, nncfails, mem->nncf)
@@ -604,6 +850,10 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_NONFINITE:          return "LGN_NONFINITE";
   case LGN_REPTD_CALLBACK_ERR: return "LGN_REPTD_CALLBACK_ERR";
   case LGN_IC_FAIL:            return "LGN_IC_FAIL";
+  case LGN_ERR_FAILURE:        return "LGN_ERR_FAILURE";
+  case LGN_TSTOP_RETURN:       return "LGN_TSTOP_RETURN";
+  case LGN_BAD_T:              return "LGN_BAD_T";
+  case LGN_BAD_K:              return "LGN_BAD_K";
   case LGN_MEM_NULL:           return "LGN_MEM_NULL";
   case LGN_MEM_FAIL:           return "LGN_MEM_FAIL";
   case LGN_ILL_INPUT:          return "LGN_ILL_INPUT";

@@ -44,7 +44,7 @@ void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c)
   const sunrealtype h = c->h, beta = mem->beta, gamma = mem->gamma;
   const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
                          (SUN_RCONST(1.0) - mem->alpha_m);
-  const sunrealtype *v = lgnData(mem->v), *a = lgnData(mem->a);
+  const sunrealtype *v = lgnData(mem->v), *a = mem->a_step;
   sunrealtype a1;
 
   for (i = 0; i < nv; i++) {
@@ -103,6 +103,12 @@ static void BindToIterate(LGNMem mem)
   mem->sigma_ddot = lgnData(mem->vdot1);
 }
 
+/* q1 = q_n o exp(sigma): the Newmark increment is the chart coordinate. */
+static const sunrealtype *NewmarkIncrement(LGNMem mem)
+{
+  return mem->sigma;
+}
+
 /* =============================================================================
  * Simplified kinematics: v = sigma_dot, vdot = sigma_ddot
  * ===========================================================================*/
@@ -135,7 +141,8 @@ static int SimplifiedMatrix(LGNMem mem, const LGNStepCoeffs *c,
 
 static const LGNKinematicsOps simplified_ops = {
   "simplified", SUNFALSE, SUNFALSE, SUNTRUE,
-  BindToIterate, SimplifiedPredict, SimplifiedIterate, SimplifiedMatrix, NULL};
+  BindToIterate, SimplifiedPredict, SimplifiedIterate, SimplifiedMatrix, NULL,
+  NewmarkIncrement};
 
 /* =============================================================================
  * Exact kinematics: v = T sigma_dot, vdot = T sigma_ddot + Tdot sigma_dot
@@ -203,7 +210,7 @@ static int ExactMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms
 
 static const LGNKinematicsOps exact_ops = {
   "exact", SUNTRUE, SUNTRUE, SUNTRUE,
-  ExactBind, ExactPredict, ExactIterate, ExactMatrix, NULL};
+  ExactBind, ExactPredict, ExactIterate, ExactMatrix, NULL, NewmarkIncrement};
 
 /* =============================================================================
  * The sigma variant: simplified kinematics, scaled predictor, corrections
@@ -229,6 +236,7 @@ static int SigmaPredict(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
   if (ret == 0)
     ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  for (i = 0; i < nv; i++) mem->incr[i] = mem->sigma[i]; /* q1 = q_n o exp(incr) */
   return LGN_SUCCESS;
 }
 
@@ -247,17 +255,31 @@ static int SigmaMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms
   return LGN_SUCCESS;
 }
 
-/* q1 <- q1 o exp(delta) */
+/* q1 <- q1 o exp(delta), and its chart coordinate
+ * incr <- log(exp(incr) exp(delta)) = incr + delta + (1/2) ad(incr) delta
+ * + O(|incr|^2 |delta|) (Baker-Campbell-Hausdorff; ad(x) y = -2 Tdot(0, x) y):
+ * for the error estimate and the dense output, third order in h. */
 static int SigmaCorrect(LGNMem mem, const sunrealtype *delta)
 {
-  int ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), delta, lgnData(mem->q1));
+  LGNGroup G = mem->G;
+  sunindextype i, nv = mem->nv;
+  int ret = G->ops.compose_exp(G, lgnData(mem->q1), delta, lgnData(mem->q1));
+  if (ret == 0)
+    ret = G->ops.tangent_dot_apply(G, mem->zero_nv, mem->incr, delta, mem->work_nv);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  for (i = 0; i < nv; i++) mem->incr[i] += delta[i] - mem->work_nv[i];
   return LGN_SUCCESS;
+}
+
+static const sunrealtype *SigmaIncrement(LGNMem mem)
+{
+  return mem->incr;
 }
 
 static const LGNKinematicsOps sigma_ops = {
   "sigma", SUNTRUE, SUNFALSE, SUNFALSE,
-  BindToIterate, SigmaPredict, SigmaIterate, SigmaMatrix, SigmaCorrect};
+  BindToIterate, SigmaPredict, SigmaIterate, SigmaMatrix, SigmaCorrect,
+  SigmaIncrement};
 
 /* =============================================================================
  * The table of a variant

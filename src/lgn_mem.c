@@ -39,7 +39,8 @@
  *   sparsity patterns of A and of the DQ   PATTERN (and with the matrices)
  *   SUNLinSolInitialize done               LINSOL
  *   consistent vdot, lambda, a (ic_done)   GROUP, SIZES, STATE
- *   predictor history (h_prev)             GROUP, SIZES, STATE
+ *   predictor history (h_prev), the next   GROUP, SIZES, STATE
+ *   step size (hnext), the dense output
  *   constant M evaluated (mass_current)    GROUP, SIZES, LINSOL, MASS, STATE
  *   factorised iteration matrix            every change, and MATRIX
  *   (lu_valid, klu_valid), Newton's last
@@ -58,8 +59,10 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
   }
   if (what & LGN_CHANGE_LINSOL) mem->ls_initialized = SUNFALSE;
   if (what & LGN_CHANGE_STATE) {
-    mem->ic_done = SUNFALSE;
-    mem->h_prev  = SUN_RCONST(0.0);
+    mem->ic_done     = SUNFALSE;
+    mem->h_prev      = SUN_RCONST(0.0);
+    mem->hnext       = SUN_RCONST(0.0); /* error control starts anew */
+    mem->dense_valid = SUNFALSE;
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
   /* the factorised matrix in A no longer fits the model or method: the next
@@ -155,6 +158,9 @@ int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
 {
   int flag;
   if (retval == 0) return LGN_SUCCESS;
+  if (retval > 0 && mem->step_control == LGN_STEP_ADAPTIVE) {
+    return LGN_RECOVERABLE; /* retried with a smaller step (lgn_adapt.c) */
+  }
   if (retval > 0) {
     flag = LGN_REPTD_CALLBACK_ERR;
     lgnProcessError(mem, flag, __LINE__, func, __FILE__,
@@ -302,6 +308,10 @@ void lgnFreeWork(LGNMem mem)
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
   mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
+  mem->ele = mem->ewt = mem->a_scaled = mem->incr = mem->zero_nv = NULL;
+  mem->dense_work = NULL;
+  mem->a_step = NULL;
+  mem->dense_valid = SUNFALSE;
   mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
   mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
@@ -317,6 +327,7 @@ void lgnFreeAll(LGNMem mem)
 {
   lgnFreeWork(mem);
   lgnFreeState(mem);
+  DestroyVector(&mem->atol_vec);
 }
 
 /* The state vectors, cloned from q0 and v0 (the sizes of the group). */
@@ -378,10 +389,11 @@ int lgnAllocWork(LGNMem mem)
             mem->dq_z == NULL);
   }
   if (!fail) {
-    /* sigma, sigma_dot and sigma_ddot of the exact variant (BindIncrement
-     * in lgn_step.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag
-     * (nv each), lambda_prev and work_m (m each) in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(8 * nv + 2 * m), sizeof(sunrealtype));
+    /* sigma, sigma_dot and sigma_ddot of the exact variant
+     * (lgn_kinematics.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag,
+     * ele, ewt, a_scaled, incr, zero_nv (nv each), the dense output's
+     * scratch (4 nv), lambda_prev and work_m (m each) in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 2 * m), sizeof(sunrealtype));
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
     mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
                                        sizeof(sunrealtype));
@@ -402,8 +414,14 @@ int lgnAllocWork(LGNMem mem)
   mem->work2_nv   = mem->sigma + 5 * nv;
   mem->vdot_prev  = mem->sigma + 6 * nv;
   mem->mass_diag  = mem->sigma + 7 * nv;
-  mem->lambda_prev = m > 0 ? mem->sigma + 8 * nv : NULL;
-  mem->work_m      = m > 0 ? mem->sigma + 8 * nv + m : NULL;
+  mem->ele        = mem->sigma + 8 * nv;
+  mem->ewt        = mem->sigma + 9 * nv;
+  mem->a_scaled   = mem->sigma + 10 * nv;
+  mem->incr       = mem->sigma + 11 * nv;
+  mem->zero_nv    = mem->sigma + 12 * nv;
+  mem->dense_work = mem->sigma + 13 * nv;
+  mem->lambda_prev = m > 0 ? mem->sigma + 17 * nv : NULL;
+  mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
@@ -485,7 +503,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
-    rw += 8 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    rw += 17 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

@@ -81,11 +81,27 @@ static sunrealtype SumOfSquaresRatio(sunindextype n, const sunrealtype *d,
   return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
+/* sum_i (d_i / (f a_i + a0 + r |x_i|))^2 for per-component a_i. */
+static sunrealtype SumOfSquaresRatioV(sunindextype n, const sunrealtype *d,
+                                      const sunrealtype *x, const sunrealtype *a,
+                                      sunrealtype f, sunrealtype a0, sunrealtype r)
+{
+  sunrealtype s = SUN_RCONST(0.0), w;
+  sunindextype i;
+  for (i = 0; i < n; i++) {
+    w = d[i] / (f * a[i] + a0 + r * fabs(x[i]));
+    s += w * w;
+  }
+  return s;
+}
+
 /* Weighted RMS norm of the Newton correction in the variables
  * xi = (sigma/h, h lambda), weights 1/(atol + rtol |xi_i| + floor_i). The
  * multiplier part of the correction arrives scaled, dmu = beta h^2 dlambda.
  * The configuration and multiplier parts (same normalisation, norm^2 =
  * sigma part^2 + lambda part^2) go to t->norm_sigma and t->norm_lambda.
+ * The tolerances are the step's (mem->nls_*): the user's in the fixed-step
+ * mode, a fraction of the error test's with error control (lgn_adapt.c).
  * The floors are the roundoff level of the iteration: the configuration is
  * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
  * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
@@ -96,7 +112,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
                            NewtonTest *t)
 {
   const sunindextype nv = mem->nv, m = mem->m;
-  const sunrealtype h = c->h, rtol = mem->rtol, atol = mem->atol;
+  const sunrealtype h = c->h, rtol = mem->nls_rtol, atol = mem->nls_atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;
   /* w_i = (delta_i / h) / (atol + rtol |sigma_i / h| + roundoff / h) and
@@ -107,7 +123,12 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   const sunrealtype lambda_atol = atol + roundoff / (mem->beta * h);
   sunrealtype sum, sum_lambda;
 
-  sum = SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol, rtol);
+  /* per-component tolerances (error control): the same weights with
+   * atol_i h in place of atol h */
+  sum = mem->nls_atolv != NULL
+            ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv, h,
+                                 roundoff, rtol)
+            : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol, rtol);
   t->norm_sigma = sqrt(sum / (sunrealtype)(nv + m));
   sum_lambda = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
                                  lambda_unit * rtol);

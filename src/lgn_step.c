@@ -14,7 +14,7 @@
 #include "lgn_impl.h"
 
 /* Per-step constants. */
-static LGNStepCoeffs SetCoeffs(LGNMem mem, sunrealtype h)
+LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
 {
   const sunrealtype *q = lgnData(mem->q);
   sunindextype i;
@@ -39,7 +39,7 @@ static int Predict(LGNMem mem, const LGNStepCoeffs *c)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype am = mem->alpha_m, af = mem->alpha_f;
-  const sunrealtype *vdot = lgnData(mem->vdot), *a = lgnData(mem->a);
+  const sunrealtype *vdot = lgnData(mem->vdot), *a = mem->a_step;
   const sunbooleantype extrapolate = mem->predictor == LGN_PREDICTOR_EXTRAPOLATE &&
                                      mem->kin->extrapolates;
   const sunrealtype r = mem->h_prev > SUN_RCONST(0.0) ? c->h / mem->h_prev
@@ -64,7 +64,7 @@ static int Predict(LGNMem mem, const LGNStepCoeffs *c)
 
 /* After convergence: a_{n+1} (with the chart shift of the exact variant,
  * modified-kinematics.md §2 step 3), then commit the new state. */
-static void Complete(LGNMem mem, const LGNStepCoeffs *c)
+void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c)
 {
   sunindextype i, nv = mem->nv;
   const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
@@ -87,34 +87,52 @@ static void Complete(LGNMem mem, const LGNStepCoeffs *c)
   if (mem->m > 0) {
     tmp = mem->lambda; mem->lambda = mem->lambda1; mem->lambda1 = tmp;
   }
+  mem->tprev = mem->tn;
   mem->tn    = c->t1;
   mem->hlast = c->h;
   mem->nst++;
+  mem->dense_valid = SUNTRUE; /* q1, v1, vdot1 now hold the step's start */
 }
 
-int lgnStep(LGNMem mem, sunrealtype h)
+/* Predict and Newton, with one retry with a fresh matrix when modified
+ * Newton failed with an old one. Writes only the iterate: the state at t_n
+ * is untouched, whatever the outcome. No message: the caller decides what
+ * a failure means (fixed step: an error; error control: a retry). */
+int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
 {
-  LGNStepCoeffs c = SetCoeffs(mem, h);
   sunbooleantype used_old = SUNFALSE;
   int flag;
 
-  flag = Predict(mem, &c);
-  if (flag == LGN_SUCCESS) flag = lgnNewton(mem, &c, SUNFALSE, &used_old);
+  mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
+  flag = Predict(mem, c);
+  if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNFALSE, &used_old);
   if (flag == LGN_CONV_FAILURE && used_old) {
     /* modified Newton failed with an old matrix: once more with a fresh one */
     mem->nrestart++;
-    flag = Predict(mem, &c);
-    if (flag == LGN_SUCCESS) flag = lgnNewton(mem, &c, SUNTRUE, &used_old);
+    flag = Predict(mem, c);
+    if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNTRUE, &used_old);
   }
+  if (flag != LGN_SUCCESS) mem->nfails++;
+  return flag;
+}
+
+/* A step of the fixed size h (LGN_STEP_FIXED). */
+int lgnStep(LGNMem mem, sunrealtype h)
+{
+  LGNStepCoeffs c = lgnStepCoeffs(mem, h);
+  int flag;
+
+  mem->a_step    = lgnData(mem->a);
+  mem->nls_rtol  = mem->rtol;
+  mem->nls_atol  = mem->atol;
+  mem->nls_atolv = NULL;
+  flag = lgnStepAttempt(mem, &c);
   if (flag == LGN_CONV_FAILURE)
     LGN_ERROR(mem, LGN_CONV_FAILURE,
               MSG_TIME "the Newton iteration failed to converge (diverged or "
               "more than %d iterations) with h = %g (the state at t is kept).",
               (double)mem->tn, mem->maxcor, (double)h);
-  if (flag != LGN_SUCCESS) {
-    mem->nfails++;
-    return flag;
-  }
-  Complete(mem, &c);
+  if (flag != LGN_SUCCESS) return flag;
+  lgnStepComplete(mem, &c);
   return LGN_SUCCESS;
 }

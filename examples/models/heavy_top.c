@@ -904,8 +904,12 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   if (flag == 0) flag = LGNSetConstraintIndex(o->mem, opt->constraints);
   if (flag == 0) flag = LGNSetKinematics(o->mem, opt->kinematics);
   if (flag == 0) flag = LGNSetStepSize(o->mem, opt->h);
-  if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0))
+  if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0 || opt->adaptive))
     flag = LGNSStolerances(o->mem, opt->rtol, opt->atol);
+  if (flag == 0 && opt->adaptive) {
+    flag = LGNSetStepControl(o->mem, LGN_STEP_ADAPTIVE);
+    if (flag == 0) flag = LGNSetStopTime(o->mem, opt->t_end);
+  }
   if (flag == 0) flag = LGNSetPredictor(o->mem, opt->predictor);
   if (flag == 0) flag = LGNSetNewtonMode(o->mem, opt->newton);
   if (flag == 0) flag = LGNSetLSetupFrequency(o->mem, opt->msbp);
@@ -959,6 +963,7 @@ int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
     /* consistent accelerations and all steps in one call */
     const int ready = flag == 0;
     if (ready) flag = LGNSolve(o.mem, opt->t_end, &t, o.q, o.v, LGN_NORMAL);
+    if (flag == LGN_TSTOP_RETURN) flag = 0; /* at t_end */
     res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
     if (ready) Collect(opt, &o, t, res);
   } else {
@@ -972,6 +977,7 @@ int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
       tout = (double)k * opt->h;
       if (tout > opt->t_end) tout = opt->t_end;
       flag = LGNSolve(o.mem, tout, &t, o.q, o.v, LGN_NORMAL);
+      if (flag == LGN_TSTOP_RETURN) flag = 0; /* at t_end */
       Collect(opt, &o, t, res);
       if (flag == 0) RecordHistory(opt, res);
     }
@@ -986,6 +992,8 @@ int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
     LGNGetNumJacEvals(o.mem, &res->njevals);
     LGNGetNumLinSolves(o.mem, &res->nlsolves);
     LGNGetNumLinSolvSetups(o.mem, &res->nlsetups);
+    LGNGetNumErrTestFails(o.mem, &res->netfails);
+    LGNGetNumNewtonConvFails(o.mem, &res->nncfails);
   }
   FreeRun(&o);
   return flag;

@@ -45,6 +45,10 @@ typedef struct {
   long int history_len;    /* capacity of com_history in points          */
   int single_solve;        /* 1: one LGNSolve call to t_end (no per-step
                               output: csv, com_history, max_phi unused)  */
+  int adaptive;            /* 1: error control (LGN_STEP_ADAPTIVE) with
+                              rtol, atol as the error test's tolerances;
+                              h is then the output interval and the run
+                              stops at t_end exactly (LGNSetStopTime)    */
 } HeavyTopOptions;
 
 /* Result of a run: state at the time reached, in the R^3 x SO(3) variables
@@ -59,6 +63,7 @@ typedef struct {
   double vdot[6], a[6];    /* (udot | Omegadot) and algorithmic accel.  */
   double lambda[3];        /* joint multiplier                          */
   long int nsteps, nniters, nres, ndq, njevals, nlsolves, nlsetups;
+  long int netfails, nncfails; /* error-test and Newton failures         */
   long int history_points; /* points written to com_history             */
   double max_phi;          /* max over the output grid of |X - R^T x|_inf,
                               evaluated on the integrator's raw q        */

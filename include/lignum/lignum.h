@@ -46,6 +46,7 @@ extern "C" {
  * ===========================================================================*/
 
 #define LGN_SUCCESS             0   /**< success                                  */
+#define LGN_TSTOP_RETURN        1   /**< LGNSolve stopped at the stop time         */
 
 /* solver failures -1 .. -19 */
 #define LGN_TOO_MUCH_WORK      -1   /**< max number of steps reached before tout  */
@@ -59,6 +60,7 @@ extern "C" {
 #define LGN_NONFINITE          -9   /**< a callback produced NaN or Inf           */
 #define LGN_REPTD_CALLBACK_ERR -10  /**< a recoverable callback error persisted   */
 #define LGN_IC_FAIL            -11  /**< consistent initial values not computable */
+#define LGN_ERR_FAILURE        -12  /**< the error test failed repeatedly or at hmin */
 
 /* usage errors -20 .. -29 */
 #define LGN_MEM_NULL           -20  /**< the memory argument is NULL              */
@@ -68,6 +70,8 @@ extern "C" {
 #define LGN_NO_LINSOL          -24  /**< no linear solver attached                */
 #define LGN_MISSING_FN         -25  /**< a required callback is not set           */
 #define LGN_BAD_TOUT           -26  /**< tout lies behind the current time        */
+#define LGN_BAD_T              -27  /**< LGNGetDky: t outside the last step       */
+#define LGN_BAD_K              -28  /**< LGNGetDky: k not 0, 1 or 2               */
 
 /* linear solver interface -30 .. -39 */
 #define LGN_LINIT_FAIL         -30  /**< SUNLinSolInitialize failed               */
@@ -85,6 +89,13 @@ extern "C" {
 #define LGN_NORMAL   1
 /** itask of LGNSolve: take a single step and return. */
 #define LGN_ONE_STEP 2
+
+/** Step size control (LGNSetStepControl): the fixed step of LGNSetStepSize
+ *  (default). */
+#define LGN_STEP_FIXED    40
+/** Step size control: error control with the tolerances of LGNSStolerances
+ *  or LGNSVtolerances (adaptive steps, retries, output between steps). */
+#define LGN_STEP_ADAPTIVE 41
 
 /** Constraint formulation: position level Phi(q) = 0 (index 3, scaled). */
 #define LGN_CONSTR_INDEX3 3
@@ -516,6 +527,91 @@ int LGNGetLastLinFlag(void *lgn_mem, long int *flag);
 int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt);
 /** Name of a return flag, e.g. "LGN_CONV_FAILURE" (static string, never NULL). */
 const char *LGNGetReturnFlagName(long int flag);
+
+/* =============================================================================
+ * Error control: adaptive steps, stop time, output between steps
+ * ===========================================================================*/
+
+/** Select the step size control: LGN_STEP_FIXED (default: the step of
+ *  LGNSetStepSize, the last step of LGN_NORMAL shortened to land on tout)
+ *  or LGN_STEP_ADAPTIVE (the local error of every step is estimated and
+ *  kept within the tolerances of LGNSStolerances / LGNSVtolerances; a step
+ *  that fails the error test, whose Newton iteration fails or whose
+ *  callback fails recoverably (> 0) is retried with a smaller h).
+ *  In the adaptive mode LGN_NORMAL steps past tout and interpolates there
+ *  (LGNGetDky), as IDA does; LGNSetStopTime lands on a time exactly.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another value. */
+int LGNSetStepControl(void *lgn_mem, int control);
+
+/** Tolerances with a vector of absolute tolerances, one per velocity
+ *  component (length nv, > 0 each; in the units of the configuration's
+ *  increment: lengths, angles). With error control the error test of a step
+ *  is sqrt( (1/nv) sum_i (e_i / (atol_i + rtol |s_i|))^2 ) <= 1, with e the
+ *  local error estimate and s the step's increment in the Lie algebra;
+ *  the Newton iteration then converges to epcon (LGNSetNonlinConvCoef) times
+ *  these. In the fixed-step mode the Newton iteration uses rtol and the mean
+ *  of atol, as with LGNSStolerances. The vector is copied.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
+ *          LGN_ILL_INPUT (rtol < 0, atol NULL, of the wrong length, or an
+ *          entry <= 0 or not finite), LGN_MEM_FAIL. */
+int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
+
+/** The first step size of error control (0: estimated from the initial
+ *  acceleration, the default). @return LGN_ILL_INPUT if h0 < 0 or not finite. */
+int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
+
+/** The smallest step size error control may take (default 0).
+ *  @return LGN_ILL_INPUT if hmin < 0, not finite or above hmax. */
+int LGNSetMinStep(void *lgn_mem, sunrealtype hmin);
+
+/** The largest step size error control may take (0: no limit, the default).
+ *  @return LGN_ILL_INPUT if hmax < 0, not finite or below hmin. */
+int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax);
+
+/** Error-test failures allowed in one step before LGN_ERR_FAILURE
+ *  (0: the default 10). @return LGN_ILL_INPUT if maxnef < 0. */
+int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef);
+
+/** Newton convergence failures (and recoverable callback failures) allowed
+ *  in one step before LGN_CONV_FAILURE (or LGN_REPTD_CALLBACK_ERR)
+ *  (0: the default 10). @return LGN_ILL_INPUT if maxncf < 0. */
+int LGNSetMaxConvFails(void *lgn_mem, int maxncf);
+
+/** The ratio of the Newton iteration's tolerances to the error test's with
+ *  error control (0: the default 0.33, as IDA's epcon).
+ *  @return LGN_ILL_INPUT unless 0 <= epcon <= 1 (0: default). */
+int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon);
+
+/** A time error control must not step past: LGNSolve lands on it exactly
+ *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared.
+ *  @return LGN_ILL_INPUT if tstop is not finite or behind the current time. */
+int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
+
+/** Forget the stop time. */
+int LGNClearStopTime(void *lgn_mem);
+
+/** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
+ *  the last step [t_n, t_{n+1}], from the dense output on the group: a
+ *  cubic Hermite interpolant in the chart of the step, matching q and v at
+ *  both ends, of the order of the method (vdot first order).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
+ *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
+ *          (dky NULL or of the wrong length), LGN_GROUP_FAIL. */
+int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
+
+/** The step size to be tried next (error control) or the fixed h. */
+int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur);
+/** The first step size tried (error control) or the fixed h. */
+int LGNGetActualInitStep(void *lgn_mem, sunrealtype *hinused);
+/** Steps rejected by the error test. */
+int LGNGetNumErrTestFails(void *lgn_mem, long int *netfails);
+/** The local error estimate of the last step attempted (length nv). */
+int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele);
+/** The error weights of the last step attempted, 1/(atol_i + rtol |s_i|)
+ *  (length nv); the error test is the weighted RMS norm of ele. */
+int LGNGetErrWeights(void *lgn_mem, N_Vector eweight);
+/** The error test's norm of the last step attempted (<= 1: accepted). */
+int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,177 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * One error-controlled step (LGN_STEP_ADAPTIVE): try h, test the local
+ * error (lgn_errtest.c), accept or retry with a smaller h, and propose the
+ * next h. A rejected attempt writes only the iterate, so the state at t_n
+ * stays as it was, bit for bit.
+ *
+ *   accept when |e| <= 1, then h_new = h min(fmax, max(fmin, 0.9 |e|^(-1/3)))
+ *   with fmax = 2 (1 right after a rejection), fmin = 0.2, and h kept when
+ *   the factor lies in [1, 1.2) (no rescaling, no new matrix for little);
+ *   error-test failure: h *= max(fmin, min(0.9, 0.9 |e|^(-1/3))), from the
+ *   second failure on h *= 0.25;
+ *   Newton failure or a recoverable callback error: h *= 0.25;
+ *   each retried up to maxnef / maxncf times, and not below hmin.
+ *
+ * Before every attempt of size h after a step of size h_old, the auxiliary
+ * variable is rescaled: a_n approximates vdot(t_n + (alpha_m - alpha_f) h),
+ * so its meaning depends on h, and without
+ *   a_n <- vdot_n + (h / h_old) (a_n - vdot_n)
+ * generalized-alpha falls to first order under frequent changes of h. The
+ * rescaled a lives in a_scaled: a itself changes only when a step is accepted.
+ * The Newton iteration converges to epcon times the error test's tolerances.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+
+#include "lgn_impl.h"
+
+#define FMAX        SUN_RCONST(2.0)
+#define FMIN        SUN_RCONST(0.2)
+#define SAFETY      SUN_RCONST(0.9)
+#define KEEP_BELOW  SUN_RCONST(1.2) /* 1 <= factor < 1.2: keep h           */
+#define CUT_FAIL    SUN_RCONST(0.25)
+
+/* The controller's factor for an error norm err (order 2: |e| ~ h^3). */
+static sunrealtype ErrorFactor(sunrealtype err)
+{
+  if (err <= SUN_RCONST(0.0)) return FMAX;
+  return SAFETY * pow(err, -SUN_RCONST(1.0) / SUN_RCONST(3.0));
+}
+
+/* h limited to [hmin, hmax]. */
+static sunrealtype Limit(LGNMem mem, sunrealtype h)
+{
+  if (mem->hmax > SUN_RCONST(0.0)) h = SUNMIN(h, mem->hmax);
+  return SUNMAX(h, mem->hmin);
+}
+
+/* The first step size when the user gives none: the displacement by the
+ * initial acceleration, h^2 |vdot_0| / 2, one error tolerance (weighted
+ * norm, weights at a zero increment), and not beyond tout. */
+static sunrealtype InitialStep(LGNMem mem, sunrealtype tout)
+{
+  const sunrealtype span = fabs(tout - mem->tn);
+  sunrealtype h, anorm, vnorm;
+  lgnErrorWeights(mem, mem->zero_nv, mem->ewt);
+  anorm = lgnWrmsNorm(mem, lgnData(mem->vdot), mem->ewt);
+  vnorm = lgnWrmsNorm(mem, lgnData(mem->v), mem->ewt);
+  if (anorm > SUN_RCONST(0.0))
+    h = sqrt(SUN_RCONST(2.0) / anorm);
+  else if (vnorm > SUN_RCONST(0.0))
+    h = SUN_RCONST(1.0) / vnorm; /* a displacement of one tolerance */
+  else
+    h = SUN_RCONST(1.0e-3) * span;
+  if (span > SUN_RCONST(0.0)) h = SUNMIN(h, span);
+  if (!(h > SUN_RCONST(0.0))) h = SUN_RCONST(1.0e-6);
+  return Limit(mem, h);
+}
+
+/* The auxiliary variable for a step of size h (header comment). */
+static void RescaleAux(LGNMem mem, sunrealtype h)
+{
+  const sunindextype nv = mem->nv;
+  const sunrealtype *a = lgnData(mem->a), *vdot = lgnData(mem->vdot);
+  sunrealtype r;
+  sunindextype i;
+  if (!(mem->hlast > SUN_RCONST(0.0)) || h == mem->hlast) {
+    mem->a_step = a;
+    return;
+  }
+  r = h / mem->hlast;
+  for (i = 0; i < nv; i++) mem->a_scaled[i] = vdot[i] + r * (a[i] - vdot[i]);
+  mem->a_step = mem->a_scaled;
+}
+
+/* Newton's tolerances for a step of size h: epcon times the error test's,
+ * in the units of its norm (lgn_newton.c: configuration part atol h). */
+static void NewtonTolerances(LGNMem mem, sunrealtype h)
+{
+  mem->nls_rtol  = mem->epcon * mem->rtol;
+  mem->nls_atol  = mem->epcon * mem->atol / h;
+  mem->nls_atolv = NULL;
+  if (mem->atol_vec != NULL) {
+    /* per component in the configuration part; the multipliers with the
+     * mean (lgnSVtolerances keeps it in atol) */
+    mem->nls_atolv = lgnData(mem->atol_vec);
+  }
+}
+
+/* One accepted step from tn (LGN_SUCCESS), or the flag of a failure, with
+ * the state at tn as it was. A stop time is landed on exactly. */
+int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
+{
+  sunrealtype h, err = SUN_RCONST(0.0), factor, h_wanted;
+  sunbooleantype landing;
+  int nef = 0, ncf = 0, flag;
+  LGNStepCoeffs c;
+
+  if (!(mem->hnext > SUN_RCONST(0.0))) {
+    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? Limit(mem, mem->h0_user)
+                                                    : InitialStep(mem, tout);
+    mem->h0_actual = mem->hnext;
+  }
+  h = mem->hnext;
+  for (;;) {
+    /* a stop time ahead within this step (or nearly): land on it */
+    h_wanted = h;
+    landing  = mem->tstop_set &&
+               mem->tn + h * (SUN_RCONST(1.0) + SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF) >=
+                   mem->tstop;
+    if (landing) h = mem->tstop - mem->tn;
+
+    RescaleAux(mem, h);
+    NewtonTolerances(mem, h);
+    c    = lgnStepCoeffs(mem, h);
+    flag = lgnStepAttempt(mem, &c);
+    if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
+    mem->err_norm = err;
+
+    if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {
+      lgnStepComplete(mem, &c);
+      if (landing) mem->tn = mem->tstop; /* exactly */
+      factor = ErrorFactor(err);
+      factor = SUNMIN(factor, nef > 0 || ncf > 0 ? SUN_RCONST(1.0) : FMAX);
+      if (factor >= SUN_RCONST(1.0) && factor < KEEP_BELOW) factor = SUN_RCONST(1.0);
+      factor = SUNMAX(factor, FMIN);
+      /* after a landing, go on from the step size the controller wanted */
+      mem->hnext = Limit(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
+      return LGN_SUCCESS;
+    }
+
+    if (flag == LGN_SUCCESS) {
+      /* error test failed */
+      mem->netf++;
+      nef++;
+      if (nef >= mem->maxnef || h <= mem->hmin) {
+        LGN_ERROR(mem, LGN_ERR_FAILURE,
+                  MSG_TIME "the error test failed %d times, the last with "
+                  "h = %g and |e| = %g%s (the state at t is kept).",
+                  (double)mem->tn, nef, (double)h, (double)err,
+                  h <= mem->hmin ? " at the minimum step size" : "");
+        return LGN_ERR_FAILURE;
+      }
+      factor = nef == 1 ? SUNMAX(FMIN, SUNMIN(SAFETY, ErrorFactor(err))) : CUT_FAIL;
+    } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
+      ncf++;
+      if (ncf >= mem->maxncf || h <= mem->hmin) {
+        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE : LGN_REPTD_CALLBACK_ERR;
+        LGN_ERROR(mem, out,
+                  MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
+                  "is kept).", (double)mem->tn,
+                  flag == LGN_CONV_FAILURE
+                      ? "the Newton iteration failed to converge"
+                      : "a callback failed recoverably",
+                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "");
+        return out;
+      }
+      factor = CUT_FAIL;
+    } else {
+      return flag; /* unrecoverable: reported where it happened */
+    }
+    h = SUNMAX(h * factor, mem->hmin);
+    mem->hnext = h;
+  }
+}

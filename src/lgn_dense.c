@@ -1,0 +1,67 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Output between steps: q, v and vdot at any t of the last step
+ * [t_n, t_{n+1}], from a cubic Hermite interpolant in the chart of the step,
+ *
+ *   q(t_n + theta h) = q_n o exp(s(theta)),
+ *   s(theta) = (theta^3 - 2 theta^2 + theta) h v_n + (3 theta^2 - 2 theta^3) s_1
+ *            + (theta^3 - theta^2) h T(s_1)^{-1} v_{n+1},
+ *
+ * where s_1 = log(q_n^{-1} q_{n+1}) is the step's increment. It matches
+ * q and v at both ends (T(0) = I), so the output is continuous in q and v
+ * across steps; its error is O(h^4) locally, below the method's O(h^3):
+ * the interpolated solution keeps the order of the method. v and vdot come
+ * from its derivatives, with v = T(s) s' / h and
+ * vdot = Tdot(s, s'/h) s'/h + T(s) s'' / h^2 (vdot is first order).
+ * ---------------------------------------------------------------------------*/
+
+#include <string.h>
+
+#include "lgn_impl.h"
+
+/* k = 0: q (nq), 1: v (nv), 2: vdot (nv) at t, tprev <= t <= tn. */
+int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
+{
+  LGNGroup G = mem->G;
+  const sunindextype nv = mem->nv;
+  const sunrealtype h = mem->tn - mem->tprev, th = (t - mem->tprev) / h;
+  const sunrealtype th2 = th * th, th3 = th2 * th;
+  const sunrealtype *s1 = mem->kin->increment(mem);
+  const sunrealtype *v0 = lgnData(mem->v1); /* the step's start, kept there */
+  sunrealtype *m1 = mem->dense_work, *s = m1 + nv, *sp = s + nv, *spp = sp + nv;
+  sunindextype i;
+  int ret;
+
+  /* the ends: the step's own values */
+  if (t == mem->tn || t == mem->tprev) {
+    const sunbooleantype end = t == mem->tn;
+    N_Vector x = k == 0 ? (end ? mem->q : mem->q1)
+               : k == 1 ? (end ? mem->v : mem->v1)
+                        : (end ? mem->vdot : mem->vdot1);
+    memcpy(out, lgnData(x), (size_t)(k == 0 ? mem->nq : nv) * sizeof(sunrealtype));
+    return LGN_SUCCESS;
+  }
+  /* m1 = h T(s_1)^{-1} v_{n+1} */
+  ret = G->ops.tangent_inverse_apply(G, s1, lgnData(mem->v), m1);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");
+  for (i = 0; i < nv; i++) {
+    const sunrealtype m0 = h * v0[i], mh = h * m1[i];
+    s[i]   = (th3 - 2 * th2 + th) * m0 + (3 * th2 - 2 * th3) * s1[i] + (th3 - th2) * mh;
+    sp[i]  = ((3 * th2 - 4 * th + 1) * m0 + (6 * th - 6 * th2) * s1[i] +
+              (3 * th2 - 2 * th) * mh) / h;
+    spp[i] = ((6 * th - 4) * m0 + (6 - 12 * th) * s1[i] + (6 * th - 2) * mh) / (h * h);
+  }
+  if (k == 0) {
+    ret = G->ops.compose_exp(G, lgnData(mem->q1), s, out);
+  } else if (k == 1) {
+    ret = G->ops.tangent_apply(G, s, sp, out);
+  } else {
+    ret = G->ops.tangent_apply(G, s, spp, out);
+    if (ret == 0) ret = G->ops.tangent_dot_apply(G, s, sp, sp, m1);
+    for (i = 0; i < nv && ret == 0; i++) out[i] += m1[i];
+  }
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");
+  return LGN_SUCCESS;
+}
