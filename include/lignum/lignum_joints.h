@@ -29,6 +29,7 @@
 #define LIGNUM_JOINTS_H
 
 #include <lignum/lignum.h>
+#include <lignum/lignum_export.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -48,13 +49,13 @@ typedef struct LGNJointsRec *LGNJoints;
  *                outlive the joint set
  * @return the joint set, or NULL if G has another leaf group or memory ran out.
  */
-LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G);
+LGN_EXPORT LGNJoints LGNJoints_Create(void *lgn_mem, LGNGroup G);
 
 /** Free a joint set and set *J to NULL; NULL is allowed. */
-void LGNJoints_Destroy(LGNJoints *J);
+LGN_EXPORT void LGNJoints_Destroy(LGNJoints *J);
 
 /** Number of bodies (leaves of G). */
-int LGNJoints_NumBodies(LGNJoints J);
+LGN_EXPORT int LGNJoints_NumBodies(LGNJoints J);
 
 /**
  * Spherical joint: point sa of body a coincides with point sb of body b.
@@ -63,36 +64,41 @@ int LGNJoints_NumBodies(LGNJoints J);
  * @return LGN_SUCCESS, LGN_ILL_INPUT (bad body index or NULL point) or
  *         LGN_MEM_FAIL.
  */
-int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3],
-                           int b, const sunrealtype sb[3]);
+LGN_EXPORT int LGNJoints_AddSpherical(LGNJoints J, int a,
+                                      const sunrealtype sa[3], int b,
+                                      const sunrealtype sb[3]);
 
 /** Revolute joint: spherical at (sa, sb) and body axes axis_a, axis_b
  *  (nonzero, need not be unit) kept parallel. Five constraints. */
-int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
-                          const sunrealtype axis_a[3], int b,
-                          const sunrealtype sb[3], const sunrealtype axis_b[3]);
+LGN_EXPORT int LGNJoints_AddRevolute(LGNJoints J, int a,
+                                     const sunrealtype sa[3],
+                                     const sunrealtype axis_a[3], int b,
+                                     const sunrealtype sb[3],
+                                     const sunrealtype axis_b[3]);
 
 /** Universal (Cardan) joint: spherical at (sa, sb) and body axes axis_a,
  *  axis_b kept perpendicular (they must be perpendicular in the initial
  *  configuration for it to be satisfied). Four constraints. */
-int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
-                           const sunrealtype axis_a[3], int b,
-                           const sunrealtype sb[3], const sunrealtype axis_b[3]);
+LGN_EXPORT int LGNJoints_AddUniversal(LGNJoints J, int a,
+                                      const sunrealtype sa[3],
+                                      const sunrealtype axis_a[3], int b,
+                                      const sunrealtype sb[3],
+                                      const sunrealtype axis_b[3]);
 
 /** Number of constraints m of all joints added so far (rows of Phi and B). */
-sunindextype LGNJoints_NumConstraints(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_NumConstraints(LGNJoints J);
 
 /** Number of stored entries of the sparse B written by LGNJoints_Jacobian
  *  (explicit zeros included; the pattern does not depend on q). A point
  *  row stores 6 entries at an SE(3) body and 4 at an R^3 x SO(3) body,
  *  whose translation part is +-I. */
-sunindextype LGNJoints_JacobianNnz(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_JacobianNnz(LGNJoints J);
 
 /** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
-sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
 
 /** phi = Phi(q), length m. For use in an LGNConstrFn. */
-int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
+LGN_EXPORT int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
 
 /**
  * B = B(q), m x nv. A dense B is overwritten entry by entry (entries outside
@@ -104,7 +110,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
  * differs from the last one); every call copies it into B and writes the
  * values in place.
  */
-int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
+LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
 
 /**
  * f = B(q)^T lambda, length nv: the joints' constraint forces, without
@@ -113,11 +119,13 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
  * LGNJoints_Jacobian to round-off. With no joints (m = 0), lambda is not
  * read and f = 0.
  */
-int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector f);
+LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q,
+                                         N_Vector lambda, N_Vector f);
 
 /** z = Z(q)(v, v) = D_q(B(q) v).(q v~) (spec numerics.md §1), length m: the
  *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */
-int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
+LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
+                                   N_Vector z);
 
 /**
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
@@ -128,7 +136,8 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
  * rotation rows, plus the translation rows of an SE(3) body's own block.
  * Combine it with other terms with SUNMatScaleAdd.
  */
-int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K);
+LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda,
+                                   SUNMatrix K);
 
 #ifdef __cplusplus
 }
