@@ -37,8 +37,8 @@ install(TARGETS ${_lgn_export_targets}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# Public headers (include/lignum/*.h), and the generated ones
-# (lignum_config.h, and lignum_export.h should one be generated there).
+# Public headers (include/lignum/*.h), and the generated ones in the build
+# tree's include/lignum (lignum_config.h, lignum_export.h with LGN_EXPORT).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lignum
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
