@@ -37,8 +37,8 @@ install(TARGETS ${_lgn_export_targets}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 
-# Public headers (include/lignum/*.h), and the generated ones
-# (lignum_config.h, and lignum_export.h should one be generated there).
+# Public headers (include/lignum/*.h), and the generated ones in the build
+# tree's include/lignum (lignum_config.h, lignum_export.h with LGN_EXPORT).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lignum
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
@@ -119,6 +119,11 @@ endif()
 foreach(_lgn_comp IN LISTS LGN_SUNDIALS_COMPONENTS)
   string(APPEND LGN_PC_SUNDIALS_LIBS " -lsundials_${_lgn_comp}")
 endforeach()
+# With KLU, Lignum calls KLU itself (klu_l_extract, klu_l_solve): a static
+# liblignum needs libklu on the link line (a shared one carries it).
+if(LGN_ENABLE_KLU AND _lgn_type STREQUAL "STATIC_LIBRARY")
+  string(APPEND LGN_PC_SUNDIALS_LIBS " -lklu")
+endif()
 string(STRIP "${LGN_PC_SUNDIALS_LIBS}" LGN_PC_SUNDIALS_LIBS)
 
 # The KLU path needs <klu.h> (in /usr/include/suitesparse on Debian).

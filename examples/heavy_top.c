@@ -46,7 +46,7 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
                      const char **csv_path)
 {
   int i;
-  for (i = 1; i < argc; i++) {
+  for (i = 1; i < argc; i += 2) { /* every option takes a value */
     const char *key = argv[i], *val = (i + 1 < argc) ? argv[i + 1] : NULL;
     int bad = 0;
     if (val == NULL) return 1;
@@ -101,7 +101,6 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
       fprintf(stderr, "heavy_top: bad option or value: %s %s\n", key, val);
       return 1;
     }
-    i++;
   }
   return 0;
 }

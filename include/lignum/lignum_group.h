@@ -26,6 +26,8 @@
 #include <stdio.h>
 #include <sundials/sundials_types.h>
 
+#include <lignum/lignum_export.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -89,19 +91,19 @@ struct LGNGroupRec {
 
 /** Vector space R^n as an (additive) Lie group: exp(w) = w, T = I, Tdot = 0.
  *  @return the group, or NULL if n < 1 or allocation failed. */
-LGNGroup LGNGroup_Rn(sunindextype n);
+LGN_EXPORT LGNGroup LGNGroup_Rn(sunindextype n);
 
 /** SO(3) with unit-quaternion storage (w, x, y, z). */
-LGNGroup LGNGroup_SO3(void);
+LGN_EXPORT LGNGroup LGNGroup_SO3(void);
 
 /** R^3 x SO(3): q = (x, p), v = (u, Omega) with u inertial and Omega body-fixed. */
-LGNGroup LGNGroup_R3xSO3(void);
+LGN_EXPORT LGNGroup LGNGroup_R3xSO3(void);
 
 /** SE(3): q = (x, p), v = (U, Omega), both body-fixed; xdot = R U.
  *  q o exp(U, Omega) = (x + R(p) T_SO3(Omega)^T U, p * expq(Omega)); T, T^{-1}
  *  and Tdot as in spec numerics.md §4.3 (ordering (U, Omega)).
  *  @return the group, or NULL if allocation failed. */
-LGNGroup LGNGroup_SE3(void);
+LGN_EXPORT LGNGroup LGNGroup_SE3(void);
 
 /**
  * Direct product G_1 x ... x G_n. The factors are referenced, not copied or
@@ -111,56 +113,61 @@ LGNGroup LGNGroup_SE3(void);
  * @param factors  array of nfactors groups
  * @return the product group, or NULL on bad input or allocation failure.
  */
-LGNGroup LGNGroup_Product(int nfactors, const LGNGroup *factors);
+LGN_EXPORT LGNGroup LGNGroup_Product(int nfactors, const LGNGroup *factors);
 
 /** A group with dimensions set and all ops NULL, for user-supplied groups. */
-LGNGroup LGNGroup_NewEmpty(sunindextype nq, sunindextype nv);
+LGN_EXPORT LGNGroup LGNGroup_NewEmpty(sunindextype nq, sunindextype nv);
 
 /** Free a group made by any constructor above; NULL is allowed. */
-void LGNGroup_Destroy(LGNGroup G);
+LGN_EXPORT void LGNGroup_Destroy(LGNGroup G);
 
 /* -------------------------------------------------------------------------
  * Dispatchers (call the op, return its flag; -1 if the op is missing)
  * ---------------------------------------------------------------------- */
 
 /** q_out = q o exp(w). */
-int LGNGroup_ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
-                        sunrealtype *q_out);
+LGN_EXPORT int LGNGroup_ComposeExp(LGNGroup G, const sunrealtype *q,
+                                   const sunrealtype *w, sunrealtype *q_out);
 /** y = T(w) x. */
-int LGNGroup_TangentApply(LGNGroup G, const sunrealtype *w,
-                          const sunrealtype *x, sunrealtype *y);
+LGN_EXPORT int LGNGroup_TangentApply(LGNGroup G, const sunrealtype *w,
+                                     const sunrealtype *x, sunrealtype *y);
 /** y = T(w)^{-1} x. */
-int LGNGroup_TangentInverseApply(LGNGroup G, const sunrealtype *w,
-                                 const sunrealtype *x, sunrealtype *y);
+LGN_EXPORT int LGNGroup_TangentInverseApply(LGNGroup G, const sunrealtype *w,
+                                            const sunrealtype *x,
+                                            sunrealtype *y);
 /** y = Tdot(w, wdot) x. */
-int LGNGroup_TangentDotApply(LGNGroup G, const sunrealtype *w,
-                             const sunrealtype *wdot, const sunrealtype *x,
-                             sunrealtype *y);
+LGN_EXPORT int LGNGroup_TangentDotApply(LGNGroup G, const sunrealtype *w,
+                                        const sunrealtype *wdot,
+                                        const sunrealtype *x, sunrealtype *y);
 /** Tm = T(w) as a dense column-major nv x nv matrix with leading dimension ld.
  *  Returns -1 (without calling the op) if ld < nv. */
-int LGNGroup_TangentMatrix(LGNGroup G, const sunrealtype *w, sunrealtype *Tm,
-                           sunindextype ld);
+LGN_EXPORT int LGNGroup_TangentMatrix(LGNGroup G, const sunrealtype *w,
+                                      sunrealtype *Tm, sunindextype ld);
 /** q = identity element. */
-int LGNGroup_Identity(LGNGroup G, sunrealtype *q);
+LGN_EXPORT int LGNGroup_Identity(LGNGroup G, sunrealtype *q);
 /** Project q onto the group (no-op when the group has no normalize op). */
-int LGNGroup_Normalize(LGNGroup G, sunrealtype *q);
+LGN_EXPORT int LGNGroup_Normalize(LGNGroup G, sunrealtype *q);
 
 /* -------------------------------------------------------------------------
  * Rotation helpers for model code (quaternion p = (w, x, y, z))
  * ---------------------------------------------------------------------- */
 
 /** R (row-major 3x3, R[3*i+j]) of the unit quaternion p. */
-void LGNQuaternionToRotation(const sunrealtype p[4], sunrealtype R[9]);
+LGN_EXPORT void LGNQuaternionToRotation(const sunrealtype p[4],
+                                        sunrealtype R[9]);
 
 /** Unit quaternion p = exp of the rotation vector phi (numerically safe). */
-void LGNQuaternionFromRotationVector(const sunrealtype phi[3], sunrealtype p[4]);
+LGN_EXPORT void LGNQuaternionFromRotationVector(const sunrealtype phi[3],
+                                                sunrealtype p[4]);
 
 /** Rotation vector phi = log(p), |phi| <= pi (numerically safe). */
-void LGNRotationVectorFromQuaternion(const sunrealtype p[4], sunrealtype phi[3]);
+LGN_EXPORT void LGNRotationVectorFromQuaternion(const sunrealtype p[4],
+                                                sunrealtype phi[3]);
 
 /** r = p1 * p2 (Hamilton product). r may alias p1 or p2. */
-void LGNQuaternionMultiply(const sunrealtype p1[4], const sunrealtype p2[4],
-                           sunrealtype r[4]);
+LGN_EXPORT void LGNQuaternionMultiply(const sunrealtype p1[4],
+                                      const sunrealtype p2[4],
+                                      sunrealtype r[4]);
 
 #ifdef __cplusplus
 }

@@ -36,6 +36,7 @@
 #define LIGNUM_JOINTS_H
 
 #include <lignum/lignum.h>
+#include <lignum/lignum_export.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -58,7 +59,7 @@ typedef struct LGNJointsRec *LGNJoints;
  * @return the joint set, or NULL (message on stderr) if G is NULL, has
  *         another leaf group, or memory ran out.
  */
-LGNJoints LGNJoints_Create(LGNGroup G);
+LGN_EXPORT LGNJoints LGNJoints_Create(LGNGroup G);
 
 /**
  * Replace the error handler of a joint set (NULL restores the default,
@@ -67,7 +68,7 @@ LGNJoints LGNJoints_Create(LGNGroup G);
  * message naming the bad argument.
  * @return LGN_SUCCESS, or LGN_ILL_INPUT if J is NULL (message on stderr).
  */
-int LGNJoints_SetErrHandlerFn(LGNJoints J, LGNErrHandlerFn ehfun, void *eh_data);
+LGN_EXPORT int LGNJoints_SetErrHandlerFn(LGNJoints J, LGNErrHandlerFn ehfun, void *eh_data);
 
 /**
  * Set the stream of the joint set's default error handler (stderr at
@@ -75,13 +76,13 @@ int LGNJoints_SetErrHandlerFn(LGNJoints J, LGNErrHandlerFn ehfun, void *eh_data)
  * LGNJoints_SetErrHandlerFn is set.
  * @return LGN_SUCCESS, or LGN_ILL_INPUT if J is NULL (message on stderr).
  */
-int LGNJoints_SetErrFile(LGNJoints J, FILE *errfp);
+LGN_EXPORT int LGNJoints_SetErrFile(LGNJoints J, FILE *errfp);
 
 /** Free a joint set and set *J to NULL; NULL is allowed. */
-void LGNJoints_Destroy(LGNJoints *J);
+LGN_EXPORT void LGNJoints_Destroy(LGNJoints *J);
 
 /** Number of bodies (leaves of G); 0 for J = NULL. */
-int LGNJoints_NumBodies(LGNJoints J);
+LGN_EXPORT int LGNJoints_NumBodies(LGNJoints J);
 
 /**
  * Spherical joint: point sa of body a coincides with point sb of body b.
@@ -90,36 +91,41 @@ int LGNJoints_NumBodies(LGNJoints J);
  * @return LGN_SUCCESS, LGN_ILL_INPUT (bad body index or NULL point) or
  *         LGN_MEM_FAIL.
  */
-int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3],
-                           int b, const sunrealtype sb[3]);
+LGN_EXPORT int LGNJoints_AddSpherical(LGNJoints J, int a,
+                                      const sunrealtype sa[3], int b,
+                                      const sunrealtype sb[3]);
 
 /** Revolute joint: spherical at (sa, sb) and body axes axis_a, axis_b
  *  (nonzero, need not be unit) kept parallel. Five constraints. */
-int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
-                          const sunrealtype axis_a[3], int b,
-                          const sunrealtype sb[3], const sunrealtype axis_b[3]);
+LGN_EXPORT int LGNJoints_AddRevolute(LGNJoints J, int a,
+                                     const sunrealtype sa[3],
+                                     const sunrealtype axis_a[3], int b,
+                                     const sunrealtype sb[3],
+                                     const sunrealtype axis_b[3]);
 
 /** Universal (Cardan) joint: spherical at (sa, sb) and body axes axis_a,
  *  axis_b kept perpendicular (they must be perpendicular in the initial
  *  configuration for it to be satisfied). Four constraints. */
-int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
-                           const sunrealtype axis_a[3], int b,
-                           const sunrealtype sb[3], const sunrealtype axis_b[3]);
+LGN_EXPORT int LGNJoints_AddUniversal(LGNJoints J, int a,
+                                      const sunrealtype sa[3],
+                                      const sunrealtype axis_a[3], int b,
+                                      const sunrealtype sb[3],
+                                      const sunrealtype axis_b[3]);
 
 /** Number of constraints m of all joints added so far (rows of Phi and B). */
-sunindextype LGNJoints_NumConstraints(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_NumConstraints(LGNJoints J);
 
 /** Number of stored entries of the sparse B written by LGNJoints_Jacobian
  *  (explicit zeros included; the pattern does not depend on q). A point
  *  row stores 6 entries at an SE(3) body and 4 at an R^3 x SO(3) body,
  *  whose translation part is +-I. */
-sunindextype LGNJoints_JacobianNnz(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_JacobianNnz(LGNJoints J);
 
 /** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
-sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
+LGN_EXPORT sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
 
 /** phi = Phi(q), length m. For use in an LGNConstrFn. */
-int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
+LGN_EXPORT int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
 
 /**
  * B = B(q), m x nv. A dense B is overwritten entry by entry (entries outside
@@ -131,7 +137,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
  * differs from the last one); every call copies it into B and writes the
  * values in place.
  */
-int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
+LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
 
 /**
  * f = B(q)^T lambda, length nv: the joints' constraint forces, without
@@ -140,11 +146,13 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
  * LGNJoints_Jacobian to round-off. With no joints (m = 0), lambda is not
  * read and f = 0.
  */
-int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector f);
+LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q,
+                                         N_Vector lambda, N_Vector f);
 
 /** z = Z(q)(v, v) = D_q(B(q) v).(q v~) (spec numerics.md §1), length m: the
  *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */
-int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
+LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
+                                   N_Vector z);
 
 /**
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
@@ -155,7 +163,8 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z);
  * rotation rows, plus the translation rows of an SE(3) body's own block.
  * Combine it with other terms with SUNMatScaleAdd.
  */
-int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K);
+LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda,
+                                   SUNMatrix K);
 
 #ifdef __cplusplus
 }

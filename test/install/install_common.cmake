@@ -19,11 +19,16 @@
 #       (standard output and error: CMake warnings go to the latter) is
 #       left in LGN_CONFIGURE_OUTPUT;
 #   lgn_run_consumer(<executable name> <arguments...>)
-#       find the executable in the consumer build and run it.
+#       find the executable in the consumer build and run it;
+#   lgn_check_exports(<library> <check_exports.cmake arguments...>)
+#       if <library> is installed as a shared library (lib<library>.so) and
+#       LGN_NM and LGN_CHECK_EXPORTS are given: check what it exports
+#       (test/symbols/check_exports.cmake).
 #
 # Common -D variables: LGN_BUILD_DIR, LGN_WORK_DIR, LGN_CONSUMER_SOURCE_DIR,
 # LGN_INSTALL_LIBDIR, LGN_INSTALL_INCLUDEDIR, LGN_VERSION (required), and
-# LGN_CONFIG, LGN_GENERATOR, LGN_MAKE_PROGRAM (optional).
+# LGN_CONFIG, LGN_GENERATOR, LGN_MAKE_PROGRAM, LGN_NM, LGN_CHECK_EXPORTS
+# (optional).
 
 # Check the required -D variables and start from an empty work directory.
 function(lgn_install_setup script)
@@ -107,4 +112,20 @@ function(lgn_run_consumer name)
   endif()
   lgn_run(consumer-run ${_exe} ${ARGN})
   message(STATUS "[consumer-run] output:\n${LGN_LAST_OUTPUT}")
+endfunction()
+
+# Check the exports of an installed shared library (skipped for a static one).
+function(lgn_check_exports library)
+  set(_lib ${LGN_LIBDIR}/lib${library}.so)
+  if(NOT EXISTS ${_lib})
+    message(STATUS "[exports] ${_lib} not installed (static build): check skipped")
+    return()
+  endif()
+  if(NOT LGN_NM OR NOT LGN_CHECK_EXPORTS)
+    message(STATUS "[exports] no nm: check skipped")
+    return()
+  endif()
+  lgn_run(exports ${CMAKE_COMMAND} -DLGN_NM=${LGN_NM} -DLGN_LIBRARY=${_lib} ${ARGN}
+    -P ${LGN_CHECK_EXPORTS})
+  message(STATUS "[exports] ${LGN_LAST_OUTPUT}")
 endfunction()

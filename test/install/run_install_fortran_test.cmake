@@ -2,7 +2,9 @@
 # here); the Fortran counterpart of run_install_test.cmake.
 #
 #  (a) cmake --install <build dir> --prefix <work>/prefix
-#      and check the library, the .mod files and the package files
+#      and check the library, the .mod files and the package files; with
+#      LGN_FORTRAN_MODULE_SOURCES, that liblignum_fortran.so exports only
+#      its modules' entities and FLGN* helpers (check_exports.cmake)
 #  (b) configure + build test/install/consumer_fortran with
 #      -DCMAKE_PREFIX_PATH=<work>/prefix
 #      (find_package(Lignum REQUIRED COMPONENTS Fortran)); no CMake warning
@@ -29,6 +31,11 @@ lgn_expect_files(${_files})
 file(GLOB _libs ${LGN_LIBDIR}/liblignum_fortran.*)
 if(NOT _libs)
   message(FATAL_ERROR "[install] no liblignum_fortran.* in ${LGN_LIBDIR}")
+endif()
+if(LGN_FORTRAN_MODULE_SOURCES)
+  lgn_check_exports(lignum_fortran -DLGN_FORTRAN=ON
+    -DLGN_C_LIBRARY=${LGN_LIBDIR}/liblignum.so
+    "-DLGN_FORTRAN_SOURCES=${LGN_FORTRAN_MODULE_SOURCES}")
 endif()
 
 # --- (b) configure and build the outside project, (c) run it ---------------------

@@ -1,7 +1,8 @@
 # Driver of the CTest test install_find_package (see CMakeLists.txt here).
 # Run as: cmake -DLGN_BUILD_DIR=... -DLGN_WORK_DIR=... -P run_install_test.cmake
 #
-#  (a) cmake --install <build dir> --prefix <work>/prefix
+#  (a) cmake --install <build dir> --prefix <work>/prefix; liblignum.so
+#      exports exactly the functions of the installed headers
 #  (b) configure + build test/install/consumer with
 #      -DCMAKE_PREFIX_PATH=<work>/prefix (find_package(Lignum REQUIRED))
 #  (c) run it
@@ -23,6 +24,7 @@ lgn_expect_files(
   ${LGN_INCDIR}/lignum/lignum_group.h
   ${LGN_INCDIR}/lignum/lignum_joints.h
   ${LGN_INCDIR}/lignum/lignum_config.h
+  ${LGN_INCDIR}/lignum/lignum_export.h
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfigVersion.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumTargets.cmake
@@ -31,6 +33,7 @@ file(GLOB _libs ${LGN_LIBDIR}/liblignum.*)
 if(NOT _libs)
   message(FATAL_ERROR "[install] no liblignum.* in ${LGN_LIBDIR}")
 endif()
+lgn_check_exports(lignum -DLGN_HEADER_DIRS=${LGN_INCDIR}/lignum)
 
 # --- (b) configure and build the outside project, (c) run it ---------------------
 lgn_build_consumer(
