@@ -113,7 +113,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
                                                     : InitialStep(mem, tout);
     mem->h0_actual = mem->hnext;
   }
-  h = mem->hnext;
+  h = Limit(mem, mem->hnext); /* the limits may have changed since */
   for (;;) {
     /* a stop time ahead within this step (or nearly): land on it */
     h_wanted = h;

@@ -256,18 +256,24 @@ static int SigmaMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms
 }
 
 /* q1 <- q1 o exp(delta), and its chart coordinate
- * incr <- log(exp(incr) exp(delta)) = incr + delta + (1/2) ad(incr) delta
- * + O(|incr|^2 |delta|) (Baker-Campbell-Hausdorff; ad(x) y = -2 Tdot(0, x) y):
- * for the error estimate and the dense output, third order in h. */
+ * incr <- log(exp(incr) exp(delta)) = incr + T(incr)^{-1} delta + O(|delta|^2 |incr|)
+ * (first order in the correction, exact in incr), for the error estimate
+ * and the dense output; without T^{-1} in the group, the Baker-Campbell-
+ * Hausdorff form incr + delta + (1/2) ad(incr) delta (ad(x) y = -2 Tdot(0, x) y),
+ * third order in h. */
 static int SigmaCorrect(LGNMem mem, const sunrealtype *delta)
 {
   LGNGroup G = mem->G;
   sunindextype i, nv = mem->nv;
   int ret = G->ops.compose_exp(G, lgnData(mem->q1), delta, lgnData(mem->q1));
-  if (ret == 0)
+  if (ret == 0 && G->ops.tangent_inverse_apply != NULL) {
+    ret = G->ops.tangent_inverse_apply(G, mem->incr, delta, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++) mem->incr[i] += mem->work_nv[i];
+  } else if (ret == 0) {
     ret = G->ops.tangent_dot_apply(G, mem->zero_nv, mem->incr, delta, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++) mem->incr[i] += delta[i] - mem->work_nv[i];
+  }
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
-  for (i = 0; i < nv; i++) mem->incr[i] += delta[i] - mem->work_nv[i];
   return LGN_SUCCESS;
 }
 
