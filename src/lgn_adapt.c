@@ -122,6 +122,8 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
                    mem->tstop;
     if (landing) h = mem->tstop - mem->tn;
 
+    flag = lgnCheckProgress(mem, h);
+    if (flag != LGN_SUCCESS) return flag;
     RescaleAux(mem, h);
     NewtonTolerances(mem, h);
     c    = lgnStepCoeffs(mem, h);

@@ -70,7 +70,7 @@ static int StiffnessDQ(LGNMem mem, sunrealtype t)
     w[j] = eps;
     ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w,
                                    lgnData(mem->dq_q));
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
     flag = DQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
     col = SUNDenseMatrix_Column(mem->Kmat, j);
@@ -93,8 +93,10 @@ static int DampingDQ(LGNMem mem, sunrealtype t)
     vp[j] = v1[j] + eps;
     mem->ndq++;
     N_VConst(SUN_RCONST(0.0), mem->dq_g);
-    ret = mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+    ret = lgnCallbackVector(mem, LGN_CB_FORCE,
+                            mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data),
+                            mem->dq_g, "LGNSolve");
+    if (ret != LGN_SUCCESS) return ret;
     col = SUNDenseMatrix_Column(mem->Cmat, j);
     for (i = 0; i < nv; i++) col[i] = (g[i] - g0[i]) / eps;
     vp[j] = v1[j];
@@ -108,11 +110,13 @@ static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
                             const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   mem->ndq++;
   lgnMatClear(mem->Bdq);
-  ret = mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
+  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
+                          mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data),
+                          mem->Bdq, "LGNSolve");
+  if (ret != LGN_SUCCESS) return ret;
   lgnMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);
   return LGN_SUCCESS;
 }
@@ -267,7 +271,7 @@ static int StiffnessDQColored(LGNMem mem, sunrealtype t)
     ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
     ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), mem->work_nv,
                                   lgnData(mem->dq_q));
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
     flag = DQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
     ScatterColor(&sp->Kdq, sp->Kdq.val, &sp->Kcol, c, lgnData(mem->dq_r),
@@ -288,8 +292,10 @@ static int DampingDQColored(LGNMem mem, sunrealtype t)
     for (i = 0; i < mem->nv; i++) vp[i] = v1[i] + w[i];
     mem->ndq++;
     N_VConst(SUN_RCONST(0.0), mem->dq_g);
-    ret = mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+    ret = lgnCallbackVector(mem, LGN_CB_FORCE,
+                            mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data),
+                            mem->dq_g, "LGNSolve");
+    if (ret != LGN_SUCCESS) return ret;
     ScatterColor(&sp->Cdq, sp->Cdq.val, &sp->Ccol, c, lgnData(mem->dq_g),
                  lgnData(mem->g), v1);
   }
@@ -339,7 +345,8 @@ int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
       lgnMatClear(mem->Kmat);
       ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
                            mem->Kmat, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_STIFFNESS, ret, __func__);
+      ret = lgnCallbackMatrix(mem, LGN_CB_STIFFNESS, ret, mem->Kmat, "LGNSolve");
+      if (ret != LGN_SUCCESS) return ret;
     } else {
       ret = mem->sparse ? StiffnessDQColored(mem, t) : StiffnessDQ(mem, t);
       if (ret != LGN_SUCCESS) return ret;
@@ -349,7 +356,8 @@ int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
     if (mem->damping != NULL) {
       lgnMatClear(mem->Cmat);
       ret = mem->damping(t, mem->q1, mem->v1, mem->Cmat, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_DAMPING, ret, __func__);
+      ret = lgnCallbackMatrix(mem, LGN_CB_DAMPING, ret, mem->Cmat, "LGNSolve");
+      if (ret != LGN_SUCCESS) return ret;
     } else {
       ret = mem->sparse ? DampingDQColored(mem, t) : DampingDQ(mem, t);
       if (ret != LGN_SUCCESS) return ret;

@@ -35,7 +35,8 @@ static int SolveIndex1System(LGNMem mem)
     if (mem->curvature != NULL) {
       N_VConst(SUN_RCONST(0.0), mem->phi);
       ret = mem->curvature(mem->tn, mem->q, mem->v, mem->phi, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CURVATURE, ret, __func__);
+      ret = lgnCallbackVector(mem, LGN_CB_CURVATURE, ret, mem->phi, "LGNSolve");
+      if (ret != LGN_SUCCESS) return ret;
     } else {
       flag = lgnCurvatureDQ(mem, mem->tn, mem->q, mem->v, mem->phi);
       if (flag != LGN_SUCCESS) return flag;

@@ -159,6 +159,7 @@ typedef struct LGNMemRec {
   int sparsetype;           /* CSC_MAT or CSR_MAT when sparse               */
   struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
   sunbooleantype ls_initialized;
+  sunbooleantype ls_failed; /* the last setup failed: start clean (lgn_ls.c) */
   long int last_lin_flag;
 
   /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
@@ -270,6 +271,10 @@ void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
                      const char *file, const char *msgfmt, ...);
 int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval,
                     const char *func);
+int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
+                      const char *func);
+int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
+                      const char *func);
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
 int lgnAllocWork(LGNMem mem);
@@ -398,6 +403,7 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 /* ---- lgn_step.c: one step ----------------------------------------------- */
 
 LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h);
+int lgnCheckProgress(LGNMem mem, sunrealtype h);
 int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c);
 void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);

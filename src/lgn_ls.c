@@ -20,7 +20,7 @@
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
-#if defined(LGN_KLU_COPY)
+#if defined(LGN_HAVE_KLU)
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
@@ -329,6 +329,21 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 #endif
 }
 
+/* After a failed setup the solver starts clean: KLU's numeric object may
+ * be gone or hold a factorisation of a non-finite or singular matrix, and
+ * refactoring it would fail for good; a new analysis and factorisation at
+ * the next setup (dense LU keeps no state between setups). */
+static void ResetSolver(LGNMem mem)
+{
+#if defined(LGN_HAVE_KLU)
+  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU)
+    SUNLinSol_KLUReInit(mem->LS, mem->A, SUNSparseMatrix_NNZ(mem->A),
+                        SUNKLU_REINIT_PARTIAL);
+#endif
+  lgnKluCopyFree(&mem->klu);
+  mem->ls_failed = SUNFALSE;
+}
+
 int lgnLsSetup(LGNMem mem)
 {
   int ret;
@@ -337,8 +352,10 @@ int lgnLsSetup(LGNMem mem)
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
   mem->klu_pattern = PatternNumber(mem);
+  if (mem->ls_failed) ResetSolver(mem);
   ret = SUNLinSolSetup(mem->LS, mem->A);
   mem->last_lin_flag = ret;
+  mem->ls_failed = ret != 0 ? SUNTRUE : SUNFALSE;
   if (ret != 0) {
     LGN_ERROR(mem, LGN_LSETUP_FAIL,
               MSG_TIME "the linear solver setup failed (%d%s).",

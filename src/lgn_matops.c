@@ -17,12 +17,20 @@
 
 sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n)
 {
-  /* |x_i| <= SUN_BIG_REAL is false for an Inf and for a NaN; the flags are
-   * or-ed without a branch, so that the loop vectorises */
+  /* x - x is 0 for a finite x and NaN for an Inf or a NaN, so the sum is 0
+   * exactly when all are finite; four partial sums, so that the additions
+   * do not wait for each other */
+  sunrealtype s[4] = {SUN_RCONST(0.0), SUN_RCONST(0.0), SUN_RCONST(0.0),
+                      SUN_RCONST(0.0)};
   sunindextype i;
-  int bad = 0;
-  for (i = 0; i < n; i++) bad |= !(fabs(x[i]) <= SUN_BIG_REAL);
-  return bad ? SUNFALSE : SUNTRUE;
+  for (i = 0; i + 4 <= n; i += 4) {
+    s[0] += x[i] - x[i];
+    s[1] += x[i + 1] - x[i + 1];
+    s[2] += x[i + 2] - x[i + 2];
+    s[3] += x[i + 3] - x[i + 3];
+  }
+  for (; i < n; i++) s[0] += x[i] - x[i];
+  return ((s[0] + s[1]) + (s[2] + s[3])) == SUN_RCONST(0.0) ? SUNTRUE : SUNFALSE;
 }
 
 /* y (+)= A x and y (+)= A^T x for a dense (column-major) or sparse (CSC or

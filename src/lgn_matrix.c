@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_impl.h"
 
@@ -83,9 +84,30 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
   return LGN_SUCCESS;
 }
 
+/* The iteration matrix, never with a NaN or Inf: the callbacks' outputs
+ * are checked where they are called, and this catches what their products
+ * may still produce (overflow, difference quotients), so that no
+ * non-finite entry reaches a factorisation that modified Newton would then
+ * reuse. */
 int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
                                const LGNMatrixTerms *terms)
 {
-  return mem->sparse ? lgnAssembleSparse(mem, t, terms)
-                     : AssembleDense(mem, t, terms);
+  const sunrealtype *data;
+  sunindextype len;
+  int flag = mem->sparse ? lgnAssembleSparse(mem, t, terms)
+                         : AssembleDense(mem, t, terms);
+  if (flag != LGN_SUCCESS) return flag;
+  if (mem->sparse) {
+    data = SUNSparseMatrix_Data(mem->A);
+    len  = SUNSparseMatrix_IndexPointers(mem->A)[SUNSparseMatrix_NP(mem->A)];
+  } else {
+    data = SM_DATA_D(mem->A);
+    len  = SM_LDATA_D(mem->A);
+  }
+  if (lgnAllFinite(data, len)) return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_NONFINITE,
+            MSG_TIME "the iteration matrix has a NaN or Inf entry (from the "
+            "products of M, K_t, C_t and B at the iterate; the callbacks' own "
+            "outputs were finite).", (double)mem->tn);
+  return LGN_NONFINITE;
 }

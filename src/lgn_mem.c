@@ -177,6 +177,69 @@ int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
   return flag;
 }
 
+/* The first non-finite entry of n values, or -1. */
+static sunindextype FirstNonFinite(const sunrealtype *x, sunindextype n)
+{
+  sunindextype i;
+  if (lgnAllFinite(x, n)) return -1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(x[i])) return i;
+  return -1;
+}
+
+/* A callback's vector output: its return value (lgnCallbackFlag), then
+ * every entry finite, else LGN_NONFINITE naming the callback, the entry
+ * and the time. */
+int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
+                      const char *func)
+{
+  sunindextype k;
+  if (retval != 0) return lgnCallbackFlag(mem, cb, retval, func);
+  k = FirstNonFinite(NV_DATA_S(x), NV_LENGTH_S(x));
+  if (k < 0) return LGN_SUCCESS;
+  lgnProcessError(mem, LGN_NONFINITE, __LINE__, func, __FILE__,
+                  MSG_TIME "the %s function returned %g in entry %lld.",
+                  (double)mem->tn, CallbackName(cb),
+                  (double)N_VGetArrayPointer(x)[k], (long long)k);
+  return LGN_NONFINITE;
+}
+
+/* The same for a matrix output (dense, or the stored entries of a sparse
+ * one): a non-finite entry never reaches a factorisation. */
+int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
+                      const char *func)
+{
+  sunindextype k, row, col;
+  if (retval != 0) return lgnCallbackFlag(mem, cb, retval, func);
+  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    const sunindextype np = SUNSparseMatrix_NP(A);
+    const sunindextype *ptr = SUNSparseMatrix_IndexPointers(A);
+    const sunindextype *ind = SUNSparseMatrix_IndexValues(A);
+    const sunrealtype *val = SUNSparseMatrix_Data(A);
+    sunindextype j;
+    k = FirstNonFinite(val, ptr[np]);
+    if (k < 0) return LGN_SUCCESS;
+    for (j = 0; ptr[j + 1] <= k; j++) {}
+    /* compressed columns: (ind[k], j); compressed rows: (j, ind[k]) */
+    row = SUNSparseMatrix_SparseType(A) == CSC_MAT ? ind[k] : j;
+    col = SUNSparseMatrix_SparseType(A) == CSC_MAT ? j : ind[k];
+    lgnProcessError(mem, LGN_NONFINITE, __LINE__, func, __FILE__,
+                    MSG_TIME "the %s function returned %g in entry (%lld, %lld).",
+                    (double)mem->tn, CallbackName(cb), (double)val[k],
+                    (long long)row, (long long)col);
+    return LGN_NONFINITE;
+  }
+  k = FirstNonFinite(SM_DATA_D(A), SM_LDATA_D(A));
+  if (k < 0) return LGN_SUCCESS;
+  row = k % SUNDenseMatrix_Rows(A);
+  col = k / SUNDenseMatrix_Rows(A);
+  lgnProcessError(mem, LGN_NONFINITE, __LINE__, func, __FILE__,
+                  MSG_TIME "the %s function returned %g in entry (%lld, %lld).",
+                  (double)mem->tn, CallbackName(cb), (double)SUNDenseMatrix_Data(A)[k],
+                  (long long)row, (long long)col);
+  return LGN_NONFINITE;
+}
+
 /* =============================================================================
  * The block table: the leaves of the group, on which T is block diagonal
  * ===========================================================================*/

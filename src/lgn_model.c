@@ -64,18 +64,21 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   int ret;
   if (!(mem->mass_constant && mem->mass_current && M == mem->Mmat)) {
     lgnMatClear(M);
-    ret = mem->mass(t, q, M, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_MASS, ret, __func__);
+    ret = lgnCallbackMatrix(mem, LGN_CB_MASS, mem->mass(t, q, M, mem->user_data), M,
+                            "LGNSolve");
+    if (ret != LGN_SUCCESS) return ret;
     mem->mass_current  = mem->mass_constant && M == mem->Mmat;
     mem->mass_diagonal = mem->mass_current && DiagonalOf(M, mem->mass_diag);
   }
   memset(lgnData(g), 0, (size_t)mem->nv * sizeof(sunrealtype));
-  ret = mem->force(t, q, v, g, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_FORCE, ret, __func__);
+  ret = lgnCallbackVector(mem, LGN_CB_FORCE, mem->force(t, q, v, g, mem->user_data),
+                          g, "LGNSolve");
+  if (ret != LGN_SUCCESS) return ret;
   if (with_B && mem->m > 0) {
     lgnMatClear(B);
-    ret = mem->constr_jac(t, q, B, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
+    ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
+                            mem->constr_jac(t, q, B, mem->user_data), B, "LGNSolve");
+    if (ret != LGN_SUCCESS) return ret;
   }
   return LGN_SUCCESS;
 }
@@ -101,8 +104,10 @@ int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
   int ret;
   if (mem->m > 0 && mem->constr_force != NULL) {
     memset(rd, 0, (size_t)nv * sizeof(sunrealtype));
-    ret = mem->constr_force(t, q, mem->lambda1, r, mem->user_data);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_FORCE, ret, __func__);
+    ret = lgnCallbackVector(mem, LGN_CB_CONSTR_FORCE,
+                            mem->constr_force(t, q, mem->lambda1, r, mem->user_data),
+                            r, "LGNSolve");
+    if (ret != LGN_SUCCESS) return ret;
   } else if (mem->m > 0) {
     lgnMatTvec(B, lgnData(mem->lambda1), rd, SUNFALSE);
   }
@@ -139,8 +144,10 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
     sunrealtype *phi = lgnData(mem->phi);
     if (mem->constr_index == LGN_CONSTR_INDEX3) {
       memset(phi, 0, (size_t)m * sizeof(sunrealtype));
-      ret = mem->constr(t, mem->q1, mem->phi, mem->user_data);
-      if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__);
+      ret = lgnCallbackVector(mem, LGN_CB_CONSTR,
+                              mem->constr(t, mem->q1, mem->phi, mem->user_data),
+                              mem->phi, "LGNSolve");
+      if (ret != LGN_SUCCESS) return ret;
     } else {
       lgnMatvec(mem->Bmat, lgnData(mem->v1), phi, SUNFALSE);
       for (i = 0; i < m; i++) phi[i] /= cv;

@@ -116,11 +116,23 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
   return flag;
 }
 
+/* Refuse a step that cannot advance t in floating point (t + h == t):
+ * it would "succeed" without moving. */
+int lgnCheckProgress(LGNMem mem, sunrealtype h)
+{
+  if (mem->tn + h != mem->tn) return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
+            MSG_TIME "the step size h = %g cannot advance t in floating point "
+            "(t + h == t).", (double)mem->tn, (double)h);
+  return LGN_STEP_TOO_SMALL;
+}
+
 /* A step of the fixed size h (LGN_STEP_FIXED). */
 int lgnStep(LGNMem mem, sunrealtype h)
 {
   LGNStepCoeffs c = lgnStepCoeffs(mem, h);
-  int flag;
+  int flag = lgnCheckProgress(mem, h);
+  if (flag != LGN_SUCCESS) return flag;
 
   mem->a_step    = lgnData(mem->a);
   mem->nls_rtol  = mem->rtol;
