@@ -124,6 +124,10 @@ endforeach()
 if(LGN_ENABLE_KLU AND _lgn_type STREQUAL "STATIC_LIBRARY")
   string(APPEND LGN_PC_SUNDIALS_LIBS " -lklu")
 endif()
+# LAPACK (the diagnostics' QR): likewise for a static liblignum.
+if(NOT BUILD_SHARED_LIBS)
+  string(APPEND LGN_PC_SUNDIALS_LIBS " -llapack -lblas")
+endif()
 string(STRIP "${LGN_PC_SUNDIALS_LIBS}" LGN_PC_SUNDIALS_LIBS)
 
 # The KLU path needs <klu.h> (in /usr/include/suitesparse on Debian).

@@ -59,7 +59,8 @@ static int SolveIndex1System(LGNMem mem)
     LGN_ERROR(mem, LGN_IC_FAIL,
               MSG_TIME "the consistent initial accelerations could not be "
               "computed: [[M, B^T], [B, 0]] is singular or the solve failed "
-              "(check M and B at q0).", (double)mem->tn);
+              "(check M and B at q0).%s", (double)mem->tn,
+              flag == LGN_LSETUP_FAIL ? mem->diag_text : "");
     return LGN_IC_FAIL;
   }
   if (!lgnAllFinite(sol, nv + m)) {

@@ -160,6 +160,11 @@ typedef struct LGNMemRec {
   struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
   sunbooleantype ls_initialized;
   sunbooleantype ls_failed; /* the last setup failed: start clean (lgn_ls.c) */
+
+  /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
+  sunindextype *diag_red;   /* redundant constraints (m; work space)       */
+  sunindextype diag_nred;   /* their number (0: none found)                */
+  sunindextype diag_pivot;  /* the zero-pivot unknown (-1: none)           */
   long int last_lin_flag;
 
   /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
@@ -240,6 +245,9 @@ typedef struct LGNMemRec {
 
   /* ---- error reporting ---- */
   LGNErrSink err;            /* where messages go (lgn_err.h)              */
+  const char *api_func;      /* the public function running (its name in
+                                messages; set by lgnAccessMem)             */
+  char diag_text[400];       /* the diagnosis of the last singular matrix  */
 } *LGNMem;
 
 /* =============================================================================
@@ -374,6 +382,10 @@ void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
 int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
                                const LGNMatrixTerms *terms);
+
+/* ---- lgn_diag.c: diagnostics of a singular matrix ----------------------- */
+
+void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len);
 
 /* ---- lgn_ls.c: the linear solver bridge --------------------------------- */
 

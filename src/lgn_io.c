@@ -538,6 +538,33 @@ static int GetArray(void *lgn_mem, N_Vector out, const char *name,
   return LGN_SUCCESS;
 }
 
+int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred, sunindextype *rows)
+{
+  LGNMem mem;
+  sunindextype i;
+  ACCESS_MEM(lgn_mem, mem);
+  if (nred == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "nred = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  *nred = mem->work_done ? mem->diag_nred : 0;
+  if (rows != NULL)
+    for (i = 0; i < *nred; i++) rows[i] = mem->diag_red[i];
+  return LGN_SUCCESS;
+}
+
+int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (unknown == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "unknown = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  *unknown = mem->work_done ? mem->diag_pivot : -1;
+  return LGN_SUCCESS;
+}
+
 int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele)
 {
   return GetArray(lgn_mem, ele, "ele", __func__, SUNTRUE);

@@ -47,6 +47,8 @@ typedef struct {
   sunrealtype u[3];     /* POINT: s_a;  PERP: e (body a)                   */
   sunrealtype w[3];     /* POINT: s_b;  PERP: c (body b)                   */
   sunindextype row;     /* first row in Phi                                */
+  int joint;            /* the joint it belongs to (0, 1, ... in order)    */
+  const char *jkind;    /* ... and its kind: "spherical", "revolute", ...  */
 } Primitive;
 
 struct LGNJointsRec {
@@ -60,6 +62,7 @@ struct LGNJointsRec {
                                  and the quaternion p it is of (4)        */
   Primitive *prim;
   int nprim, cap;
+  int njoints;                /* joints added                              */
   sunindextype m;
   sunindextype nnzB;          /* entries of B (explicit zeros included)    */
   /* pattern of the sparse B in format bfmt (NO_PATTERN: none yet), and the
@@ -340,7 +343,24 @@ static int CheckPoint(const struct LGNJointsRec *J, const sunrealtype *x,
     JErr(J, LGN_ILL_INPUT, func, "%s = NULL illegal.", name);
     return LGN_ILL_INPUT;
   }
+  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) {
+    JErr(J, LGN_ILL_INPUT, func, "%s = (%g, %g, %g) illegal: not finite.", name,
+         (double)x[0], (double)x[1], (double)x[2]);
+    return LGN_ILL_INPUT;
+  }
   return LGN_SUCCESS;
+}
+
+/* Label the primitives from first on as joint number J->njoints of kind
+ * kind (after an Add* call succeeded). */
+static void EndJoint(struct LGNJointsRec *J, int first, const char *kind)
+{
+  int k;
+  for (k = first; k < J->nprim; k++) {
+    J->prim[k].joint = J->njoints;
+    J->prim[k].jkind = kind;
+  }
+  J->njoints++;
 }
 
 /* Append a primitive for the public function func. */
@@ -387,8 +407,9 @@ int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
   flag = CheckBodies(J, a, b, __func__);
   if (flag == LGN_SUCCESS) flag = CheckPoint(J, sa, "sa", __func__);
   if (flag == LGN_SUCCESS) flag = CheckPoint(J, sb, "sb", __func__);
-  if (flag != LGN_SUCCESS) return flag;
-  return AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
+  if (flag == LGN_SUCCESS) EndJoint(J, J->nprim - 1, "spherical");
+  return flag;
 }
 
 /* y = x / |x| for the axis (named name) given to the public function func. */
@@ -425,7 +446,7 @@ int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
                           const sunrealtype sb[3], const sunrealtype axis_b[3])
 {
   sunrealtype n[3], c[3], e1[3], e2[3], t[3];
-  int flag;
+  int flag, first;
   if (J == NULL) return NullJoints(__func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
@@ -437,9 +458,11 @@ int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
   Cross(n, t, e1);
   Normalised(J, e1, e1, "e1", __func__); /* |n x t| >= 0.8: cannot fail */
   Cross(n, e1, e2);
+  first = J->nprim;
   flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, __func__);
+  if (flag == LGN_SUCCESS) EndJoint(J, first, "revolute");
   return flag;
 }
 
@@ -448,14 +471,54 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
                            const sunrealtype sb[3], const sunrealtype axis_b[3])
 {
   sunrealtype e[3], c[3];
-  int flag;
+  int flag, first;
   if (J == NULL) return NullJoints(__func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, e, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
+  first = J->nprim;
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e, b, c, __func__);
+  if (flag == LGN_SUCCESS) EndJoint(J, first, "universal");
   return flag;
+}
+
+int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
+                                 size_t len)
+{
+  int k, first = -1, last = -1, joint;
+  sunindextype r0, r1;
+  if (J == NULL) return NullJoints(__func__);
+  if (buf == NULL || len == 0) {
+    JErr(J, LGN_ILL_INPUT, __func__, "buf = NULL or len = 0 illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (row < 0 || row >= J->m) {
+    JErr(J, LGN_ILL_INPUT, __func__, "row = %lld illegal: the joints have %lld rows.",
+         (long long)row, (long long)J->m);
+    return LGN_ILL_INPUT;
+  }
+  for (k = 0; k < J->nprim; k++)
+    if (J->prim[k].row <= row) first = k; /* rows increase with k */
+  joint = J->prim[first].joint;
+  for (k = 0; k < J->nprim; k++) {
+    if (J->prim[k].joint != joint) continue;
+    if (last < 0) first = k;
+    last = k;
+  }
+  r0 = J->prim[first].row;
+  r1 = J->prim[last].row + (J->prim[last].kind == PRIM_POINT ? 3 : 1);
+  {
+    const Primitive *p = J->prim + first;
+    char ba[24], bb[24];
+    if (p->a == LGN_GROUND) snprintf(ba, sizeof ba, "the ground");
+    else snprintf(ba, sizeof ba, "body %d", p->a);
+    if (p->b == LGN_GROUND) snprintf(bb, sizeof bb, "the ground");
+    else snprintf(bb, sizeof bb, "body %d", p->b);
+    snprintf(buf, len, "%s joint %d (%s - %s), its constraint %lld of %lld",
+             p->jkind, joint, ba, bb, (long long)(row - r0 + 1), (long long)(r1 - r0));
+  }
+  return LGN_SUCCESS;
 }
 
 /* ---------------------------------------------------------------------------

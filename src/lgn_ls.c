@@ -13,6 +13,8 @@
  * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
  * ---------------------------------------------------------------------------*/
 
+#include <math.h>
+
 #include <sundials/sundials_version.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
@@ -344,6 +346,29 @@ static void ResetSolver(LGNMem mem)
   mem->ls_failed = SUNFALSE;
 }
 
+/* SUNDIALS' dense LU stops only at an exact zero pivot; a matrix whose
+ * pivots span more than 1/DENSE_RCOND_MIN (rounding turned a zero pivot of
+ * a singular matrix into ~eps) is singular to working precision, and its
+ * solves would be noise. Then 1 + the column of the smallest pivot, as the
+ * LU's own flag; else 0. KLU checks its rcond itself (SUNLinSolSetup). */
+#define DENSE_RCOND_MIN SUN_RCONST(1.0e-13)
+static int DenseNearlySingular(LGNMem mem)
+{
+  const sunindextype n = mem->nv + mem->m;
+  sunrealtype umin = SUN_BIG_REAL, umax = SUN_RCONST(0.0), u;
+  sunindextype k, kmin = 0;
+  if (SUNMatGetID(mem->A) != SUNMATRIX_DENSE) return 0;
+  for (k = 0; k < n; k++) { /* the LU factors are in A */
+    u = fabs(SM_ELEMENT_D(mem->A, k, k));
+    if (u < umin) {
+      umin = u;
+      kmin = k;
+    }
+    umax = SUNMAX(umax, u);
+  }
+  return umin < DENSE_RCOND_MIN * umax ? (int)(kmin + 1) : 0;
+}
+
 int lgnLsSetup(LGNMem mem)
 {
   int ret;
@@ -356,11 +381,14 @@ int lgnLsSetup(LGNMem mem)
   ret = SUNLinSolSetup(mem->LS, mem->A);
   mem->last_lin_flag = ret;
   mem->ls_failed = ret != 0 ? SUNTRUE : SUNFALSE;
+  if (ret == 0) ret = DenseNearlySingular(mem);
   if (ret != 0) {
+    lgnDiagnoseSingular(mem, ret, mem->diag_text, sizeof mem->diag_text);
     LGN_ERROR(mem, LGN_LSETUP_FAIL,
-              MSG_TIME "the linear solver setup failed (%d%s).",
+              MSG_TIME "the linear solver setup failed (%d%s).%s",
               (double)mem->tn, ret,
-              ret > 0 ? ": the iteration matrix is singular" : "");
+              ret > 0 || mem->diag_pivot >= 0 ? ": the matrix is singular" : "",
+              mem->diag_text);
     return LGN_LSETUP_FAIL;
   }
   return LGN_SUCCESS;

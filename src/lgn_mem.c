@@ -90,6 +90,7 @@ int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem)
     return LGN_MEM_NULL;
   }
   *mem = (LGNMem)lgn_mem;
+  (*mem)->api_func = func; /* messages from below name this public function */
   return LGN_SUCCESS;
 }
 
@@ -125,7 +126,10 @@ void lgnProcessError(LGNMem mem, int error_code, int line, const char *func,
   (void)line;
   (void)file;
   va_start(ap, msgfmt);
-  lgnReportV(mem == NULL ? NULL : &mem->err, error_code, func, msgfmt, ap);
+  /* the public function the user called, not the internal one that found
+   * the error */
+  lgnReportV(mem == NULL ? NULL : &mem->err, error_code,
+             mem != NULL && mem->api_func != NULL ? mem->api_func : func, msgfmt, ap);
   va_end(ap);
 }
 
@@ -372,6 +376,10 @@ void lgnFreeWork(LGNMem mem)
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
   mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
   mem->ele = mem->ewt = mem->a_scaled = mem->incr = mem->zero_nv = NULL;
+  free(mem->diag_red);
+  mem->diag_red  = NULL;
+  mem->diag_nred = 0;
+  mem->diag_pivot = -1;
   mem->dense_work = NULL;
   mem->a_step = NULL;
   mem->dense_valid = SUNFALSE;
@@ -460,7 +468,9 @@ int lgnAllocWork(LGNMem mem)
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
     mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
                                        sizeof(sunrealtype));
-    fail       = (mem->sigma == NULL || mem->Tm == NULL);
+    /* the redundant constraints of a singular matrix (lgn_diag.c) */
+    mem->diag_red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
+    fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL);
   }
   if (fail) {
     lgnFreeWork(mem);

@@ -622,6 +622,28 @@ LGN_EXPORT int LGNGetErrWeights(void *lgn_mem, N_Vector eweight);
 /** The error test's norm of the last step attempted (<= 1: accepted). */
 LGN_EXPORT int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
 
+/* =============================================================================
+ * Diagnostics of singular mechanisms
+ * ===========================================================================*/
+
+/** After LGN_LSETUP_FAIL or LGN_IC_FAIL with a singular matrix: the
+ *  constraints found redundant (dependent on the others) by a
+ *  rank-revealing QR factorisation of B(q) (done when B has at most 4e6
+ *  entries as a dense matrix). rows (length m, or NULL) receives their
+ *  0-based indices in ascending order; LGNJoints_DescribeConstraint names
+ *  the joints of constraints built with the joint helpers. *nred = 0 if
+ *  none was found (or no singular matrix was met).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (nred NULL). */
+LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
+                                          sunindextype *rows);
+
+/** After a singular matrix: the unknown at which the factorisation found a
+ *  zero pivot (0 .. nv-1: a velocity component; nv .. nv+m-1: the
+ *  multiplier of constraint k - nv), or -1 if none is known. The error
+ *  message names it in words (body and direction).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
+LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
+
 #ifdef __cplusplus
 }
 #endif

@@ -112,6 +112,17 @@ LGN_EXPORT int LGNJoints_AddUniversal(LGNJoints J, int a,
                                       const sunrealtype sb[3],
                                       const sunrealtype axis_b[3]);
 
+/**
+ * Describe constraint row `row` (0-based, as in Phi and B and in
+ * LGNGetRedundantConstraints): its joint, kind and bodies, e.g.
+ * "revolute joint 2 (body 1 - body 2), its constraint 4 of 5".
+ * @param buf, len  the text (truncated to len - 1 characters)
+ * @return LGN_SUCCESS, or LGN_ILL_INPUT (J NULL, buf NULL, len 0, row out
+ *         of range).
+ */
+LGN_EXPORT int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row,
+                                            char *buf, size_t len);
+
 /** Number of constraints m of all joints added so far (rows of Phi and B). */
 LGN_EXPORT sunindextype LGNJoints_NumConstraints(LGNJoints J);
 

@@ -1,0 +1,185 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * Diagnostics of a singular iteration matrix (or saddle-point matrix of the
+ * initial values): which constraints are redundant and which unknown has a
+ * zero pivot, in words a multibody engineer can act on.
+ *
+ *   - Redundant constraints: the rank of B(q) by a QR factorisation with
+ *     column pivoting of B^T (LAPACK dgeqp3): B^T P = Q R with |R_11| >=
+ *     |R_22| >= ...; the constraints pivoted last, beyond the numerical rank
+ *     (|R_kk| <= 1e-10 |R_11|), depend on those before them. Done when
+ *     B has at most LGN_DIAG_MAX_ENTRIES entries as a dense matrix (a large
+ *     model gets the zero pivot only).
+ *   - The zero pivot: the column the factorisation stopped at (dense LU:
+ *     SUNLinSolSetup's return value; KLU: common.singular_col), named as the
+ *     velocity of a body of the group (leaf, translation or rotation
+ *     direction) or as a constraint's multiplier.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "lgn_impl.h"
+#if defined(LGN_HAVE_KLU)
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
+
+#define LGN_DIAG_MAX_ENTRIES 4000000L /* dense B^T for the rank: 32 MB */
+#define LGN_DIAG_RANK_TOL    SUN_RCONST(1.0e-10)
+
+/* LAPACK: QR with column pivoting (reference LAPACK, 32-bit integers). */
+extern void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt,
+                    double *tau, double *work, const int *lwork, int *info);
+
+/* B as a dense column-major m x nv array. */
+static void DenseB(SUNMatrix B, sunindextype m, sunindextype nv, double *D)
+{
+  sunindextype i, j, p;
+  if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
+    memcpy(D, SM_DATA_D(B), (size_t)(m * nv) * sizeof(double));
+    return;
+  }
+  memset(D, 0, (size_t)(m * nv) * sizeof(double));
+  {
+    const sunindextype np = SUNSparseMatrix_NP(B);
+    const sunindextype *ptr = SUNSparseMatrix_IndexPointers(B);
+    const sunindextype *ind = SUNSparseMatrix_IndexValues(B);
+    const sunrealtype *val = SUNSparseMatrix_Data(B);
+    const sunbooleantype csc = SUNSparseMatrix_SparseType(B) == CSC_MAT;
+    for (j = 0; j < np; j++)
+      for (p = ptr[j]; p < ptr[j + 1]; p++) {
+        i = ind[p];
+        if (csc) D[i + j * m] = val[p];
+        else D[j + i * m] = val[p];
+      }
+  }
+}
+
+/* The redundant constraints into mem->diag_red (ascending), their number
+ * into mem->diag_nred, and B's rank into *rank; -1 if not computed. */
+static int RedundantConstraints(LGNMem mem, sunindextype *rank)
+{
+  const sunindextype m = mem->m, nv = mem->nv;
+  double *D = NULL, *Bt = NULL, *tau = NULL, *work = NULL, wq, r11;
+  int *jpvt = NULL, im = (int)nv, in = (int)m, lwork = -1, info = 0, k, r;
+  sunindextype i, j, nred = 0;
+
+  *rank = -1;
+  if (m == 0 || mem->Bmat == NULL || (long int)(m * nv) > LGN_DIAG_MAX_ENTRIES) return -1;
+  D    = (double *)malloc((size_t)(m * nv) * sizeof(double));
+  Bt   = (double *)malloc((size_t)(m * nv) * sizeof(double));
+  tau  = (double *)malloc((size_t)m * sizeof(double));
+  jpvt = (int *)calloc((size_t)m, sizeof(int));
+  if (D == NULL || Bt == NULL || tau == NULL || jpvt == NULL) goto done;
+  DenseB(mem->Bmat, m, nv, D);
+  for (j = 0; j < m; j++) /* B^T: nv x m */
+    for (i = 0; i < nv; i++) Bt[i + j * nv] = D[j + i * m];
+  dgeqp3_(&im, &in, Bt, &im, jpvt, tau, &wq, &lwork, &info);
+  lwork = (int)wq;
+  work  = (double *)malloc((size_t)lwork * sizeof(double));
+  if (info != 0 || work == NULL) goto done;
+  dgeqp3_(&im, &in, Bt, &im, jpvt, tau, work, &lwork, &info);
+  if (info != 0) goto done;
+  r11 = fabs(Bt[0]);
+  r   = 0;
+  for (k = 0; k < (int)SUNMIN(m, nv); k++)
+    if (fabs(Bt[k + k * nv]) > LGN_DIAG_RANK_TOL * r11) r = k + 1;
+  *rank = r;
+  /* the pivoted columns beyond the rank (jpvt is 1-based), ascending */
+  for (k = r; k < in; k++) mem->diag_red[nred++] = jpvt[k] - 1;
+  for (i = 1; i < nred; i++) { /* insertion sort: few entries */
+    sunindextype x = mem->diag_red[i];
+    for (j = i; j > 0 && mem->diag_red[j - 1] > x; j--) mem->diag_red[j] = mem->diag_red[j - 1];
+    mem->diag_red[j] = x;
+  }
+  mem->diag_nred = nred;
+done:
+  free(D);
+  free(Bt);
+  free(tau);
+  free(jpvt);
+  free(work);
+  return *rank >= 0 ? 0 : -1;
+}
+
+/* The column of the zero pivot, or -1. */
+static sunindextype ZeroPivot(LGNMem mem, int ret)
+{
+#if defined(LGN_HAVE_KLU)
+  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) {
+    klu_l_common *c = SUNLinSol_KLUGetCommon(mem->LS);
+    return c != NULL && c->status == KLU_SINGULAR ? (sunindextype)c->singular_col : -1;
+  }
+#endif
+  {
+    /* SUNDIALS' dense LU: the last flag is 1 + the column of the zero pivot */
+    const sunindextype lf = (sunindextype)SUNLinSolLastFlag(mem->LS);
+    (void)ret;
+    return lf > 0 ? lf - 1 : (ret > 0 && ret <= mem->nv + mem->m ? ret - 1 : -1);
+  }
+}
+
+/* Unknown k in words: the velocity of a leaf of the group, or a multiplier. */
+static void NameUnknown(LGNMem mem, sunindextype k, char *buf, size_t len)
+{
+  static const char *rigid[6] = {"translation x", "translation y", "translation z",
+                                 "rotation about body x", "rotation about body y",
+                                 "rotation about body z"};
+  static const char *rot[3] = {"rotation about body x", "rotation about body y",
+                               "rotation about body z"};
+  if (k >= mem->nv) {
+    snprintf(buf, len, "the multiplier of constraint %lld", (long long)(k - mem->nv));
+  } else {
+    const int b = (int)mem->blk_of[k];
+    const sunindextype d = k - mem->blk_voff[b];
+    const LGNGroupKind kind = mem->blk_group[b]->kind;
+    if (kind == LGN_GROUP_R3XSO3 || kind == LGN_GROUP_SE3)
+      snprintf(buf, len, "velocity %lld: body %d, %s", (long long)k, b, rigid[d]);
+    else if (kind == LGN_GROUP_SO3)
+      snprintf(buf, len, "velocity %lld: body %d, %s", (long long)k, b, rot[d]);
+    else
+      snprintf(buf, len, "velocity %lld: factor %d of the group, component %lld",
+               (long long)k, b, (long long)d);
+  }
+}
+
+/* After a failed setup with return value ret: the diagnosis into buf (a
+ * sentence, or "" if there is nothing to add), and into mem for the getters
+ * (LGNGetRedundantConstraints, LGNGetZeroPivot). */
+void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len)
+{
+  sunindextype rank, i, pivot;
+  size_t used = 0;
+  char what[96];
+
+  buf[0] = '\0';
+  mem->diag_nred  = 0;
+  mem->diag_pivot = pivot = ZeroPivot(mem, ret);
+  if (RedundantConstraints(mem, &rank) == 0 && mem->diag_nred > 0) {
+    used += (size_t)snprintf(buf + used, len - used,
+                             " Redundant constraints (B has rank %lld of %lld): ",
+                             (long long)rank, (long long)mem->m);
+    for (i = 0; i < mem->diag_nred && used < len; i++)
+      used += (size_t)snprintf(buf + used, len - used, "%s%lld", i > 0 ? ", " : "",
+                               (long long)mem->diag_red[i]);
+    if (used < len)
+      used += (size_t)snprintf(buf + used, len - used,
+                               " (LGNGetRedundantConstraints; LGNJoints_DescribeConstraint "
+                               "names their joints).");
+  }
+  if (pivot >= 0 && used < len) {
+    NameUnknown(mem, pivot, what, sizeof what);
+    used += (size_t)snprintf(buf + used, len - used, " Zero pivot at unknown %lld, %s%s.",
+                             (long long)pivot, what,
+                             pivot < mem->nv && mem->diag_nred == 0
+                                 ? " (check the mass matrix and the forces' Jacobian there)"
+                                 : "");
+  }
+}
