@@ -3,7 +3,9 @@
  * §5) on t in [0, 1] s, Lignum against SUNDIALS IDA, in one process.
  *
  *   Lignum: every row of LIGNUM[] (heavy_top_run(), analytic Jacobians,
- *           default Newton tolerances) at h = 4e-3 * 2^-k, k = 0..7.
+ *           default Newton tolerances) at h = 4e-3 * 2^-k, k = 0..7;
+ *           the rows marked adaptive with error control (LGN_STEP_ADAPTIVE)
+ *           at rtol = atol = 1e-3 .. 1e-8 instead.
  *   IDA:    the stabilised index-2 (GGL) Euler-parameter DAE of
  *           ida_heavy_top.c with every row of IDA[] (dense LU with IDA's
  *           difference-quotient Jacobian, dense LU with the analytic
@@ -20,7 +22,12 @@
  * interpolated linearly in log(cpu) over log(err) on each method's curve,
  * and the ratio IDA / Lignum); the PASS/MISS lines of the targets of issue 6;
  * a PNG (--png FILE, default work_precision.png) drawn with gnuplot when it
- * is on PATH.  Benchmarks report: the exit status never depends on timing.
+ * is on PATH.  Error control: a table of error, steps and rejected steps
+ * against the tolerance, with the steps and CPU time of the same method's
+ * fixed step reaching the same error (interpolated on its curve), in
+ * <csv>_adaptive.csv and, with gnuplot, <png>_adaptive.png (error and steps
+ * against the tolerance).  Benchmarks report: the exit status never depends
+ * on timing.
  *
  * --quick: a few settings (one repetition) and correctness checks of the IDA
  * model (consistent start, analytic Jacobian, convergence to the reference
@@ -60,33 +67,40 @@ typedef struct {
   int predictor;   /* LGN_PREDICTOR_*          */
   int newton;      /* LGN_NEWTON_*             */
   double tol_h2;   /* > 0: Newton rtol = atol = tol_h2 h^2 (else defaults 1e-8) */
+  int adaptive;    /* 1: error control, the setting is rtol = atol */
 } LignumSpec;
 
 static const LignumSpec LIGNUM[] = {
-  {"LGNM idx3 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"LGNM idx2 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"mod. LGNM idx3 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"mod. LGNM idx2 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"LGGalpha idx3 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"LGGalpha idx2 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"mod. LGGalpha idx3 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"mod. LGGalpha idx2 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"Newmark idx3 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"Newmark idx2 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"gen-alpha idx3 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
-  {"gen-alpha idx2 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0},
+  {"LGNM idx3 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"LGNM idx2 lie",          HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"mod. LGNM idx3 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"mod. LGNM idx2 lie",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"LGGalpha idx3 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"LGGalpha idx2 lie",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"mod. LGGalpha idx3 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"mod. LGGalpha idx2 lie", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"Newmark idx3 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"Newmark idx2 ep",        HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"gen-alpha idx3 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
+  {"gen-alpha idx2 ep",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 0},
   /* modified Newton (LGNSetNewtonMode): reuse of the factorised matrix */
-  {"mod. LGNM idx3 lie mN",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
-  {"mod. LGNM idx2 lie mN",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
-  {"LGGalpha idx3 lie mN",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
-  {"mod. LGGalpha idx3 lie mN", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
-  {"mod. LGGalpha idx2 lie mN", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
-  {"gen-alpha idx3 ep mN",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0},
+  {"mod. LGNM idx3 lie mN",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
+  {"mod. LGNM idx2 lie mN",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
+  {"LGGalpha idx3 lie mN",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
+  {"mod. LGGalpha idx3 lie mN", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
+  {"mod. LGGalpha idx2 lie mN", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
+  {"gen-alpha idx3 ep mN",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 0, 0},
   /* ... with the Newton tolerance tied to the step: h^2, about 1/100 of the
    * global error of these second-order methods (the measured error decides) */
-  {"mod. LGNM idx3 lie mN h2",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 1},
-  {"mod. LGGalpha idx3 lie mN h2", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 1},
-  {"mod. LGGalpha idx3 lie h2",    HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 1},
+  {"mod. LGNM idx3 lie mN h2",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 1, 0},
+  {"mod. LGGalpha idx3 lie mN h2", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_MODIFIED, 1, 0},
+  {"mod. LGGalpha idx3 lie h2",    HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 1, 0},
+  /* error control (LGNSetStepControl(LGN_STEP_ADAPTIVE)): tolerance sweep */
+  {"LGGalpha idx3 lie EC",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 1},
+  {"mod. LGGalpha idx3 lie EC", HT_LIE, HT_GENALPHA, LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 1},
+  {"mod. LGNM idx3 lie EC",     HT_LIE, HT_NEWMARK,  LGN_KINEMATICS_EXACT,      LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 1},
+  {"LGGalpha idx2 lie EC",      HT_LIE, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX2, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 1},
+  {"gen-alpha idx3 ep EC",      HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED, LGN_CONSTR_INDEX3, LGN_PREDICTOR_ZERO, LGN_NEWTON_FULL, 0, 1},
 };
 #define NLIGNUM ((int)(sizeof LIGNUM / sizeof LIGNUM[0]))
 
@@ -107,6 +121,8 @@ static const IdaSpec IDA[] = {
 #define NH      8
 #define RTOL0   1e-3 /* rtol_k = RTOL0 * 10^-k       */
 #define NRTOL   8
+#define TOL0    1e-3 /* error control: rtol = atol = TOL0 * 10^-(k/2) */
+#define NTOL    11   /* 1e-3 .. 1e-8 */
 
 static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5};
 #define NLEVELS 4
@@ -121,6 +137,7 @@ typedef struct {
   double t;         /* time reached               */
   double err, cpu;  /* cpu: median over the reps  */
   long int steps, nni, nres, njac;
+  long int netf, nncf; /* error control: rejected steps */
 } Run;
 
 static const char *MethodName(const Run *r)
@@ -171,6 +188,11 @@ static void LignumOptions(const LignumSpec *s, double h, HeavyTopOptions *opt)
   opt->newton = s->newton;
   if (s->tol_h2 > 0.0) opt->rtol = opt->atol = s->tol_h2 * h * h;
   opt->h = h;
+  if (s->adaptive) { /* h is the tolerance */
+    opt->adaptive = 1;
+    opt->rtol = opt->atol = h;
+    opt->h = T_END;
+  }
   opt->t_end = T_END;
   opt->analytic_jacobians = 1;
   opt->single_solve = 1; /* time the integration, not per-step output */
@@ -209,6 +231,8 @@ static int RunOnce(Run *r, const LGNRefHeavyTop *ref, double *cpu)
     r->nni = res.nniters;
     r->nres = res.nres + res.ndq;
     r->njac = res.njevals;
+    r->netf = res.netfails;
+    r->nncf = res.nncfails;
     *cpu = res.cpu_seconds;
   } else {
     IdaHTOptions opt;
@@ -263,14 +287,14 @@ static int CmpPoint(const void *a, const void *b)
  * by error and interpolate log(cpu) linearly in log(err) between the two
  * neighbours that bracket the level.  Returns 0 if the curve does not reach
  * the level (no extrapolation). */
-static int CpuAtLevel(const Run *r, int n, double level, double *cpu)
+static int ValueAtLevel(const Run *r, int n, double level, int steps, double *cpu)
 {
   Point p[64];
   int i, np = 0;
   for (i = 0; i < n && np < 64; i++)
     if (r[i].ok && r[i].err > 0.0 && r[i].cpu > 0.0) {
       p[np].err = r[i].err;
-      p[np].cpu = r[i].cpu;
+      p[np].cpu = steps ? (double)r[i].steps : r[i].cpu;
       np++;
     }
   qsort(p, (size_t)np, sizeof *p, CmpPoint);
@@ -286,6 +310,11 @@ static int CpuAtLevel(const Run *r, int n, double level, double *cpu)
     return 1;
   }
   return 0;
+}
+
+static int CpuAtLevel(const Run *r, int n, double level, double *cpu)
+{
+  return ValueAtLevel(r, n, level, 0, cpu);
 }
 
 /* Best (smallest CPU) method of one solver at a level; returns the index of
@@ -322,7 +351,9 @@ static int WriteCsv(const char *path, const Run *runs, int nruns)
   fprintf(fp, "%s\n", CSV_HEADER);
   for (i = 0; i < nruns; i++) {
     const Run *r = &runs[i];
-    fprintf(fp, "%s,%s,%g,", r->ida ? "ida" : "lignum", MethodName(r), r->setting);
+    fprintf(fp, "%s,%s,%g,",
+            r->ida ? "ida" : LIGNUM[r->spec].adaptive ? "lignum-adaptive" : "lignum",
+            MethodName(r), r->setting);
     if (r->ok) fprintf(fp, "%.6e", r->err);
     fprintf(fp, ",%.6e,%ld,%ld,%ld,%ld\n", r->cpu, r->steps, r->nni, r->nres, r->njac);
   }
@@ -393,13 +424,144 @@ static void PrintSummary(const Curve *cv, int ncv, const Run *runs)
   }
 }
 
+static const char *const COLOURS[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
+                                      "#d62728", "#0072b2", "#8c564b", "#cc79a7"};
+#define NCOLOURS ((int)(sizeof COLOURS / sizeof COLOURS[0]))
+
+/* path with its extension ext replaced by suffix + ext ("a.csv" ->
+ * "a_adaptive.csv"; without ext: appended) */
+static void SiblingPath(const char *path, const char *suffix, const char *ext, char *out,
+                        size_t len)
+{
+  const size_t n = strlen(path), ne = strlen(ext);
+  if (n >= ne && strcmp(path + n - ne, ext) == 0)
+    snprintf(out, len, "%.*s%s%s", (int)(n - ne), path, suffix, ext);
+  else
+    snprintf(out, len, "%s%s%s", path, suffix, ext);
+}
+
+/* The fixed-step curve of the same method as the adaptive curve c (-1: none). */
+static int FixedTwin(const Curve *cv, int ncv, int c)
+{
+  const LignumSpec *a = &LIGNUM[cv[c].spec];
+  int d;
+  for (d = 0; d < ncv; d++) {
+    const LignumSpec *b;
+    if (cv[d].ida) continue;
+    b = &LIGNUM[cv[d].spec];
+    if (!b->adaptive && b->tol_h2 == 0.0 && b->formulation == a->formulation &&
+        b->method == a->method && b->kinematics == a->kinematics &&
+        b->constraints == a->constraints && b->newton == a->newton &&
+        b->predictor == a->predictor)
+      return d;
+  }
+  return -1;
+}
+
+/* Error control: error, steps and rejections against the tolerance, and
+ * the steps and CPU time of the same method's fixed step at the same
+ * error (interpolated on its curve; "-" outside it). Writes path. */
+static int PrintAdaptive(const Curve *cv, int ncv, const Run *runs, const char *path)
+{
+  FILE *fp = fopen(path, "w");
+  int c, k;
+  if (fp == NULL) {
+    perror(path);
+    return -1;
+  }
+  fprintf(fp, "method,tol,err_com,steps,err_test_fails,newton_fails,cpu_s,"
+              "fixed_steps_same_err,fixed_cpu_s_same_err\n");
+  printf("\nError control: error at t = 1 and steps against rtol = atol; the same\n"
+         "method with a fixed step of the same error (interpolated on its curve)\n");
+  printf("%-26s %8s  %10s  %6s  %5s  %4s  %8s  %9s  %9s\n", "method", "tol", "err_com",
+         "steps", "rej.", "ncf", "cpu [ms]", "fix steps", "fix [ms]");
+  for (c = 0; c < ncv; c++) {
+    const int twin = cv[c].ida || !LIGNUM[cv[c].spec].adaptive ? -2 : FixedTwin(cv, ncv, c);
+    if (twin == -2) continue;
+    for (k = 0; k < cv[c].n; k++) {
+      const Run *r = &runs[cv[c].first + k];
+      double fs = 0.0, fc = 0.0;
+      int have = 0;
+      char e[32], s1[32] = "-", s2[32] = "-";
+      if (r->ok && twin >= 0)
+        have = ValueAtLevel(&runs[cv[twin].first], cv[twin].n, r->err, 1, &fs) &&
+               ValueAtLevel(&runs[cv[twin].first], cv[twin].n, r->err, 0, &fc);
+      if (r->ok) snprintf(e, sizeof e, "%.3e", r->err);
+      else snprintf(e, sizeof e, "F@%.3g", r->t);
+      if (have) {
+        snprintf(s1, sizeof s1, "%.0f", fs);
+        snprintf(s2, sizeof s2, "%.3f", 1e3 * fc);
+      }
+      printf("%-26s %8.2e  %10s  %6ld  %5ld  %4ld  %8.3f  %9s  %9s\n", MethodName(r),
+             r->setting, e, r->steps, r->netf, r->nncf, 1e3 * r->cpu, s1, s2);
+      fprintf(fp, "%s,%g,", MethodName(r), r->setting);
+      if (r->ok) fprintf(fp, "%.6e", r->err);
+      fprintf(fp, ",%ld,%ld,%ld,%.6e,", r->steps, r->netf, r->nncf, r->cpu);
+      if (have) fprintf(fp, "%.0f,%.6e", fs, fc);
+      else fprintf(fp, ",");
+      fprintf(fp, "\n");
+    }
+  }
+  if (fclose(fp) != 0) {
+    perror(path);
+    return -1;
+  }
+  return 0;
+}
+
+/* The figure of error control: error and steps against the tolerance. */
+static void WriteAdaptivePlot(const char *png, const char *csv, const Curve *cv, int ncv)
+{
+  char script[4200];
+  FILE *fp;
+  int c, first = 1;
+  fp = bench_gnuplot_open("work_precision", png, script, sizeof script);
+  if (fp == NULL) return;
+  fprintf(fp,
+          "# Heavy top, error control (generated by work_precision).\n"
+          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+          "  set terminal pngcairo size 1200,520 enhanced font 'sans,10'\n"
+          "} else {\n"
+          "  set terminal png size 1200,520\n"
+          "}\n"
+          "set output '%s'\n"
+          "set datafile separator ','\n"
+          "set logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
+          "set xlabel 'rtol = atol'\nset key top left font ',9'\n"
+          "set multiplot layout 1,2 title 'Heavy top on [0, 1] s with error control "
+          "(LGN\\_STEP\\_ADAPTIVE)'\n"
+          "set ylabel 'error of the centre of mass at t = 1 s [m]'\n"
+          "plot ",
+          png);
+  for (c = 0; c < ncv; c++) {
+    if (cv[c].ida || !LIGNUM[cv[c].spec].adaptive) continue;
+    fprintf(fp, "%s'%s' using (strcol(1) eq '%s' ? $2 : NaN):3 with linespoints lw 2 pt 7 "
+                "lc rgb '%s' title '%s'",
+            first ? "" : ", ", csv, LIGNUM[cv[c].spec].name,
+            COLOURS[cv[c].spec % NCOLOURS], LIGNUM[cv[c].spec].name);
+    first = 0;
+  }
+  fprintf(fp, "\nset ylabel 'steps'\nplot ");
+  first = 1;
+  for (c = 0; c < ncv; c++) {
+    if (cv[c].ida || !LIGNUM[cv[c].spec].adaptive) continue;
+    fprintf(fp, "%s'%s' using (strcol(1) eq '%s' ? $2 : NaN):4 with linespoints lw 2 pt 7 "
+                "lc rgb '%s' title '%s', "
+                "'%s' using (strcol(1) eq '%s' ? $2 : NaN):8 with linespoints dt 2 lw 1.5 "
+                "pt 6 lc rgb '%s' title 'fixed h, same error'",
+            first ? "" : ", ", csv, LIGNUM[cv[c].spec].name, COLOURS[cv[c].spec % NCOLOURS],
+            LIGNUM[cv[c].spec].name, csv, LIGNUM[cv[c].spec].name,
+            COLOURS[cv[c].spec % NCOLOURS]);
+    first = 0;
+  }
+  fprintf(fp, "\nunset multiplot\n");
+  bench_gnuplot_run("work_precision", fp, script, png);
+}
+
 /* ---------------------------------------------------------------------------
  * The figure (gnuplot): CPU time against error, log-log, one curve per method
  * ------------------------------------------------------------------------- */
 
-static const char *const COLOURS[] = {"#9400d3", "#009e73", "#56b4e9", "#e69f00",
-                                      "#d62728", "#0072b2", "#8c564b", "#cc79a7"};
-#define NCOLOURS ((int)(sizeof COLOURS / sizeof COLOURS[0]))
 
 static void WritePlot(const char *png, const Curve *cv, int ncv, const Run *runs)
 {
@@ -433,6 +595,9 @@ static void WritePlot(const char *png, const Curve *cv, int ncv, const Run *runs
       fprintf(fp, "set style line %d lc rgb '%s' dt 2 lw 3 pt %d ps 1.3\n", c + 1,
               cv[c].spec == 0 ? "#000000" : cv[c].spec == 1 ? "#555555" : "#999999",
               4 + 2 * cv[c].spec);
+    else if (LIGNUM[cv[c].spec].adaptive) /* error control: thick dash-dot */
+      fprintf(fp, "set style line %d lc rgb '%s' dt 4 lw 3.5 pt 9 ps 1.3\n", c + 1,
+              COLOURS[cv[c].spec % NCOLOURS]);
     else
       fprintf(fp, "set style line %d lc rgb '%s' dt %d lw 2 pt %d ps 1.0\n", c + 1,
               COLOURS[cv[c].spec / 2 % NCOLOURS],
@@ -451,7 +616,7 @@ static void WritePlot(const char *png, const Curve *cv, int ncv, const Run *runs
           "}\n"
           "set output '%s'\n"
           "set title 'Heavy top on [0, 1] s: work-precision (Lignum h = 4e-3..3.1e-5, "
-          "IDA rtol = 1e-3..1e-10; median CPU time)'\n"
+          "EC: error control tol = 1e-3..1e-8, IDA rtol = 1e-3..1e-10; median CPU time)'\n"
           "set logscale xy\n"
           "set format x '10^{%%L}'\n"
           "set format y '10^{%%L}'\n"
@@ -536,6 +701,7 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
     const LignumSpec *s = &LIGNUM[k];
     Run a, b;
     double cpu;
+    if (s->adaptive) continue; /* checked below */
     if (!(s->method == HT_GENALPHA && s->constraints == LGN_CONSTR_INDEX3) &&
         !(s->kinematics == LGN_KINEMATICS_EXACT && s->constraints == LGN_CONSTR_INDEX3))
       continue;
@@ -549,6 +715,31 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
     snprintf(msg, sizeof msg, "%s: err(h=1e-3) = %.3e < 1e-2, err(5e-4) = %.3e, ratio %.2f > 3",
              s->name, a.err, b.err, a.err / b.err);
     fails += Check(a.ok && b.ok && a.err < 1e-2 && a.err / b.err > 3.0, msg);
+  }
+  /* error control: reaches t = 1, the error and the steps follow the
+   * tolerance */
+  for (k = 0; k < NLIGNUM; k++) {
+    const double tols[3] = {1e-3, 1e-5, 1e-7};
+    double e_prev = INFINITY, cpu;
+    long int s_prev = 0;
+    int j;
+    if (!LIGNUM[k].adaptive || LIGNUM[k].kinematics != LGN_KINEMATICS_SIMPLIFIED ||
+        LIGNUM[k].constraints != LGN_CONSTR_INDEX3 || LIGNUM[k].formulation != HT_LIE)
+      continue;
+    for (j = 0; j < 3; j++) {
+      Run r;
+      memset(&r, 0, sizeof r);
+      r.spec = k;
+      r.setting = tols[j];
+      r.ok = RunOnce(&r, ref, &cpu);
+      snprintf(msg, sizeof msg, "%s tol %.0e: reaches t = 1, err %.3e < %.3e, steps %ld > %ld",
+               LIGNUM[k].name, tols[j], r.err, e_prev, r.steps, s_prev);
+      fails += Check(r.ok && r.err < e_prev && r.steps > s_prev, msg);
+      e_prev = r.err;
+      s_prev = r.steps;
+    }
+    snprintf(msg, sizeof msg, "%s tol 1e-7: err %.3e < 1e-2", LIGNUM[k].name, e_prev);
+    fails += Check(e_prev < 1e-2, msg);
   }
   printf("%s\n", fails ? "Quick checks FAILED" : "Quick checks passed");
   return fails;
@@ -570,7 +761,7 @@ static void Usage(const char *prog)
 int main(int argc, char **argv)
 {
   const char *csv = "work_precision.csv", *png = "work_precision.png";
-  int quick = 0, reps = 5, i, k, c, nruns = 0, ncv = 0, nh, nrt, fails = 0;
+  int quick = 0, reps = 5, i, k, c, nruns = 0, ncv = 0, nh, nrt, ntol, fails = 0;
   double t1 = T_END, t_start = WallSeconds();
   LGNRefHeavyTop ref;
   Run *runs;
@@ -597,6 +788,7 @@ int main(int argc, char **argv)
   if (quick) reps = 1;
   nh = quick ? 3 : NH;     /* quick: h = 4e-3, 2e-3, 1e-3     */
   nrt = quick ? 3 : NRTOL; /* quick: rtol = 1e-3, 1e-4, 1e-5  */
+  ntol = quick ? 3 : NTOL;  /* quick: tol = 1e-3, 1e-4, 1e-5   */
 
   if (lgnref_heavy_top(&t1, 1, &ref, LGNREF_FEHLBERG_8) != 0) {
     fprintf(stderr, "work_precision: reference solution failed\n");
@@ -607,20 +799,23 @@ int main(int argc, char **argv)
          "of the integration only.\n", T_END, reps);
   if (quick) fails = QuickChecks(&ref);
 
-  runs = calloc((size_t)(NLIGNUM * NH + NIDA * NRTOL), sizeof *runs);
+  runs = calloc((size_t)(NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL), sizeof *runs);
   if (runs == NULL) {
     fprintf(stderr, "work_precision: out of memory\n");
     return 1;
   }
   for (c = 0; c < NLIGNUM; c++) {
+    const int adaptive = LIGNUM[c].adaptive;
     cv[ncv].first = nruns;
-    cv[ncv].n = nh;
+    cv[ncv].n = adaptive ? ntol : nh;
     cv[ncv].ida = 0;
     cv[ncv++].spec = c;
-    for (k = 0; k < nh; k++) {
+    for (k = 0; k < (adaptive ? ntol : nh); k++) {
       Run *r = &runs[nruns++];
       r->spec = c;
-      r->setting = H0 / (double)(1L << k);
+      /* quick: 1e-3, 1e-4, 1e-5 */
+      r->setting = adaptive ? TOL0 * pow(10.0, -0.5 * (quick ? 2 * k : k))
+                            : H0 / (double)(1L << k);
     }
   }
   for (c = 0; c < NIDA; c++) {
@@ -640,9 +835,18 @@ int main(int argc, char **argv)
   if (WriteCsv(csv, runs, nruns) != 0) fails++;
   PrintRuns(cv, ncv, runs);
   PrintSummary(cv, ncv, runs);
-  printf("\nCSV: %s\n", csv);
-  fflush(stdout);
-  if (png != NULL && !quick) WritePlot(png, cv, ncv, runs);
+  {
+    char acsv[4096], apng[4096];
+    SiblingPath(csv, "_adaptive", ".csv", acsv, sizeof acsv);
+    if (PrintAdaptive(cv, ncv, runs, acsv) != 0) fails++;
+    printf("\nCSV: %s, %s\n", csv, acsv);
+    fflush(stdout);
+    if (png != NULL && !quick) {
+      WritePlot(png, cv, ncv, runs);
+      SiblingPath(png, "_adaptive", ".png", apng, sizeof apng);
+      WriteAdaptivePlot(apng, acsv, cv, ncv);
+    }
+  }
   printf("Total wall time %.1f s\n", WallSeconds() - t_start);
   free(runs);
   return fails ? 1 : 0;

@@ -6,10 +6,20 @@
  *             [--kinematics simplified|exact|sigma] [--jacobian analytic|dq]
  *             [--h H] [--t-end T] [--a0 consistent|zero]
  *             [--predictor zero|extrapolate] [--newton full|modified] [--msbp N]
- *             [--csv FILE]
+ *             [--rtol R] [--atol A] [--adaptive] [--csv FILE]
+ *             [--reference-h H [--bound B]]
  *
  * Prints the final state, one line "com_final <x> <y> <z>" with 17
  * significant digits, and the integrator statistics. Exit status 0 on success.
+ *
+ * --adaptive: error control (LGN_STEP_ADAPTIVE). --rtol and --atol are then
+ * the error test's tolerances (default 1e-6 both here), --h is the output
+ * interval (LGN_NORMAL interpolates there), and the run lands on t_end
+ * exactly (LGNSetStopTime). Without it they are the Newton tolerances.
+ *
+ * --reference-h H: also run the same method with the fixed step H (Newton
+ * tolerances 1e-10) and print |com_final - com_ref|_max; with --bound B the
+ * exit status is 1 unless it is below B.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -30,8 +40,12 @@ static void Usage(const char *prog)
           "          [--a0 consistent|zero] [--predictor zero|extrapolate]\n"
           "          [--newton full|modified] [--msbp N] (modified Newton:\n"
           "          max steps between matrix setups)\n"
-          "          [--rtol R] [--atol A] (Newton tolerances)\n"
-          "          [--csv FILE]\n", prog);
+          "          [--rtol R] [--atol A] (Newton tolerances; with --adaptive\n"
+          "          the error test's, default 1e-6)\n"
+          "          [--adaptive] (error control; --h is then the output interval)\n"
+          "          [--csv FILE]\n"
+          "          [--reference-h H [--bound B]] (compare com_final with a\n"
+          "          fixed-step run of step H; fail unless within B)\n", prog);
 }
 
 /* Parse a number; returns 0 on success. */
@@ -43,13 +57,25 @@ static int ParseReal(const char *s, double *x)
 }
 
 static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
-                     const char **csv_path)
+                     const char **csv_path, double *ref_h, double *bound)
 {
-  int i;
-  for (i = 1; i < argc; i += 2) { /* every option takes a value */
-    const char *key = argv[i], *val = (i + 1 < argc) ? argv[i + 1] : NULL;
+  int i = 1;
+  while (i < argc) {
+    const char *key = argv[i], *val;
     int bad = 0;
-    if (val == NULL) return 1;
+    /* flags without a value */
+    if (!strcmp(key, "--adaptive")) {
+      opt->adaptive = 1;
+      i++;
+      continue;
+    }
+    /* every other option takes a value */
+    if (i + 1 >= argc) {
+      fprintf(stderr, "heavy_top: option %s needs a value\n", key);
+      return 1;
+    }
+    val = argv[i + 1];
+    i += 2;
     if (!strcmp(key, "--formulation")) {
       if (!strcmp(val, "lie")) opt->formulation = HT_LIE;
       else if (!strcmp(val, "se3")) opt->formulation = HT_SE3;
@@ -96,6 +122,8 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     else if (!strcmp(key, "--rtol")) bad = ParseReal(val, &opt->rtol);
     else if (!strcmp(key, "--atol")) bad = ParseReal(val, &opt->atol);
     else if (!strcmp(key, "--csv")) *csv_path = val;
+    else if (!strcmp(key, "--reference-h")) bad = ParseReal(val, ref_h) || !(*ref_h > 0.0);
+    else if (!strcmp(key, "--bound")) bad = ParseReal(val, bound) || !(*bound > 0.0);
     else bad = 1;
     if (bad) {
       fprintf(stderr, "heavy_top: bad option or value: %s %s\n", key, val);
@@ -111,13 +139,18 @@ int main(int argc, char **argv)
   HeavyTopResult res;
   const char *csv_path = NULL;
   char name[128];
-  int flag;
+  double ref_h = 0.0, bound = 0.0;
+  int flag, status;
 
   heavy_top_default_options(&opt);
-  if (ParseArgs(argc, argv, &opt, &csv_path)) {
+  if (ParseArgs(argc, argv, &opt, &csv_path, &ref_h, &bound)) {
     Usage(argv[0]);
     return 2;
   }
+  /* error control: tolerances of the error test (the library's defaults,
+   * 1e-8, are those of the Newton iteration: too tight as a default here) */
+  if (opt.adaptive && opt.rtol <= 0.0) opt.rtol = 1e-6;
+  if (opt.adaptive && opt.atol <= 0.0) opt.atol = 1e-6;
   if (csv_path != NULL) {
     opt.csv = fopen(csv_path, "w");
     if (opt.csv == NULL) {
@@ -130,8 +163,13 @@ int main(int argc, char **argv)
          opt.formulation == HT_LIE   ? "R^3 x SO(3)"
          : opt.formulation == HT_SE3 ? "SE(3)"
                                      : "Euler parameters");
-  printf("h = %g, t_end = %g, Jacobians: %s\n\n", opt.h, opt.t_end,
-         opt.analytic_jacobians ? "analytic" : "difference quotients");
+  if (opt.adaptive)
+    printf("error control: rtol = %g, atol = %g, output every %g, t_end = %g, "
+           "Jacobians: %s\n\n", opt.rtol, opt.atol, opt.h, opt.t_end,
+           opt.analytic_jacobians ? "analytic" : "difference quotients");
+  else
+    printf("h = %g, t_end = %g, Jacobians: %s\n\n", opt.h, opt.t_end,
+           opt.analytic_jacobians ? "analytic" : "difference quotients");
 
   flag = heavy_top_run(&opt, &res);
   if (opt.csv != NULL) fclose(opt.csv);
@@ -144,6 +182,8 @@ int main(int argc, char **argv)
   printf("lambda_final %.17g %.17g %.17g\n", res.lambda[0], res.lambda[1], res.lambda[2]);
   printf("max_phi    %.3e\n\n", res.max_phi);
   printf("steps                 %ld\n", res.nsteps);
+  printf("error_test_fails      %ld\n", res.netfails);
+  printf("newton_conv_fails     %ld\n", res.nncfails);
   printf("newton_iters          %ld\n", res.nniters);
   printf("newton_per_step       %.4f\n",
          res.nsteps > 0 ? (double)res.nniters / (double)res.nsteps : 0.0);
@@ -152,5 +192,29 @@ int main(int argc, char **argv)
   printf("jacobian_evals        %ld\n", res.njevals);
   printf("linear_solves         %ld\n", res.nlsolves);
   printf("linear_setups         %ld\n", res.nlsetups);
-  return flag == LGN_SUCCESS ? 0 : 1;
+  printf("cpu_seconds           %.4f\n", res.cpu_seconds);
+  status = flag == LGN_SUCCESS ? 0 : 1;
+
+  if (ref_h > 0.0 && status == 0) {
+    /* the same method with a fine fixed step */
+    HeavyTopOptions ref = opt;
+    HeavyTopResult rres;
+    double d = 0.0;
+    int k, rflag;
+    ref.adaptive = 0;
+    ref.h        = ref_h;
+    ref.rtol = ref.atol = 1e-10;
+    ref.csv          = NULL;
+    ref.single_solve = 1;
+    rflag = heavy_top_run(&ref, &rres);
+    for (k = 0; k < 3; k++) d = fmax(d, fabs(res.x[k] - rres.x[k]));
+    printf("\nreference  h = %g: status %s, steps %ld, cpu %.4f s\n", ref_h,
+           LGNGetReturnFlagName(rflag), rres.nsteps, rres.cpu_seconds);
+    printf("com_ref    %.17g %.17g %.17g\n", rres.x[0], rres.x[1], rres.x[2]);
+    printf("com_error_vs_reference %.3e", d);
+    if (bound > 0.0) printf(" (must be < %g)", bound);
+    printf("\n");
+    if (rflag != LGN_SUCCESS || (bound > 0.0 && !(d < bound))) status = 1;
+  }
+  return status;
 }

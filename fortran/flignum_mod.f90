@@ -38,6 +38,7 @@ module flignum_mod
   ! Return flags: one flat, non-overlapping space (names: LGNGetReturnFlagName)
   ! ===========================================================================
   integer(c_int), parameter :: LGN_SUCCESS = 0
+  integer(c_int), parameter :: LGN_TSTOP_RETURN = 1
 
   ! solver failures -1 .. -19
   integer(c_int), parameter :: LGN_TOO_MUCH_WORK = -1
@@ -51,6 +52,7 @@ module flignum_mod
   integer(c_int), parameter :: LGN_NONFINITE = -9
   integer(c_int), parameter :: LGN_REPTD_CALLBACK_ERR = -10
   integer(c_int), parameter :: LGN_IC_FAIL = -11
+  integer(c_int), parameter :: LGN_ERR_FAILURE = -12
 
   ! usage errors -20 .. -29
   integer(c_int), parameter :: LGN_MEM_NULL = -20
@@ -60,6 +62,8 @@ module flignum_mod
   integer(c_int), parameter :: LGN_NO_LINSOL = -24
   integer(c_int), parameter :: LGN_MISSING_FN = -25
   integer(c_int), parameter :: LGN_BAD_TOUT = -26
+  integer(c_int), parameter :: LGN_BAD_T = -27
+  integer(c_int), parameter :: LGN_BAD_K = -28
 
   ! linear solver interface -30 .. -39
   integer(c_int), parameter :: LGN_LINIT_FAIL = -30
@@ -75,6 +79,9 @@ module flignum_mod
   ! itask of LGNSolve
   integer(c_int), parameter :: LGN_NORMAL = 1
   integer(c_int), parameter :: LGN_ONE_STEP = 2
+  ! step size control (LGNSetStepControl)
+  integer(c_int), parameter :: LGN_STEP_FIXED = 40
+  integer(c_int), parameter :: LGN_STEP_ADAPTIVE = 41
   ! constraint formulation
   integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 3
   integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 2
@@ -488,6 +495,145 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       real(c_double), value :: rtol, atol
     end function LGNSStolerances
+
+    ! =========================================================================
+    ! lignum.h: error control (adaptive steps, stop time, output between steps)
+    ! =========================================================================
+
+    !> LGN_STEP_FIXED (default) or LGN_STEP_ADAPTIVE (the local error of
+    !> every step kept within the tolerances of LGNSStolerances /
+    !> LGNSVtolerances; LGN_NORMAL then interpolates at tout).
+    integer(c_int) function LGNSetStepControl(lgn_mem, control) &
+        bind(c, name="LGNSetStepControl")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: control
+    end function LGNSetStepControl
+
+    !> Tolerances with a vector of absolute tolerances (N_Vector, length nv,
+    !> each > 0); copied.
+    integer(c_int) function LGNSVtolerances(lgn_mem, rtol, atol) &
+        bind(c, name="LGNSVtolerances")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: rtol
+      type(c_ptr), value :: atol
+    end function LGNSVtolerances
+
+    !> First step size of error control (0: estimated, the default).
+    integer(c_int) function LGNSetInitStep(lgn_mem, h0) bind(c, name="LGNSetInitStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: h0
+    end function LGNSetInitStep
+
+    !> Smallest step size of error control (default 0).
+    integer(c_int) function LGNSetMinStep(lgn_mem, hmin) bind(c, name="LGNSetMinStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: hmin
+    end function LGNSetMinStep
+
+    !> Largest step size of error control (0: no limit, the default).
+    integer(c_int) function LGNSetMaxStep(lgn_mem, hmax) bind(c, name="LGNSetMaxStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: hmax
+    end function LGNSetMaxStep
+
+    !> Error-test failures allowed in one step (0: the default 10).
+    integer(c_int) function LGNSetMaxErrTestFails(lgn_mem, maxnef) &
+        bind(c, name="LGNSetMaxErrTestFails")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: maxnef
+    end function LGNSetMaxErrTestFails
+
+    !> Newton (and recoverable callback) failures allowed in one step
+    !> (0: the default 10).
+    integer(c_int) function LGNSetMaxConvFails(lgn_mem, maxncf) &
+        bind(c, name="LGNSetMaxConvFails")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: maxncf
+    end function LGNSetMaxConvFails
+
+    !> Ratio of Newton's tolerances to the error test's (0: the default 0.33).
+    integer(c_int) function LGNSetNonlinConvCoef(lgn_mem, epcon) &
+        bind(c, name="LGNSetNonlinConvCoef")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: epcon
+    end function LGNSetNonlinConvCoef
+
+    !> A time not to step past: LGNSolve lands on it, returns LGN_TSTOP_RETURN.
+    integer(c_int) function LGNSetStopTime(lgn_mem, tstop) bind(c, name="LGNSetStopTime")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: tstop
+    end function LGNSetStopTime
+
+    !> Forget the stop time.
+    integer(c_int) function LGNClearStopTime(lgn_mem) bind(c, name="LGNClearStopTime")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+    end function LGNClearStopTime
+
+    !> q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at t in
+    !> the last step, from the dense output (dky: an N_Vector).
+    integer(c_int) function LGNGetDky(lgn_mem, t, k, dky) bind(c, name="LGNGetDky")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: t
+      integer(c_int), value :: k
+      type(c_ptr), value :: dky
+    end function LGNGetDky
+
+    !> The step size to be tried next (error control) or the fixed h.
+    integer(c_int) function LGNGetCurrentStep(lgn_mem, hcur) &
+        bind(c, name="LGNGetCurrentStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: hcur
+    end function LGNGetCurrentStep
+
+    !> The first step size tried (error control) or the fixed h.
+    integer(c_int) function LGNGetActualInitStep(lgn_mem, hinused) &
+        bind(c, name="LGNGetActualInitStep")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: hinused
+    end function LGNGetActualInitStep
+
+    !> Steps rejected by the error test.
+    integer(c_int) function LGNGetNumErrTestFails(lgn_mem, netfails) &
+        bind(c, name="LGNGetNumErrTestFails")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: netfails
+    end function LGNGetNumErrTestFails
+
+    !> The local error estimate of the last step attempted (N_Vector, nv).
+    integer(c_int) function LGNGetEstLocalErrors(lgn_mem, ele) &
+        bind(c, name="LGNGetEstLocalErrors")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, ele
+    end function LGNGetEstLocalErrors
+
+    !> The error weights 1/(atol_i + rtol |s_i|) of the last step attempted.
+    integer(c_int) function LGNGetErrWeights(lgn_mem, eweight) &
+        bind(c, name="LGNGetErrWeights")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, eweight
+    end function LGNGetErrWeights
+
+    !> The error test's norm of the last step attempted (<= 1: accepted).
+    integer(c_int) function LGNGetLastErrNorm(lgn_mem, errnorm) &
+        bind(c, name="LGNGetLastErrNorm")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: errnorm
+    end function LGNGetLastErrNorm
 
     !> Maximum Newton iterations per step (0: default 20).
     integer(c_int) function LGNSetMaxNewtonIters(lgn_mem, maxiters) &

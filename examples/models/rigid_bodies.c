@@ -522,16 +522,49 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   if (flag == 0) flag = LGNSetLSetupFrequency(mem, opt->msbp);
   if (flag == 0) flag = LGNSetPredictor(mem, opt->predictor);
   if (flag == 0) flag = LGNSetConstraintIndex(mem, opt->constraints);
-  if (flag == 0 && opt->rtol > 0) flag = LGNSStolerances(mem, opt->rtol, opt->atol);
+  if (flag == 0 && opt->adaptive) {
+    /* the error test's tolerances (the library's defaults, 1e-8, are meant
+     * for the Newton iteration of fixed steps) */
+    flag = LGNSStolerances(mem, opt->rtol > 0 ? opt->rtol : 1e-6,
+                           opt->atol > 0 ? opt->atol : 1e-6);
+    if (flag == 0) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+    if (flag == 0) flag = LGNSetInitStep(mem, opt->h);
+    if (flag == 0 && opt->hmax > 0) flag = LGNSetMaxStep(mem, opt->hmax);
+    if (flag == 0) flag = LGNSetStopTime(mem, opt->t_end);
+  } else if (flag == 0 && opt->rtol > 0) {
+    flag = LGNSStolerances(mem, opt->rtol, opt->atol);
+  }
 
   res->energy0 = rigid_energy(sys, sys->q0, sys->v0);
   res->energy  = res->energy0;
   LGNJoints_Residual(sys->joints, sys->q0, phi);
   res->max_phi = N_VMaxNorm(phi);
   if (opt->csv != NULL) fprintf(opt->csv, "t,energy,max_phi\n0,%.17g,%.3e\n", res->energy0, res->max_phi);
-  for (k = 1; k <= opt->outputs && flag == 0; k++) {
+  if (flag == 0 && opt->adaptive && opt->step_log != NULL) {
+    /* every accepted step: LGN_ONE_STEP up to the stop time t_end */
+    const double t0 = CpuSeconds();
+    sunrealtype hlast = 0.0;
+    fprintf(opt->step_log, "t,h\n");
+    while (flag == 0 && t < opt->t_end) {
+      flag = LGNSolve(mem, opt->t_end, &t, q, v, LGN_ONE_STEP);
+      if (flag == 0 || flag == LGN_TSTOP_RETURN) {
+        LGNGetLastStep(mem, &hlast);
+        fprintf(opt->step_log, "%.10g,%.6e\n", t, hlast);
+      }
+      if (flag == LGN_TSTOP_RETURN) flag = 0;
+    }
+    res->cpu_seconds = CpuSeconds() - t0;
+    if (flag == 0) {
+      res->energy    = rigid_energy(sys, q, v);
+      res->max_drift = fabs(res->energy - res->energy0);
+      LGNJoints_Residual(sys->joints, q, phi);
+      res->max_phi = fmax(res->max_phi, N_VMaxNorm(phi));
+    }
+  }
+  for (k = 1; k <= opt->outputs && flag == 0 && opt->step_log == NULL; k++) {
     const double tout = opt->t_end * k / opt->outputs, t0 = CpuSeconds();
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
+    if (flag == LGN_TSTOP_RETURN) flag = 0; /* t_end reached (error control) */
     res->cpu_seconds += CpuSeconds() - t0;
     if (k == 1) {
       res->cpu_first_seconds = res->cpu_seconds;
@@ -547,6 +580,8 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   }
   res->flag = flag;
   res->t    = t;
+  LGNJoints_Residual(sys->joints, q, phi);
+  res->phi_end = N_VMaxNorm(phi);
   LGNGetNumSteps(mem, &res->nsteps);
   LGNGetNumNewtonIters(mem, &res->nni);
   LGNGetNumResEvals(mem, &res->nre);
@@ -555,6 +590,8 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetNumLinSolvSetups(mem, &res->nlsetups);
   LGNGetNumMatrixReuses(mem, &res->nreuse);
   LGNGetNumNewtonStalls(mem, &res->nstall);
+  LGNGetNumErrTestFails(mem, &res->netf);
+  LGNGetNumNewtonConvFails(mem, &res->nncf);
   LGNGetNumSparsityAnalyses(mem, &res->nanalyses);
   LGNGetNumDQColors(mem, &res->ncolors);
   LGNGetIterationMatrixNnz(mem, &res->nnz);
@@ -593,13 +630,19 @@ void rigid_print_usage(FILE *out)
           "          [--predictor zero|extrapolate] [--ordering amd|colamd|natural]\n"
           "          [--klu-solve lignum|klu]\n"
           "          [--residual shortcuts|plain]\n"
-          "          [--csv FILE]\n");
+          "          [--csv FILE] [--adaptive] [--hmax H]\n"
+          "          (--adaptive: error control, --rtol/--atol the error test's\n"
+          "          tolerances (default 1e-6), --h the first step tried)\n");
 }
 
 int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
                        RigidFormulation *formulation)
 {
   const char *key = argv[*i], *val;
+  if (strcmp(key, "--adaptive") == 0) { /* a flag: no value */
+    opt->adaptive = 1;
+    return 1;
+  }
   if (strncmp(key, "--", 2) != 0 || *i + 1 >= argc) return 0;
   val = argv[*i + 1];
 #define IS(s) (strcmp(key, s) == 0)
@@ -663,6 +706,7 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
   else if (IS("--outputs")) opt->outputs = atoi(val);
   else if (IS("--rtol")) opt->rtol = atof(val);
   else if (IS("--atol")) opt->atol = atof(val);
+  else if (IS("--hmax")) opt->hmax = atof(val);
   else return 0;
 #undef IS
 #undef VAL

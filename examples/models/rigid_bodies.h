@@ -69,6 +69,14 @@ typedef struct {
   int time_linear_algebra;  /* 1: time one solve and one setup after the run */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */
+  int adaptive;             /* 1: error control (LGN_STEP_ADAPTIVE) with
+                               rtol, atol the error test's tolerances (0:
+                               1e-6 each); h is then only the first step
+                               tried (LGNSetInitStep), the samples are
+                               interpolated, t_end is landed on exactly   */
+  double hmax;              /* error control: largest step (0: none)       */
+  FILE *step_log;           /* error control: "t,h" per accepted step
+                               (LGN_ONE_STEP; NULL: none)                  */
 } RigidRunOptions;
 
 typedef struct {
@@ -76,8 +84,12 @@ typedef struct {
   double t;
   double energy0, energy, max_drift; /* E(0), E(t_end), max |E - E(0)|      */
   double max_phi;                    /* max |Phi| over the samples           */
+  double phi_end;                    /* |Phi| at the last state reached (the
+                                        integrator's own q with error control,
+                                        whose samples are interpolated)     */
   long int nsteps, nni, nre, ndq, nje, nlsetups, nanalyses, ncolors;
   long int nreuse, nstall;
+  long int netf, nncf;               /* error-test and Newton failures       */
   long int nnz, lenrw, leniw;
   double klu_peak_bytes;             /* KLU's peak memory (0 for dense)     */
   double cpu_seconds;                /* process CPU time in LGNSolve only    */
@@ -97,11 +109,14 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
 void rigid_result_free(RigidRunResult *res);
 
 /* Parse the options common to the examples (--solver, --method, ...);
- * returns 1 if argv[*i] was one of them (consuming its value), 0 if not,
+ * returns 1 if argv[*i] was one of them (consuming its value; the flag
+ * --adaptive has none), 0 if not,
  * -1 on a bad value. */
 int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
                        RigidFormulation *formulation);
 void rigid_print_usage(FILE *out);
+/* The step log of an error-controlled run needs LGN_ONE_STEP; the flag of
+ * a run that stopped at t_end (LGN_TSTOP_RETURN) is reported as LGN_SUCCESS. */
 const char *rigid_solver_name(RigidSolver s);
 /* 1 if the solver is built (KLU needs LGN_ENABLE_KLU), 0 if not. */
 int rigid_solver_available(RigidSolver s);

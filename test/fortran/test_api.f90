@@ -12,7 +12,10 @@
 !    quaternion helpers; a group defined in Fortran (R^1 with bind(C) ops);
 !  - a complete integration on that group: the oscillator q'' = -q with
 !    Newmark (1/4, 1/2), exact kinematics, against cos(t); every setter and
-!    getter of lignum.h is called once.
+!    getter of lignum.h is called once;
+!  - the same oscillator with error control (LGN_STEP_ADAPTIVE): LGN_NORMAL
+!    interpolating at tout, a stop time (LGN_TSTOP_RETURN), LGNGetDky and
+!    the error-control setters and getters.
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 
@@ -134,6 +137,7 @@ program test_api
   call test_groups()
   call test_parameter_map()
   call test_oscillator()
+  call test_adaptive()
   call ftest_finish("test_api")
 
 contains
@@ -525,6 +529,146 @@ contains
     call LGNGroup_Destroy(G)
     call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
   end subroutine test_oscillator
+
+  !> The oscillator q'' = -q with error control: every error-control setter
+  !> and getter, output between steps, the stop time.
+  subroutine test_adaptive()
+    type(oscillator), target :: osc
+    type(c_ptr) :: ctx, G, q, v, atolv, ele, ewt, dky, A1, tmpl, LS, mem
+    type(LGNGroupRec), pointer :: rec
+    real(c_double), pointer :: qq(:), vv(:), pe(:), pw(:), pd(:)
+    real(c_double) :: t, hcur, h0, hlast, errnorm, tm
+    integer(c_long) :: nsteps, netf
+    integer(c_int) :: flag
+    real(c_double), parameter :: rtol = 1.0e-6_c_double, atol = 1.0e-8_c_double
+
+    call expect(FSUNContext_Create(ctx) == 0, "SUNContext_Create")
+    G = LGNGroup_NewEmpty(1_c_int64_t, 1_c_int64_t)
+    rec => FLGNGroup_Rec(G)
+    rec%ops%compose_exp = c_funloc(rn_compose_exp)
+    rec%ops%tangent_apply = c_funloc(rn_tangent_apply)
+    rec%ops%tangent_inverse_apply = c_funloc(rn_tangent_apply)
+    rec%ops%tangent_dot_apply = c_funloc(rn_tangent_dot_apply)
+    rec%ops%tangent_matrix = c_funloc(rn_tangent_matrix)
+    rec%ops%identity = c_funloc(rn_identity)
+    q = N_VNew_Serial(1_c_int64_t, ctx)
+    v = N_VNew_Serial(1_c_int64_t, ctx)
+    atolv = N_VNew_Serial(1_c_int64_t, ctx)
+    ele = N_VNew_Serial(1_c_int64_t, ctx)
+    ewt = N_VNew_Serial(1_c_int64_t, ctx)
+    dky = N_VNew_Serial(1_c_int64_t, ctx)
+    A1 = SUNDenseMatrix(1_c_int64_t, 1_c_int64_t, ctx)
+    tmpl = N_VNew_Serial(1_c_int64_t, ctx)
+    LS = SUNLinSol_Dense(tmpl, A1, ctx)
+    qq => FN_VGetArray(q)
+    vv => FN_VGetArray(v)
+    qq(1) = 1.0_c_double
+    vv(1) = 0.0_c_double
+    call N_VConst(atol, atolv)
+
+    mem = LGNCreate(ctx)
+    call expect(LGNSetGroup(mem, G) == 0, "LGNSetGroup")
+    call expect(LGNSetUserData(mem, c_loc(osc)) == 0, "LGNSetUserData")
+    call expect(LGNSetMassFn(mem, c_funloc(osc_mass)) == 0, "LGNSetMassFn")
+    call expect(LGNSetForceFn(mem, c_funloc(osc_force)) == 0, "LGNSetForceFn")
+    call expect(LGNSetConstraints(mem, 0_c_int64_t, c_null_funptr, c_null_funptr) == 0, &
+                "LGNSetConstraints(m = 0)")
+    call expect(LGNInit(mem, 0.0_c_double, q, v) == 0, "LGNInit")
+    call expect(LGNSetLinearSolver(mem, LS, A1) == 0, "LGNSetLinearSolver")
+    call expect(LGNSetGenAlpha(mem, 0.9_c_double) == 0, "LGNSetGenAlpha")
+    call expect_flag(LGNSetStepControl(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetStepControl(7)")
+    call expect(LGNSetStepControl(mem, LGN_STEP_FIXED) == 0, "LGNSetStepControl(FIXED)")
+    call expect(LGNSetStepControl(mem, LGN_STEP_ADAPTIVE) == 0, "LGNSetStepControl(ADAPTIVE)")
+    call expect(LGNSVtolerances(mem, rtol, atolv) == 0, "LGNSVtolerances")
+    call expect_flag(LGNSetInitStep(mem, -1.0_c_double), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetInitStep(-1)")
+    call expect(LGNSetInitStep(mem, 1.0e-4_c_double) == 0, "LGNSetInitStep")
+    call expect(LGNSetMinStep(mem, 1.0e-12_c_double) == 0, "LGNSetMinStep")
+    call expect(LGNSetMaxStep(mem, 0.2_c_double) == 0, "LGNSetMaxStep")
+    call expect(LGNSetMaxErrTestFails(mem, 0_c_int) == 0, "LGNSetMaxErrTestFails")
+    call expect(LGNSetMaxConvFails(mem, 0_c_int) == 0, "LGNSetMaxConvFails")
+    call expect_flag(LGNSetNonlinConvCoef(mem, 2.0_c_double), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNSetNonlinConvCoef(2)")
+    call expect(LGNSetNonlinConvCoef(mem, 0.0_c_double) == 0, "LGNSetNonlinConvCoef")
+    call expect(LGNSetStopTime(mem, 0.5_c_double) == 0, "LGNSetStopTime(0.5)")
+    call expect(LGNClearStopTime(mem) == 0, "LGNClearStopTime")
+
+    ! no step yet: no interval to interpolate in
+    call expect_flag(LGNGetDky(mem, 0.0_c_double, 0_c_int, dky), LGN_BAD_T, "LGN_BAD_T", &
+                     "LGNGetDky before the first step")
+
+    ! LGN_NORMAL steps past tout and interpolates there
+    flag = LGNSolve(mem, 0.3_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_SUCCESS, "LGN_SUCCESS", "LGNSolve(0.3), adaptive")
+    call expect_near(t, 0.3_c_double, 1.0e-15_c_double, "t = tout (interpolated)")
+    call expect_near(qq(1), cos(0.3_c_double), 1.0e-4_c_double, "q(0.3) = cos(0.3)")
+    call expect_near(vv(1), -sin(0.3_c_double), 1.0e-4_c_double, "v(0.3) = -sin(0.3)")
+    call expect(LGNGetCurrentTime(mem, tm) == 0, "LGNGetCurrentTime")
+    call expect(tm >= 0.3_c_double, "the integrator is at or past tout")
+
+    ! a stop time: landed on exactly
+    call expect(LGNSetStopTime(mem, 1.0_c_double) == 0, "LGNSetStopTime(1)")
+    flag = LGNSolve(mem, 2.0_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_TSTOP_RETURN, "LGN_TSTOP_RETURN", "LGNSolve to the stop time")
+    call expect_near(t, 1.0_c_double, 0.0_c_double, "t = tstop exactly")
+    call expect_near(qq(1), cos(1.0_c_double), 1.0e-4_c_double, "q(1) = cos(1)")
+    call expect_near(vv(1), -sin(1.0_c_double), 1.0e-4_c_double, "v(1) = -sin(1)")
+
+    ! the getters
+    call expect(LGNGetNumSteps(mem, nsteps) == 0, "LGNGetNumSteps")
+    call expect(LGNGetNumErrTestFails(mem, netf) == 0, "LGNGetNumErrTestFails")
+    call expect(LGNGetCurrentStep(mem, hcur) == 0, "LGNGetCurrentStep")
+    call expect(LGNGetActualInitStep(mem, h0) == 0, "LGNGetActualInitStep")
+    call expect(LGNGetLastStep(mem, hlast) == 0, "LGNGetLastStep")
+    call expect(LGNGetLastErrNorm(mem, errnorm) == 0, "LGNGetLastErrNorm")
+    call expect(LGNGetEstLocalErrors(mem, ele) == 0, "LGNGetEstLocalErrors")
+    call expect(LGNGetErrWeights(mem, ewt) == 0, "LGNGetErrWeights")
+    write (*, "(a, i0, a, i0, a, es10.3, a, es10.3, a, es10.3)") "adaptive: steps ", nsteps, &
+        ", error-test failures ", netf, ", h0 ", h0, ", hcur ", hcur, ", |e| ", errnorm
+    call expect(nsteps > 5 .and. nsteps < 1000, "far fewer steps than 1000 (h = 1e-3)")
+    call expect(netf >= 0 .and. netf < nsteps, "error-test failures counted")
+    call expect_near(h0, 1.0e-4_c_double, 0.0_c_double, "the initial step given")
+    call expect(hcur > 0.0_c_double .and. hcur <= 0.2_c_double, "hcur within (0, hmax]")
+    call expect(hlast > 0.0_c_double .and. hlast <= 0.2_c_double, "hlast within (0, hmax]")
+    call expect(errnorm >= 0.0_c_double .and. errnorm <= 1.0_c_double, "accepted: |e| <= 1")
+    pe => FN_VGetArray(ele)
+    pw => FN_VGetArray(ewt)
+    call expect(pw(1) > 0.0_c_double .and. pw(1) <= 1.0_c_double / atol, &
+                "weight 1/(atol + rtol |s|) <= 1/atol")
+    call expect_near(abs(pe(1) * pw(1)), errnorm, 1.0e-12_c_double, &
+                     "|e| = |ele * ewt| (one component)")
+
+    ! output between steps: q, v, vdot inside the last step
+    tm = 1.0_c_double - 0.5_c_double * hlast
+    call expect(LGNGetDky(mem, tm, 0_c_int, dky) == 0, "LGNGetDky(k = 0)")
+    pd => FN_VGetArray(dky)
+    call expect_near(pd(1), cos(tm), 1.0e-4_c_double, "dense q = cos(t)")
+    call expect(LGNGetDky(mem, tm, 1_c_int, dky) == 0, "LGNGetDky(k = 1)")
+    call expect_near(pd(1), -sin(tm), 1.0e-4_c_double, "dense v = -sin(t)")
+    call expect(LGNGetDky(mem, tm, 2_c_int, dky) == 0, "LGNGetDky(k = 2)")
+    call expect_near(pd(1), -cos(tm), 1.0e-2_c_double, "dense vdot = -cos(t)")
+    call expect(LGNGetDky(mem, 1.0_c_double, 0_c_int, dky) == 0, "LGNGetDky at t_n")
+    call expect_near(pd(1), qq(1), 0.0_c_double, "dense output at the step's end = q")
+    call expect_flag(LGNGetDky(mem, tm, 3_c_int, dky), LGN_BAD_K, "LGN_BAD_K", "LGNGetDky(k = 3)")
+    call expect_flag(LGNGetDky(mem, 1.5_c_double, 0_c_int, dky), LGN_BAD_T, "LGN_BAD_T", &
+                     "LGNGetDky(t past the step)")
+    call expect_flag(LGNGetDky(c_null_ptr, tm, 0_c_int, dky), LGN_MEM_NULL, "LGN_MEM_NULL", &
+                     "LGNGetDky(NULL)")
+
+    call LGNFree(mem)
+    call expect(SUNLinSolFree(LS) == 0, "SUNLinSolFree")
+    call SUNMatDestroy(A1)
+    call N_VDestroy(q)
+    call N_VDestroy(v)
+    call N_VDestroy(atolv)
+    call N_VDestroy(ele)
+    call N_VDestroy(ewt)
+    call N_VDestroy(dky)
+    call N_VDestroy(tmpl)
+    call LGNGroup_Destroy(G)
+    call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
+  end subroutine test_adaptive
 
   !> .true. if a line of the file contains text; deletes the file.
   function file_has(path, text) result(found)

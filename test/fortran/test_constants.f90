@@ -53,6 +53,7 @@ program test_constants
 
   ! --- lignum.h: return flags -------------------------------------------------------
   call check("LGN_SUCCESS", LGN_SUCCESS)
+  call check("LGN_TSTOP_RETURN", LGN_TSTOP_RETURN)
   call check("LGN_TOO_MUCH_WORK", LGN_TOO_MUCH_WORK)
   call check("LGN_CONV_FAILURE", LGN_CONV_FAILURE)
   call check("LGN_MASS_FAIL", LGN_MASS_FAIL)
@@ -64,6 +65,7 @@ program test_constants
   call check("LGN_NONFINITE", LGN_NONFINITE)
   call check("LGN_REPTD_CALLBACK_ERR", LGN_REPTD_CALLBACK_ERR)
   call check("LGN_IC_FAIL", LGN_IC_FAIL)
+  call check("LGN_ERR_FAILURE", LGN_ERR_FAILURE)
   call check("LGN_MEM_NULL", LGN_MEM_NULL)
   call check("LGN_MEM_FAIL", LGN_MEM_FAIL)
   call check("LGN_ILL_INPUT", LGN_ILL_INPUT)
@@ -71,6 +73,8 @@ program test_constants
   call check("LGN_NO_LINSOL", LGN_NO_LINSOL)
   call check("LGN_MISSING_FN", LGN_MISSING_FN)
   call check("LGN_BAD_TOUT", LGN_BAD_TOUT)
+  call check("LGN_BAD_T", LGN_BAD_T)
+  call check("LGN_BAD_K", LGN_BAD_K)
   call check("LGN_LINIT_FAIL", LGN_LINIT_FAIL)
   call check("LGN_LSETUP_FAIL", LGN_LSETUP_FAIL)
   call check("LGN_LSOLVE_FAIL", LGN_LSOLVE_FAIL)
@@ -80,6 +84,8 @@ program test_constants
   ! --- lignum.h: other constants ----------------------------------------------------
   call check("LGN_NORMAL", LGN_NORMAL)
   call check("LGN_ONE_STEP", LGN_ONE_STEP)
+  call check("LGN_STEP_FIXED", LGN_STEP_FIXED)
+  call check("LGN_STEP_ADAPTIVE", LGN_STEP_ADAPTIVE)
   call check("LGN_CONSTR_INDEX3", LGN_CONSTR_INDEX3)
   call check("LGN_CONSTR_INDEX2", LGN_CONSTR_INDEX2)
   call check("LGN_KINEMATICS_SIMPLIFIED", LGN_KINEMATICS_SIMPLIFIED)
