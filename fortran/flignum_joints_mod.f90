@@ -118,6 +118,17 @@ module flignum_joints_mod
     ! Sizes
     ! =========================================================================
 
+    !> Describe constraint row (0-based): its joint, kind and bodies, into
+    !! the C string buf of length len (character(kind=c_char) array).
+    integer(c_int) function LGNJoints_DescribeConstraint(J, row, buf, len) &
+        bind(c, name="LGNJoints_DescribeConstraint")
+      import :: c_int, c_int64_t, c_ptr, c_char, c_size_t
+      type(c_ptr), value :: J
+      integer(c_int64_t), value :: row
+      character(kind=c_char), dimension(*), intent(out) :: buf
+      integer(c_size_t), value :: len
+    end function LGNJoints_DescribeConstraint
+
     !> Number of constraints m of all joints added so far (rows of Phi, B).
     integer(c_int64_t) function LGNJoints_NumConstraints(J) &
         bind(c, name="LGNJoints_NumConstraints")

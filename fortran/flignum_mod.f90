@@ -53,6 +53,7 @@ module flignum_mod
   integer(c_int), parameter :: LGN_REPTD_CALLBACK_ERR = -10
   integer(c_int), parameter :: LGN_IC_FAIL = -11
   integer(c_int), parameter :: LGN_ERR_FAILURE = -12
+  integer(c_int), parameter :: LGN_STEP_TOO_SMALL = -15
 
   ! usage errors -20 .. -29
   integer(c_int), parameter :: LGN_MEM_NULL = -20
@@ -612,6 +613,26 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_long), intent(out) :: netfails
     end function LGNGetNumErrTestFails
+
+    !> After a singular matrix: the number of redundant constraints and, if
+    !! rows is not c_null_ptr, their 0-based indices (an int64 array of
+    !! length m, ascending).
+    integer(c_int) function LGNGetRedundantConstraints(lgn_mem, nred, rows) &
+        bind(c, name="LGNGetRedundantConstraints")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int64_t), intent(out) :: nred
+      type(c_ptr), value :: rows
+    end function LGNGetRedundantConstraints
+
+    !> After a singular matrix: the unknown with a zero pivot (0-based; nv
+    !! and above: a constraint's multiplier), or -1.
+    integer(c_int) function LGNGetZeroPivot(lgn_mem, unknown) &
+        bind(c, name="LGNGetZeroPivot")
+      import :: c_int, c_int64_t, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int64_t), intent(out) :: unknown
+    end function LGNGetZeroPivot
 
     !> The local error estimate of the last step attempted (N_Vector, nv).
     integer(c_int) function LGNGetEstLocalErrors(lgn_mem, ele) &

@@ -66,6 +66,7 @@ program test_constants
   call check("LGN_REPTD_CALLBACK_ERR", LGN_REPTD_CALLBACK_ERR)
   call check("LGN_IC_FAIL", LGN_IC_FAIL)
   call check("LGN_ERR_FAILURE", LGN_ERR_FAILURE)
+  call check("LGN_STEP_TOO_SMALL", LGN_STEP_TOO_SMALL)
   call check("LGN_MEM_NULL", LGN_MEM_NULL)
   call check("LGN_MEM_FAIL", LGN_MEM_FAIL)
   call check("LGN_ILL_INPUT", LGN_ILL_INPUT)
