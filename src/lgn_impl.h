@@ -211,6 +211,7 @@ typedef struct LGNMemRec {
   sunrealtype tstop;        /* LGNSetStopTime                              */
   sunbooleantype tstop_set;
   sunrealtype err_norm;     /* |e| of the last step attempted              */
+  sunrealtype err_prev;     /* |e| of the last step accepted               */
   sunrealtype *ele;         /* its local error estimate (nv)               */
   sunrealtype *ewt;         /* ... and error weights (nv)                  */
   sunrealtype *a_scaled;    /* a_n rescaled to the step size (nv)          */

@@ -62,6 +62,7 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->ic_done     = SUNFALSE;
     mem->h_prev      = SUN_RCONST(0.0);
     mem->hnext       = SUN_RCONST(0.0); /* error control starts anew */
+    mem->err_prev    = SUN_RCONST(0.0);
     mem->dense_valid = SUNFALSE;
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;

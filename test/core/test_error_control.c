@@ -337,7 +337,7 @@ static void Proportionality(void)
       o.kinematics   = kin;
       o.single_solve = 1;
       o.adaptive     = 1;
-      o.rtol = o.atol = tol[j] = 1e-4 / pow(10.0, j);
+      o.rtol = o.atol = tol[j] = 1e-5 / pow(10.0, j);
       heavy_top_run(&o, &r);
       CHECK(r.flag == LGN_SUCCESS && r.t == 1.0, "%s tol %g: %s at t = %.17g", kname[kin],
             tol[j], LGNGetReturnFlagName(r.flag), r.t);
