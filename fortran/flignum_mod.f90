@@ -962,8 +962,8 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem, q0, v0
     end function LGNGetConsistentIC
 
-    !> Perturbed starting values on (SUNTRUE = 1) or off (SUNFALSE = 0);
-    !> default off with fixed steps, on with error control.
+    !> Perturbed starting values on (SUNTRUE = 1) or off (SUNFALSE = 0, the
+    !> default).
     integer(c_int) function LGNSetPerturbedStart(lgn_mem, on) &
         bind(c, name="LGNSetPerturbedStart")
       import :: c_int, c_ptr

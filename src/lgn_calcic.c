@@ -117,7 +117,7 @@ int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on)
               "on = %d illegal: use SUNTRUE or SUNFALSE.", (int)on);
     return LGN_ILL_INPUT;
   }
-  mem->pstart_mode = on ? LGN_PSTART_ON : LGN_PSTART_OFF;
+  mem->pstart_on = on;
   lgnInvalidate(mem, LGN_CHANGE_METHOD); /* how the method starts */
   return LGN_SUCCESS;
 }

@@ -104,9 +104,7 @@ typedef struct LGNMemRec {
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */
-  int pstart_mode;          /* LGNSetPerturbedStart: 0 default (on with
-                               error control, off with fixed steps), 1 off,
-                               2 on (lgn_ic.c)                             */
+  sunbooleantype pstart_on; /* LGNSetPerturbedStart (default off)        */
   sunbooleantype pstart_done; /* applied (or not due) since the IC         */
 
   /* ---- step work space (iterates at t_{n+1}) ---- */
@@ -382,19 +380,12 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
 
 /* ---- lgn_ic.c: consistent initial values -------------------------------- */
 
-#define LGN_PSTART_DEFAULT 0
-#define LGN_PSTART_OFF     1
-#define LGN_PSTART_ON      2
-#define LGN_PSTART_ADAPTIVE_DEFAULT SUNTRUE /* measured: doc/user-guide.md */
-
 int lgnInitialConditions(LGNMem mem); /* LGNSolve: the check, then lgnComputeIC */
 int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    */
 int lgnProjectIC(LGNMem mem, int icopt);
 int lgnPerturbedStart(LGNMem mem, sunrealtype h);
 sunrealtype lgnICTolPhi(LGNMem mem);
 sunrealtype lgnICTolBv(LGNMem mem);
-/* Is the perturbed start due at a step attempt (the first after the IC)? */
-static inline sunbooleantype lgnPerturbedStartDue(const struct LGNMemRec *mem);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
@@ -453,13 +444,11 @@ static inline void lgnTangentColumnRange(const struct LGNMemRec *mem,
   }
 }
 
+/* Is the perturbed start due at a step attempt: on, and the first attempt
+ * since the initial values were computed at a start (nst = 0)? */
 static inline sunbooleantype lgnPerturbedStartDue(const struct LGNMemRec *mem)
 {
-  const sunbooleantype on =
-      mem->pstart_mode == LGN_PSTART_ON ||
-      (mem->pstart_mode == LGN_PSTART_DEFAULT &&
-       mem->step_control == LGN_STEP_ADAPTIVE && LGN_PSTART_ADAPTIVE_DEFAULT);
-  return on && !mem->pstart_done && mem->nst == 0;
+  return mem->pstart_on && !mem->pstart_done && mem->nst == 0;
 }
 
 static inline sunrealtype *lgnData(N_Vector x)

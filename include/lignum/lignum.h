@@ -688,17 +688,20 @@ LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
  *  of size h after the initial values, vddot_0 from a central difference of
  *  the consistent accelerations at q0 o exp(h(+-v0 + h vdot_0/2)),
  *  v0 +- h vdot_0, then a_0 = vdot_0 + (alpha_m - alpha_f) h vddot_0 and, at
- *  index 3, v0 and lambda_0 shifted by the solution of
- *  [[M, B^T], [B, 0]] (dv, dlambda) = (0, B(q0) l),
+ *  index 3, v0 += dv (an O(h^2) shift normal to the constraints, the
+ *  offset of the smooth numerical solution) with
+ *  [[M, B^T], [B, 0]] (dv, mu) = (0, B(q0) l),
  *  l = h^2 [ (1/6 - (alpha_m - alpha_f)/2 - beta) vddot_0 + [v0, vdot_0]/12 ].
  *  This removes the initial transient of vdot and lambda: their maximum
  *  error over time becomes second order instead of first (measured on the
  *  heavy top, doc/user-guide.md). Costs two extra evaluations of the
  *  saddle-point system at the start.
- *  Default: off with fixed steps (the results stay those of earlier
- *  versions bit for bit), on with error control (LGN_STEP_ADAPTIVE), where
- *  h is the first step size tried. Takes effect at the next start (LGNInit,
- *  LGNReInit, or before the first step).
+ *  Default: off. With fixed steps the results then stay those of earlier
+ *  versions bit for bit; with error control (LGN_STEP_ADAPTIVE; h is then
+ *  the first step size tried) it measured no consistent gain, since the
+ *  transients of the growing step sizes dominate the multipliers' error
+ *  there (doc/user-guide.md). Takes effect at the next start (before the
+ *  first step after LGNInit, LGNReInit or LGNCalcIC).
  *  @param on SUNTRUE or SUNFALSE
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
 LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);

@@ -469,7 +469,7 @@ static void PerturbedStart(SUNContext ctx)
     printf("  %-9.3g %-16.6g %-.6g\n", h[i], e_off[i], e_on[i]);
     CHECK(f1 == 0 && f2 == 0 && f3 == 0, "h = %g: runs succeed (%d %d %d)", h[i], f1, f2, f3);
     CHECK(e_def[i] == e_off[i],
-          "h = %g: fixed steps default to off, bit for bit (%.17g vs %.17g)", h[i],
+          "h = %g: the default is off, bit for bit (%.17g vs %.17g)", h[i],
           e_def[i], e_off[i]);
   }
   p_on  = FitOrder(h, e_on, 4);
@@ -478,6 +478,35 @@ static void PerturbedStart(SUNContext ctx)
   CHECK(fabs(p_on - 2.0) <= 0.2, "perturbed start: order of max_t |lambda error| %.3f (2.0 +- 0.2)", p_on);
   CHECK(p_off >= 0.7 && p_off <= 1.3, "without: order %.3f (about 1)", p_off);
   CHECK(e_on[3] < 0.05 * e_off[3], "h = 2.5e-4: %.3g with vs %.3g without", e_on[3], e_off[3]);
+
+  /* index 2 (a_0 only) and error control (with the first step tried):
+   * it runs, and changes the result */
+  {
+    const double zero[3] = {0.0, 0.0, 0.0};
+    double x_on[2][7], x_off[2][7], t;
+    int mode, on, flag;
+    for (mode = 0; mode < 2; mode++)
+      for (on = 0; on < 2; on++) {
+        Run r;
+        flag = RunCreate(&r, ctx, 0, mode == 0 ? LGN_CONSTR_INDEX2 : LGN_CONSTR_INDEX3,
+                         1e-3, zero, zero);
+        if (!flag && mode == 1) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+        if (!flag && mode == 1) flag = LGNSStolerances(r.mem, 1e-6, 1e-6);
+        if (!flag) flag = LGNSetPerturbedStart(r.mem, on);
+        if (!flag) flag = LGNSolve(r.mem, 0.05, &t, r.q, r.v, LGN_NORMAL);
+        CHECK(flag == LGN_SUCCESS, "%s, perturbed start %s: %s",
+              mode == 0 ? "index 2" : "error control", on ? "on" : "off",
+              LGNGetReturnFlagName(flag));
+        for (i = 0; i < 7; i++) (on ? x_on : x_off)[mode][i] = N_VGetArrayPointer(r.q)[i];
+        RunFree(&r);
+      }
+    for (mode = 0; mode < 2; mode++) {
+      double d = 0.0;
+      for (i = 0; i < 7; i++) d = fmax(d, fabs(x_on[mode][i] - x_off[mode][i]));
+      CHECK(d > 0.0 && d < 1e-3, "%s: the perturbed start changes q(0.05) a little (%.3g)",
+            mode == 0 ? "index 2" : "error control", d);
+    }
+  }
 }
 
 /* ---- (d) bad input ------------------------------------------------------ */
