@@ -117,7 +117,8 @@ int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on)
               "on = %d illegal: use SUNTRUE or SUNFALSE.", (int)on);
     return LGN_ILL_INPUT;
   }
+  /* read at the first step attempt after the initial values; no cache
+   * depends on it (lgnInvalidate's table), so nothing to drop */
   mem->pstart_on = on;
-  lgnInvalidate(mem, LGN_CHANGE_METHOD); /* how the method starts */
   return LGN_SUCCESS;
 }

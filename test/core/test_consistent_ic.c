@@ -14,7 +14,8 @@
  *  (c) the perturbed start: order of max_t |lambda - lambda_ref| over
  *      h = 2e-3 ... 2.5e-4 against the ARKODE reference (lgn_reference) is
  *      2.0 +- 0.2 with it and about 1 without (index 3, rho_inf = 0.9);
- *  (d) bad input to every new function: a flag and a message naming it.
+ *  (d) bad input to every new function: a flag and a message naming it;
+ *      a projection that cannot converge: LGN_IC_FAIL with |Phi|.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -364,6 +365,65 @@ static void CalcICParts(SUNContext ctx)
   N_VDestroy(v0);
 }
 
+/* A constraint without a zero, Phi(x) = exp(x) on R^1: Newton creeps by
+ * dx = -1 per iteration and |Phi| falls only by e each time. */
+static int MassR1(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  (void)t; (void)q; (void)ud;
+  SM_ELEMENT_D(M, 0, 0) = 1.0;
+  return 0;
+}
+static int ForceR1(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)ud;
+  N_VGetArrayPointer(g)[0] = 0.0;
+  return 0;
+}
+static int PhiExp(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  (void)t; (void)ud;
+  N_VGetArrayPointer(phi)[0] = exp(N_VGetArrayPointer(q)[0]);
+  return 0;
+}
+static int JacExp(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  (void)t; (void)ud;
+  SM_ELEMENT_D(B, 0, 0) = exp(N_VGetArrayPointer(q)[0]);
+  return 0;
+}
+
+static void NoConvergence(SUNContext ctx)
+{
+  LGNGroup G = LGNGroup_Rn(1);
+  N_Vector q = N_VNew_Serial(1, ctx), v = N_VNew_Serial(1, ctx), t2 = N_VNew_Serial(2, ctx);
+  SUNMatrix A = SUNDenseMatrix(2, 2, ctx);
+  SUNLinearSolver LS = SUNLinSol_Dense(t2, A, ctx);
+  void *mem = LGNCreate(ctx);
+  int flag;
+  N_VConst(0.0, q);
+  N_VConst(0.0, v);
+  LGNSetErrHandlerFn(mem, Capture, NULL);
+  flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetMassFn(mem, MassR1);
+  if (!flag) flag = LGNSetForceFn(mem, ForceR1);
+  if (!flag) flag = LGNSetConstraints(mem, 1, PhiExp, JacExp);
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  last_msg[0] = '\0';
+  if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_Q);
+  CHECK(flag == LGN_IC_FAIL && strstr(last_msg, "did not converge in 20") != NULL &&
+            strstr(last_msg, "|Phi|_inf = 2.06") != NULL,
+        "Phi = exp(x): LGNCalcIC fails with LGN_IC_FAIL naming |Phi| = e^-20: %s \"%s\"",
+        LGNGetReturnFlagName(flag), last_msg);
+  LGNFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(q);
+  N_VDestroy(v);
+  N_VDestroy(t2);
+  LGNGroup_Destroy(G);
+}
+
 /* ---- (b) the check ------------------------------------------------------- */
 
 static void Check(SUNContext ctx)
@@ -599,6 +659,7 @@ int main(void)
   CalcIC(ctx, 1, LGN_CONSTR_INDEX2);
 #endif
   CalcICParts(ctx);
+  NoConvergence(ctx);
   Check(ctx);
   BadInput(ctx);
   PerturbedStart(ctx);
