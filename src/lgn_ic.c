@@ -190,12 +190,13 @@ static sunrealtype QScale(LGNMem mem)
   return s;
 }
 
-sunrealtype lgnICTolPhi(LGNMem mem)
+/* The check's tolerances (header comment). */
+static sunrealtype TolPhi(LGNMem mem)
 {
   return LGN_IC_CHECK_FAC * (mem->atol + mem->rtol * QScale(mem));
 }
 
-sunrealtype lgnICTolBv(LGNMem mem)
+static sunrealtype TolBv(LGNMem mem)
 {
   return LGN_IC_CHECK_FAC * (mem->atol + mem->rtol * N_VMaxNorm(mem->v));
 }
@@ -217,7 +218,7 @@ static int CheckConsistency(LGNMem mem)
     flag = EvalPhi(mem, mem->q);
     if (flag != LGN_SUCCESS) return flag;
     viol = MaxAbs(lgnData(mem->phi), mem->m, &i);
-    tol  = lgnICTolPhi(mem);
+    tol  = TolPhi(mem);
     if (!(viol <= tol)) {
       LGN_ERROR(mem, LGN_INCONSISTENT_IC,
                 MSG_TIME "inconsistent initial configuration: |Phi(q0)|_inf = "
@@ -232,7 +233,7 @@ static int CheckConsistency(LGNMem mem)
   flag = EvalBv(mem, mem->q, mem->v);
   if (flag != LGN_SUCCESS) return flag;
   viol = MaxAbs(mem->work_m, mem->m, &i);
-  tol  = lgnICTolBv(mem);
+  tol  = TolBv(mem);
   if (!(viol <= tol)) {
     LGN_ERROR(mem, LGN_INCONSISTENT_IC,
               MSG_TIME "inconsistent initial velocity: |B(q0) v0|_inf = %g "
@@ -261,7 +262,7 @@ static int ProjectQ(LGNMem mem)
   const sunindextype nv = mem->nv, m = mem->m;
   const sunrealtype qscale = QScale(mem);
   const sunrealtype tol_round = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
-  const sunrealtype tol_stall = SUN_RCONST(0.01) * lgnICTolPhi(mem);
+  const sunrealtype tol_stall = SUN_RCONST(0.01) * TolPhi(mem);
   sunrealtype *rhs = lgnData(mem->rhs), nrm, prev = SUN_RCONST(0.0);
   sunindextype i, imax;
   int it, flag, ret;

@@ -384,8 +384,6 @@ int lgnInitialConditions(LGNMem mem); /* LGNSolve: the check, then lgnComputeIC 
 int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    */
 int lgnProjectIC(LGNMem mem, int icopt);
 int lgnPerturbedStart(LGNMem mem, sunrealtype h);
-sunrealtype lgnICTolPhi(LGNMem mem);
-sunrealtype lgnICTolBv(LGNMem mem);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
