@@ -267,6 +267,13 @@ static void CalcIC(SUNContext ctx, int klu, int index)
   if (!flag) flag = LGNGetConsistentIC(r.mem, q0, v0);
   CHECK(flag == LGN_SUCCESS, "%s idx%d: LGNGetConsistentIC: %s", name, index,
         LGNGetReturnFlagName(flag));
+  {
+    long int nnz = -1;
+    LGNGetIterationMatrixNnz(r.mem, &nnz);
+    CHECK(klu ? (nnz > 0 && nnz < 81) : nnz == 81,
+          "%s idx%d: the saddle-point matrix was assembled %s (nnz = %ld)", name, index,
+          klu ? "sparse" : "dense", nnz);
+  }
   Violation(ctx, q0, v0, &phi, &bv);
   CHECK(phi <= 1e-12 && bv <= 1e-12,
         "%s idx%d: projected onto the constraints: |Phi| = %.3g, |B v| = %.3g (<= 1e-12)",
