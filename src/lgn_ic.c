@@ -334,12 +334,27 @@ static int ProjectV(LGNMem mem)
   return LGN_SUCCESS;
 }
 
+/* Both as icopt says; on failure q and v are restored. */
 int lgnProjectIC(LGNMem mem, int icopt)
 {
+  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv;
+  sunrealtype *save;
   int flag = LGN_SUCCESS;
-  if (mem->m > 0 && (icopt & LGN_IC_PROJECT_Q)) flag = ProjectQ(mem);
-  if (flag == LGN_SUCCESS && mem->m > 0 && (icopt & LGN_IC_PROJECT_V))
-    flag = ProjectV(mem);
+  if (mem->m == 0) return LGN_SUCCESS;
+  save = (sunrealtype *)malloc((nq + nv) * sizeof(sunrealtype));
+  if (save == NULL) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  memcpy(save, lgnData(mem->q), nq * sizeof(sunrealtype));
+  memcpy(save + nq, lgnData(mem->v), nv * sizeof(sunrealtype));
+  if (icopt & LGN_IC_PROJECT_Q) flag = ProjectQ(mem);
+  if (flag == LGN_SUCCESS && (icopt & LGN_IC_PROJECT_V)) flag = ProjectV(mem);
+  if (flag != LGN_SUCCESS) {
+    memcpy(lgnData(mem->q), save, nq * sizeof(sunrealtype));
+    memcpy(lgnData(mem->v), save + nq, nv * sizeof(sunrealtype));
+  }
+  free(save);
   return flag;
 }
 

@@ -674,7 +674,8 @@ LGN_EXPORT int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
  *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
  *          did not converge or the saddle-point matrix is singular; the
- *          message gives |Phi|), a callback's failure flag. */
+ *          message gives |Phi|), a callback's failure flag. On failure q0
+ *          and v0 are left as they were. */
 LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
 
 /** The initial state as LGNCalcIC corrected it (or as given, without

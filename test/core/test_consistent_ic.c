@@ -422,6 +422,10 @@ static void NoConvergence(SUNContext ctx)
             strstr(last_msg, "|Phi|_inf = 2.06") != NULL,
         "Phi = exp(x): LGNCalcIC fails with LGN_IC_FAIL naming |Phi| = e^-20: %s \"%s\"",
         LGNGetReturnFlagName(flag), last_msg);
+  N_VConst(-1.0, q);
+  flag = LGNGetConsistentIC(mem, q, NULL);
+  CHECK(flag == LGN_SUCCESS && N_VGetArrayPointer(q)[0] == 0.0,
+        "after the failure q0 is as it was (%g)", N_VGetArrayPointer(q)[0]);
   LGNFree(&mem);
   SUNLinSolFree(LS);
   SUNMatDestroy(A);
