@@ -54,6 +54,7 @@ module flignum_mod
   integer(c_int), parameter :: LGN_IC_FAIL = -11
   integer(c_int), parameter :: LGN_ERR_FAILURE = -12
   integer(c_int), parameter :: LGN_STEP_TOO_SMALL = -15
+  integer(c_int), parameter :: LGN_INCONSISTENT_IC = -14
 
   ! usage errors -20 .. -29
   integer(c_int), parameter :: LGN_MEM_NULL = -20
@@ -97,6 +98,11 @@ module flignum_mod
   ! Newton variants
   integer(c_int), parameter :: LGN_NEWTON_FULL     = 0
   integer(c_int), parameter :: LGN_NEWTON_MODIFIED = 1
+
+  ! icopt of LGNCalcIC
+  integer(c_int), parameter :: LGN_IC_PROJECT_Q  = 1
+  integer(c_int), parameter :: LGN_IC_PROJECT_V  = 2
+  integer(c_int), parameter :: LGN_IC_PROJECT_QV = 3
 
   ! LGNGroupKind
   enum, bind(c)
@@ -1102,6 +1108,35 @@ module flignum_mod
       import :: c_int, c_ptr
       type(c_ptr), value :: fp
     end function FLGNFclose
+
+    ! =========================================================================
+    ! lignum.h: consistent initial values
+    ! =========================================================================
+
+    !> Project the initial state onto the constraints (icopt LGN_IC_PROJECT_Q,
+    !> _V or _QV), then compute vdot_0, lambda_0 (IDACalcIC-like).
+    integer(c_int) function LGNCalcIC(lgn_mem, icopt) bind(c, name="LGNCalcIC")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: icopt
+    end function LGNCalcIC
+
+    !> The corrected q0 (length nq), v0 (length nv); either may be c_null_ptr.
+    !> Only before the first step.
+    integer(c_int) function LGNGetConsistentIC(lgn_mem, q0, v0) &
+        bind(c, name="LGNGetConsistentIC")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem, q0, v0
+    end function LGNGetConsistentIC
+
+    !> Perturbed starting values on (SUNTRUE = 1) or off (SUNFALSE = 0, the
+    !> default).
+    integer(c_int) function LGNSetPerturbedStart(lgn_mem, on) &
+        bind(c, name="LGNSetPerturbedStart")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: on
+    end function LGNSetPerturbedStart
   end interface
 
 contains

@@ -104,6 +104,8 @@ typedef struct LGNMemRec {
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */
+  sunbooleantype pstart_on; /* LGNSetPerturbedStart (default off)        */
+  sunbooleantype pstart_done; /* applied (or not due) since the IC         */
 
   /* ---- step work space (iterates at t_{n+1}) ---- */
   N_Vector q1, v1, vdot1;   /* configuration, velocity, acceleration       */
@@ -396,7 +398,10 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
 
 /* ---- lgn_ic.c: consistent initial values -------------------------------- */
 
-int lgnInitialConditions(LGNMem mem);
+int lgnInitialConditions(LGNMem mem); /* LGNSolve: the check, then lgnComputeIC */
+int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    */
+int lgnProjectIC(LGNMem mem, int icopt);
+int lgnPerturbedStart(LGNMem mem, sunrealtype h);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
@@ -454,6 +459,13 @@ static inline void lgnTangentColumnRange(const struct LGNMemRec *mem,
     *k0 = o;
     *k1 = mem->blk_voff[b + 1];
   }
+}
+
+/* Is the perturbed start due at a step attempt: on, and the first attempt
+ * since the initial values were computed at a start (nst = 0)? */
+static inline sunbooleantype lgnPerturbedStartDue(const struct LGNMemRec *mem)
+{
+  return mem->pstart_on && !mem->pstart_done && mem->nst == 0;
 }
 
 static inline sunrealtype *lgnData(N_Vector x)

@@ -879,6 +879,7 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_IC_FAIL:            return "LGN_IC_FAIL";
   case LGN_ERR_FAILURE:        return "LGN_ERR_FAILURE";
   case LGN_STEP_TOO_SMALL:     return "LGN_STEP_TOO_SMALL";
+  case LGN_INCONSISTENT_IC:    return "LGN_INCONSISTENT_IC";
   case LGN_TSTOP_RETURN:       return "LGN_TSTOP_RETURN";
   case LGN_BAD_T:              return "LGN_BAD_T";
   case LGN_BAD_K:              return "LGN_BAD_K";

@@ -104,6 +104,14 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
   int flag;
 
   mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
+  if (lgnPerturbedStartDue(mem)) {
+    /* once, with the first step size tried (lgn_ic.c): v_0 and a_0 change
+     * here, the one write to the state at t_n an attempt makes; a retry
+     * after a rejection keeps them */
+    mem->pstart_done = SUNTRUE;
+    flag = lgnPerturbedStart(mem, c->h);
+    if (flag != LGN_SUCCESS) return flag;
+  }
   flag = Predict(mem, c);
   if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNFALSE, &used_old);
   if (flag == LGN_CONV_FAILURE && used_old) {

@@ -644,6 +644,92 @@ LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
 LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 
+/* =============================================================================
+ * Consistent initial values
+ * ===========================================================================*/
+
+/** Return flag (in the solver-failure range): the first LGNSolve after
+ *  LGNInit / LGNReInit found the initial state off the constraint the step
+ *  enforces by more than 100 times the tolerance scale,
+ *    index 3: |Phi_i(q0)| > 100 (atol + rtol max(1, |q0|_inf)),
+ *    index 2: |(B(q0) v0)_i| > 100 (atol + rtol |v0|_inf),
+ *  with rtol, atol of LGNSStolerances (defaults 1e-8). The message names the
+ *  violation, the constraint and the tolerance; nothing was integrated.
+ *  (At index 3, B v0 = 0 is not checked: the method keeps it only to O(h^2)
+ *  itself, so a restart from a computed state would fail; LGNCalcIC
+ *  projects v0 too.) Not checked when vdot_0 and lambda_0 are given with
+ *  LGNSetInitialAcceleration: whoever continues a run with its own initial
+ *  values vouches for them (a restart then equals the continued run bit
+ *  for bit).
+ *  An error rather than a warning: the first step would otherwise project
+ *  the start silently, with a jump of the size of the violation in q or v
+ *  and a multiplier spike of order violation / h^2 (index 3). Call
+ *  LGNCalcIC to project the start explicitly. */
+#define LGN_INCONSISTENT_IC    -14
+
+/** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
+#define LGN_IC_PROJECT_Q  1
+/** icopt of LGNCalcIC: project v0 onto B(q0) v = 0 only. */
+#define LGN_IC_PROJECT_V  2
+/** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
+#define LGN_IC_PROJECT_QV 3
+
+/** Make the initial state consistent, like IDACalcIC: project the state at
+ *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
+ *  then compute the consistent vdot_0, lambda_0 (and a_0 = vdot_0) from
+ *  [[M, B^T], [B, 0]] (vdot_0, lambda_0) = (-g, -Z(q0)(v0, v0)), as the first
+ *  LGNSolve would (values given with LGNSetInitialAcceleration /
+ *  LGNSetInitialAux are kept).
+ *  - LGN_IC_PROJECT_Q: Newton on the group, q <- q o exp(dq) with the
+ *    correction of least M-norm, [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
+ *    until |Phi(q)|_inf is at roundoff level (100 eps max(1, |q|_inf)), or
+ *    no longer decreases and is below a hundredth of the tolerance of the
+ *    check (LGN_INCONSISTENT_IC); at most 20 iterations.
+ *  - LGN_IC_PROJECT_V: the M-orthogonal projection, v <- v + dv with
+ *    [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v).
+ *  - LGN_IC_PROJECT_QV: both, q first.
+ *  Useful at both constraint indices (at index 2 the method enforces only
+ *  B v = 0, but a q0 off Phi = 0 stays off). Needs the model callbacks and
+ *  the linear solver (dense or KLU), as LGNSolve does. The result is the
+ *  state LGNSolve starts from (and returns for tout = t0); read it with
+ *  LGNGetConsistentIC.
+ *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
+ *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
+ *          did not converge or the saddle-point matrix is singular; the
+ *          message gives |Phi|), a callback's failure flag. On failure q0
+ *          and v0 are left as they were. */
+LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
+
+/** The initial state as LGNCalcIC corrected it (or as given, without
+ *  LGNCalcIC): q0 (length nq) and v0 (length nv); either may be NULL.
+ *  Only before the first step after LGNInit / LGNReInit.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (a vector
+ *          of the wrong length, both NULL, or a step already taken). */
+LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
+
+/** Perturbed starting values (Arnold, Brüls and Cardona): at the first step
+ *  of size h after the initial values, vddot_0 from a central difference of
+ *  the consistent accelerations at q0 o exp(h(+-v0 + h vdot_0/2)),
+ *  v0 +- h vdot_0, then a_0 = vdot_0 + (alpha_m - alpha_f) h vddot_0 and, at
+ *  index 3, v0 += dv (an O(h^2) shift normal to the constraints, the
+ *  offset of the smooth numerical solution) with
+ *  [[M, B^T], [B, 0]] (dv, mu) = (0, B(q0) l),
+ *  l = h^2 [ (1/6 - (alpha_m - alpha_f)/2 - beta) vddot_0 + [v0, vdot_0]/12 ].
+ *  This removes the initial transient of vdot and lambda: their maximum
+ *  error over time becomes second order instead of first (measured on the
+ *  heavy top, doc/user-guide.md). Costs two extra evaluations of the
+ *  saddle-point system at the start.
+ *  Default: off. With fixed steps the results then stay those of earlier
+ *  versions bit for bit; with error control (LGN_STEP_ADAPTIVE; h is then
+ *  the first step size tried) it measured no consistent gain, since the
+ *  transients of the growing step sizes dominate the multipliers' error
+ *  there (doc/user-guide.md). Takes effect at the next start (before the
+ *  first step after LGNInit, LGNReInit or LGNCalcIC).
+ *  @param on SUNTRUE or SUNFALSE
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
+LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);
+
 #ifdef __cplusplus
 }
 #endif

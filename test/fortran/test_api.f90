@@ -156,6 +156,7 @@ contains
     call name_is(LGN_NONFINITE, "LGN_NONFINITE")
     call name_is(LGN_REPTD_CALLBACK_ERR, "LGN_REPTD_CALLBACK_ERR")
     call name_is(LGN_IC_FAIL, "LGN_IC_FAIL")
+    call name_is(LGN_INCONSISTENT_IC, "LGN_INCONSISTENT_IC")
     call name_is(LGN_MEM_NULL, "LGN_MEM_NULL")
     call name_is(LGN_MEM_FAIL, "LGN_MEM_FAIL")
     call name_is(LGN_ILL_INPUT, "LGN_ILL_INPUT")
@@ -205,6 +206,12 @@ contains
                      "LGN_MEM_NULL", "LGNSetOwnKLUSolves(NULL)")
     call expect_flag(LGNGetNumOwnKLUSolves(c_null_ptr, nnull), LGN_MEM_NULL, &
                      "LGN_MEM_NULL", "LGNGetNumOwnKLUSolves(NULL)")
+    call expect_flag(LGNCalcIC(c_null_ptr, LGN_IC_PROJECT_QV), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNCalcIC(NULL)")
+    call expect_flag(LGNGetConsistentIC(c_null_ptr, q, v), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNGetConsistentIC(NULL)")
+    call expect_flag(LGNSetPerturbedStart(c_null_ptr, 1_c_int), LGN_MEM_NULL, &
+                     "LGN_MEM_NULL", "LGNSetPerturbedStart(NULL)")
 
     mem = LGNCreate(ctx)
     call expect(c_associated(mem), "LGNCreate")
@@ -442,6 +449,10 @@ contains
     call expect(LGNSetInitialAcceleration(mem, vdot, c_null_ptr) == 0, &
                 "LGNSetInitialAcceleration(vdot0, NULL)")
     call expect(LGNSetInitialAux(mem, vdot) == 0, "LGNSetInitialAux")
+    call expect(LGNSetPerturbedStart(mem, 0_c_int) == 0, "LGNSetPerturbedStart(0)")
+    call expect_flag(LGNCalcIC(mem, 9_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNCalcIC(icopt = 9)")
+    call expect(LGNGetConsistentIC(mem, q, c_null_ptr) == 0, "LGNGetConsistentIC(q0, NULL)")
 
     ! one step, then to t = 1
     flag = LGNSolve(mem, 1.0_c_double, t, q, v, LGN_ONE_STEP)

@@ -67,6 +67,7 @@ program test_constants
   call check("LGN_IC_FAIL", LGN_IC_FAIL)
   call check("LGN_ERR_FAILURE", LGN_ERR_FAILURE)
   call check("LGN_STEP_TOO_SMALL", LGN_STEP_TOO_SMALL)
+  call check("LGN_INCONSISTENT_IC", LGN_INCONSISTENT_IC)
   call check("LGN_MEM_NULL", LGN_MEM_NULL)
   call check("LGN_MEM_FAIL", LGN_MEM_FAIL)
   call check("LGN_ILL_INPUT", LGN_ILL_INPUT)
@@ -96,6 +97,9 @@ program test_constants
   call check("LGN_PREDICTOR_EXTRAPOLATE", LGN_PREDICTOR_EXTRAPOLATE)
   call check("LGN_NEWTON_FULL", LGN_NEWTON_FULL)
   call check("LGN_NEWTON_MODIFIED", LGN_NEWTON_MODIFIED)
+  call check("LGN_IC_PROJECT_Q", LGN_IC_PROJECT_Q)
+  call check("LGN_IC_PROJECT_V", LGN_IC_PROJECT_V)
+  call check("LGN_IC_PROJECT_QV", LGN_IC_PROJECT_QV)
 
   ! --- lignum_group.h: LGNGroupKind -------------------------------------------------
   call check("LGN_GROUP_CUSTOM", LGN_GROUP_CUSTOM)
