@@ -153,6 +153,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
 
     if (flag == LGN_SUCCESS) {
       /* error test failed */
+      lgnStepRejected(mem);
       mem->netf++;
       nef++;
       if (nef >= mem->maxnef || h <= mem->hmin) {
@@ -179,6 +180,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       }
       factor = CUT_FAIL;
     } else {
+      lgnStepRejected(mem); /* (the estimate itself failed) */
       return flag; /* unrecoverable: reported where it happened */
     }
     h = SUNMAX(h * factor, mem->hmin);

@@ -106,6 +106,7 @@ typedef struct LGNMemRec {
   sunbooleantype user_a0;   /* a0 given by the user                        */
   sunbooleantype pstart_on; /* LGNSetPerturbedStart (default off)        */
   sunbooleantype pstart_done; /* applied (or not due) since the IC         */
+  sunbooleantype pstart_pending; /* applied in an attempt not yet completed */
 
   /* ---- step work space (iterates at t_{n+1}) ---- */
   N_Vector q1, v1, vdot1;   /* configuration, velocity, acceleration       */
@@ -423,6 +424,7 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h);
 int lgnCheckProgress(LGNMem mem, sunrealtype h);
 int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c);
+void lgnStepRejected(LGNMem mem);
 void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);
 

@@ -87,11 +87,28 @@ void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c)
   if (mem->m > 0) {
     tmp = mem->lambda; mem->lambda = mem->lambda1; mem->lambda1 = tmp;
   }
+  mem->pstart_pending = SUNFALSE;
   mem->tprev = mem->tn;
   mem->tn    = c->t1;
   mem->hlast = c->h;
   mem->nst++;
   mem->dense_valid = SUNTRUE; /* q1, v1, vdot1 now hold the step's start */
+}
+
+/* Undo a perturbed start (v_0, a_0 from saved) after a failed attempt. */
+static void RestoreStart(LGNMem mem, const sunrealtype *saved)
+{
+  memcpy(lgnData(mem->v), saved, (size_t)mem->nv * sizeof(sunrealtype));
+  memcpy(lgnData(mem->a), saved + mem->nv, (size_t)mem->nv * sizeof(sunrealtype));
+  mem->pstart_done    = SUNFALSE;
+  mem->pstart_pending = SUNFALSE;
+}
+
+/* An attempt that converged was rejected (the error test): undo its
+ * perturbed start, if it made one, so that the state is as before. */
+void lgnStepRejected(LGNMem mem)
+{
+  if (mem->pstart_pending) RestoreStart(mem, mem->dense_work);
 }
 
 /* Predict and Newton, with one retry with a fresh matrix when modified
@@ -103,14 +120,24 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
   sunbooleantype used_old = SUNFALSE;
   int flag;
 
+  sunbooleantype perturbed = SUNFALSE;
+  sunrealtype *saved = mem->dense_work; /* free while dense_valid is false */
+
   mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
   if (lgnPerturbedStartDue(mem)) {
     /* once, with the first step size tried (lgn_ic.c): v_0 and a_0 change
-     * here, the one write to the state at t_n an attempt makes; a retry
-     * after a rejection keeps them */
-    mem->pstart_done = SUNTRUE;
+     * here; saved, so that a failed attempt leaves the state as it was and
+     * the next attempt perturbs again with its own h */
+    memcpy(saved, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
+    memcpy(saved + mem->nv, lgnData(mem->a), (size_t)mem->nv * sizeof(sunrealtype));
+    mem->pstart_done    = SUNTRUE;
+    mem->pstart_pending = SUNTRUE; /* until the step is completed */
+    perturbed = SUNTRUE;
     flag = lgnPerturbedStart(mem, c->h);
-    if (flag != LGN_SUCCESS) return flag;
+    if (flag != LGN_SUCCESS) {
+      RestoreStart(mem, saved);
+      return flag;
+    }
   }
   flag = Predict(mem, c);
   if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNFALSE, &used_old);
@@ -120,7 +147,10 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
     flag = Predict(mem, c);
     if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNTRUE, &used_old);
   }
-  if (flag != LGN_SUCCESS) mem->nfails++;
+  if (flag != LGN_SUCCESS) {
+    mem->nfails++;
+    if (perturbed) RestoreStart(mem, saved);
+  }
   return flag;
 }
 
