@@ -53,7 +53,7 @@ static int ParseReal(const char *s, double *x)
 {
   char *end;
   *x = strtod(s, &end);
-  return (end == s || *end != '\0') ? 1 : 0;
+  return (end == s || *end != '\0' || !isfinite(*x)) ? 1 : 0;
 }
 
 static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
@@ -117,10 +117,10 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     } else if (!strcmp(key, "--rho-inf")) bad = ParseReal(val, &opt->rho_inf);
     else if (!strcmp(key, "--beta")) bad = ParseReal(val, &opt->beta);
     else if (!strcmp(key, "--gamma")) bad = ParseReal(val, &opt->gamma);
-    else if (!strcmp(key, "--h")) bad = ParseReal(val, &opt->h);
-    else if (!strcmp(key, "--t-end")) bad = ParseReal(val, &opt->t_end);
-    else if (!strcmp(key, "--rtol")) bad = ParseReal(val, &opt->rtol);
-    else if (!strcmp(key, "--atol")) bad = ParseReal(val, &opt->atol);
+    else if (!strcmp(key, "--h")) bad = ParseReal(val, &opt->h) || !(opt->h > 0.0);
+    else if (!strcmp(key, "--t-end")) bad = ParseReal(val, &opt->t_end) || !(opt->t_end > 0.0);
+    else if (!strcmp(key, "--rtol")) bad = ParseReal(val, &opt->rtol) || opt->rtol < 0.0;
+    else if (!strcmp(key, "--atol")) bad = ParseReal(val, &opt->atol) || opt->atol < 0.0;
     else if (!strcmp(key, "--csv")) *csv_path = val;
     else if (!strcmp(key, "--reference-h")) bad = ParseReal(val, ref_h) || !(*ref_h > 0.0);
     else if (!strcmp(key, "--bound")) bad = ParseReal(val, bound) || !(*bound > 0.0);

@@ -93,6 +93,13 @@ static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
   flag = lgnCheckVector(mem, q0, mem->G->nq, "q0", func);
   if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v0, mem->G->nv, "v0", func);
   if (flag != LGN_SUCCESS) return flag;
+  if (!lgnAllFinite(N_VGetArrayPointer(q0), N_VGetLength(q0)) ||
+      !lgnAllFinite(N_VGetArrayPointer(v0), N_VGetLength(v0))) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s has a NaN or Inf entry.",
+                    lgnAllFinite(N_VGetArrayPointer(q0), N_VGetLength(q0)) ? "v0" : "q0");
+    return LGN_ILL_INPUT;
+  }
   if (!isfinite(t0)) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "t0 is not finite.");
@@ -107,10 +114,12 @@ static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
 {
   N_VScale(SUN_RCONST(1.0), q0, mem->q);
   N_VScale(SUN_RCONST(1.0), v0, mem->v);
-  if (LGNGroup_Normalize(mem->G, lgnData(mem->q)) != 0) {
-    lgnProcessError(mem, LGN_GROUP_FAIL, __LINE__, func, __FILE__,
-                    "The Lie group could not normalise q0.");
-    return LGN_GROUP_FAIL;
+  if (LGNGroup_Normalize(mem->G, lgnData(mem->q)) != 0 ||
+      !lgnAllFinite(lgnData(mem->q), mem->nq)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "q0 is not an element of the Lie group (it could not be "
+                    "normalised: a zero quaternion?).");
+    return LGN_ILL_INPUT;
   }
   mem->tn         = t0;
   mem->user_vdot0 = SUNFALSE;

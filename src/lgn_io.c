@@ -49,12 +49,12 @@ int LGNSetGroup(void *lgn_mem, LGNGroup G)
     return LGN_ILL_INPUT;
   }
   if (mem->malloc_done && (G->nq != mem->nq || G->nv != mem->nv)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT,
-              "The new Lie group (nq = %lld, nv = %lld) does not match the "
-              "state given to LGNInit (nq = %lld, nv = %lld): call LGNInit.",
-              (long long)G->nq, (long long)G->nv, (long long)mem->nq,
-              (long long)mem->nv);
-    return LGN_ILL_INPUT;
+    /* another size: the state given to LGNInit no longer fits; it is
+     * dropped and LGNInit (with vectors of the new sizes) comes next */
+    mem->G = G;
+    lgnInvalidate(mem, LGN_CHANGE_GROUP | LGN_CHANGE_SIZES);
+    lgnFreeState(mem);
+    return LGN_SUCCESS;
   }
   if (G != mem->G) {
     /* the block table, T's storage, the patterns and the matrices follow
@@ -178,9 +178,13 @@ int LGNSetStepSize(void *lgn_mem, sunrealtype h)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (!(h > SUN_RCONST(0.0)) || !isfinite(h)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "h = %g illegal: the step size must be > 0.",
-              (double)h);
+  /* the step divides by h^2 (beta', the scaling of the equations): h^2
+   * and 1/h^2 must be normal finite numbers */
+  if (!(h > SUN_RCONST(0.0)) || !isfinite(h) || !(h * h >= SUN_SMALL_REAL) ||
+      !(h * h <= SUN_BIG_REAL)) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "h = %g illegal: the step size must be > 0 with h^2 and 1/h^2 "
+              "finite (about 1e-154 < h < 1e154).", (double)h);
     return LGN_ILL_INPUT;
   }
   mem->h = h;
@@ -627,6 +631,12 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   if (flag == LGN_SUCCESS && mem->m > 0)
     flag = lgnCheckVector(mem, lambda0, mem->m, "lambda0", __func__);
   if (flag != LGN_SUCCESS) return flag;
+  if (mem->nst > 0) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "vdot0 and lambda0 can only be set before the first step "
+              "(call LGNReInit to start again from the current state).");
+    return LGN_ILL_INPUT;
+  }
   if (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
       (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m))) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");

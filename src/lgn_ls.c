@@ -16,6 +16,7 @@
 #include <math.h>
 
 #include <sundials/sundials_version.h>
+#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
@@ -244,6 +245,17 @@ int lgnLsCheck(LGNMem mem)
               (long long)rows, (long long)cols,
               (long long)n, (long long)n, (long long)mem->nv,
               (long long)mem->m);
+    return LGN_LS_MISMATCH;
+  }
+  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_DENSE &&
+      ((SUNLinearSolverContent_Dense)mem->LS->content)->N != n) {
+    /* it would factor A with a pivot array of its own size */
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The dense linear solver was created for %lld x %lld matrices, "
+              "but A is %lld x %lld: create it with SUNLinSol_Dense(y, A, ctx) "
+              "for this A.",
+              (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N,
+              (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N, (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
   if (!mem->ls_initialized) {

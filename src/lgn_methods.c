@@ -12,6 +12,8 @@
  * alpha_PETSc = 1 - alpha_CH.
  * ---------------------------------------------------------------------------*/
 
+#include <math.h>
+
 #include "lgn_err.h"
 #include "lgn_methods.h"
 
@@ -44,6 +46,10 @@ int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
 int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
                          sunrealtype beta, sunrealtype gamma, const char **why)
 {
+  if (!isfinite(alpha_m) || !isfinite(alpha_f) || !isfinite(beta) || !isfinite(gamma)) {
+    *why = "every parameter must be finite";
+    return LGN_ILL_INPUT;
+  }
   if (!(alpha_m < SUN_RCONST(1.0))) {
     *why = "alpha_m must be < 1";
     return LGN_ILL_INPUT;

@@ -330,8 +330,8 @@ contains
       case ("--outputs")
         call parse_int(val, outputs, ok)
         ok = ok .and. outputs >= 1
-      case ("--rtol"); call parse_real(val, rtol, ok)
-      case ("--atol"); call parse_real(val, atol, ok)
+      case ("--rtol"); call parse_real(val, rtol, ok); ok = ok .and. rtol >= 0
+      case ("--atol"); call parse_real(val, atol, ok); ok = ok .and. atol >= 0
       case ("--compare"); compare_path = val
       case default; ok = .false.
       end select

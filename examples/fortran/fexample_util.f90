@@ -30,13 +30,16 @@ contains
 
   !> Read a real from a string; ok = .false. if it is not one.
   subroutine parse_real(str, x, ok)
+    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
     character(len=*), intent(in) :: str
     real(c_double), intent(out) :: x
     logical, intent(out) :: ok
     integer :: ios
 
     read (str, *, iostat=ios) x
+    ! a finite number
     ok = ios == 0
+    if (ok) ok = ieee_is_finite(x)
   end subroutine parse_real
 
   !> Read an integer from a string; ok = .false. if it is not one.

@@ -234,10 +234,10 @@ contains
       case ("--rho-inf"); call parse_real(val, rho_inf, ok)
       case ("--beta"); call parse_real(val, beta, ok)
       case ("--gamma"); call parse_real(val, gamma, ok)
-      case ("--h"); call parse_real(val, h, ok)
-      case ("--t-end"); call parse_real(val, t_end, ok)
-      case ("--rtol"); call parse_real(val, rtol, ok)
-      case ("--atol"); call parse_real(val, atol, ok)
+      case ("--h"); call parse_real(val, h, ok); ok = ok .and. h > 0
+      case ("--t-end"); call parse_real(val, t_end, ok); ok = ok .and. t_end > 0
+      case ("--rtol"); call parse_real(val, rtol, ok); ok = ok .and. rtol >= 0
+      case ("--atol"); call parse_real(val, atol, ok); ok = ok .and. atol >= 0
       case ("--compare"); compare_path = val
       case default; ok = .false.
       end select

@@ -635,9 +635,18 @@ void rigid_print_usage(FILE *out)
           "          tolerances (default 1e-6), --h the first step tried)\n");
 }
 
+/* A finite number, the whole string (no trailing characters). */
+static int ParseNumber(const char *s, double *x)
+{
+  char *end;
+  *x = strtod(s, &end);
+  return (end == s || *end != '\0' || !isfinite(*x)) ? 1 : 0;
+}
+
 int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
                        RigidFormulation *formulation)
 {
+  int bad = 0;
   const char *key = argv[*i], *val;
   if (strcmp(key, "--adaptive") == 0) { /* a flag: no value */
     opt->adaptive = 1;
@@ -698,19 +707,19 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     else if (VAL("klu")) opt->klu_solve_sundials = 1;
     else return -1;
   } else if (IS("--msbp")) opt->msbp = atol(val);
-  else if (IS("--rho-inf")) opt->rho_inf = atof(val);
-  else if (IS("--beta")) opt->beta = atof(val);
-  else if (IS("--gamma")) opt->gamma = atof(val);
-  else if (IS("--h")) opt->h = atof(val);
-  else if (IS("--t-end")) opt->t_end = atof(val);
+  else if (IS("--rho-inf")) bad = ParseNumber(val, &opt->rho_inf);
+  else if (IS("--beta")) bad = ParseNumber(val, &opt->beta);
+  else if (IS("--gamma")) bad = ParseNumber(val, &opt->gamma);
+  else if (IS("--h")) bad = ParseNumber(val, &opt->h);
+  else if (IS("--t-end")) bad = ParseNumber(val, &opt->t_end);
   else if (IS("--outputs")) opt->outputs = atoi(val);
-  else if (IS("--rtol")) opt->rtol = atof(val);
-  else if (IS("--atol")) opt->atol = atof(val);
-  else if (IS("--hmax")) opt->hmax = atof(val);
+  else if (IS("--rtol")) bad = ParseNumber(val, &opt->rtol) || opt->rtol < 0;
+  else if (IS("--atol")) bad = ParseNumber(val, &opt->atol) || opt->atol < 0;
+  else if (IS("--hmax")) bad = ParseNumber(val, &opt->hmax) || opt->hmax < 0;
   else return 0;
 #undef IS
 #undef VAL
-  if (!(opt->h > 0) || !(opt->t_end > 0) || opt->outputs < 1) return -1;
+  if (bad || !(opt->h > 0) || !(opt->t_end > 0) || opt->outputs < 1) return -1;
   (*i)++;
   return 1;
 }

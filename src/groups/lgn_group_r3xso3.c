@@ -79,8 +79,7 @@ static int R3SO3Identity(LGNGroup G, sunrealtype *q)
 static int R3SO3Normalize(LGNGroup G, sunrealtype *q)
 {
   (void)G;
-  lgnSO3_QuatNormalize(q + 3);
-  return 0;
+  return lgnSO3_QuatNormalize(q + 3);
 }
 
 LGNGroup LGNGroup_R3xSO3(void)

@@ -118,8 +118,7 @@ static int SE3Identity(LGNGroup G, sunrealtype *q)
 static int SE3Normalize(LGNGroup G, sunrealtype *q)
 {
   (void)G;
-  lgnSO3_QuatNormalize(q + 3);
-  return 0;
+  return lgnSO3_QuatNormalize(q + 3);
 }
 
 LGNGroup LGNGroup_SE3(void)

@@ -64,8 +64,7 @@ static int SO3Identity(LGNGroup G, sunrealtype *q)
 static int SO3Normalize(LGNGroup G, sunrealtype *q)
 {
   (void)G;
-  lgnSO3_QuatNormalize(q);
-  return 0;
+  return lgnSO3_QuatNormalize(q);
 }
 
 LGNGroup LGNGroup_SO3(void)

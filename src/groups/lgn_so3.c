@@ -313,11 +313,12 @@ static inline sunrealtype InverseNorm(const sunrealtype p[4])
   return n2 > 0 ? ONE / sqrt(n2) : 0;
 }
 
-void lgnSO3_QuatNormalize(sunrealtype p[4])
+int lgnSO3_QuatNormalize(sunrealtype p[4])
 {
   const sunrealtype r = InverseNorm(p);
-  if (r == 0) return;
+  if (!(r > 0) || !isfinite(r)) return -1; /* zero or not finite: no rotation */
   p[0] *= r; p[1] *= r; p[2] *= r; p[3] *= r;
+  return 0;
 }
 
 void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],

@@ -123,7 +123,7 @@ void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
                            sunrealtype p_out[4]);
 
 /* Scale p to unit length (left unchanged if p = 0). */
-void lgnSO3_QuatNormalize(sunrealtype p[4]);
+int lgnSO3_QuatNormalize(sunrealtype p[4]); /* -1: zero or not finite */
 
 /* y = R(p) v for a unit quaternion p; y may alias v. */
 void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],

@@ -970,8 +970,12 @@ static void RunApiAndProducts(void)
   P = LGNGroup_Product(2, bad);
   Check("product: failing/missing factor op propagates (7 / -1)",
         (P != NULL && LGNGroup_ComposeExp(P, q, w, y) == 7 &&
-         LGNGroup_TangentApply(P, w, w, y) == -1 &&
-         LGNGroup_Normalize(P, q) == 0) ? 0 : 1, 0, "custom factor");
+         LGNGroup_TangentApply(P, w, w, y) == -1) ? 0 : 1, 0, "custom factor");
+  /* normalize: a zero quaternion is no rotation (-1, from the SO(3)
+   * factor); a nonzero one is scaled, the factor without the op skipped */
+  Check("product: normalize fails on a zero quaternion, succeeds on (2, 0, 0, 0)",
+        (LGNGroup_Normalize(P, q) == -1 && (q[0] = 2.0, LGNGroup_Normalize(P, q) == 0) &&
+         q[0] == 1.0) ? 0 : 1, 0, "custom factor");
   LGNGroup_Destroy(P);
 
   /* a chain of 10000 identical bodies: one factor referenced 10000 times */

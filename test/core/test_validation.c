@@ -1,0 +1,162 @@
+/* -----------------------------------------------------------------------------
+ * Lignum test: arguments that used to be accepted and then failed later (or
+ * silently) are refused where they are given, with a message naming them.
+ *
+ *  - a dense linear solver created for another size than A (SUNDIALS would
+ *    write past its pivot array);
+ *  - method parameters that are not finite (alpha = -Inf);
+ *  - step sizes whose square or its inverse is not a finite number;
+ *  - an initial configuration that is not on the group (zero quaternion) or
+ *    has a NaN, and a NaN velocity;
+ *  - initial accelerations set after the first step (as LGNSetInitialAux);
+ *  - and an object may be resized: LGNSetGroup with another size after
+ *    LGNInit drops the state, LGNSolve asks for LGNInit, and LGNInit with
+ *    vectors of the new size works.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <lignum/lignum.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "test_util.h"
+
+static char last_msg[512];
+static void Capture(int code, const char *module, const char *fn, const char *msg, void *d)
+{
+  (void)code; (void)module; (void)d;
+  snprintf(last_msg, sizeof last_msg, "%s: %s", fn, msg);
+}
+
+/* A free symmetric top on SO(3) (or a free point on R^n: unit mass, no
+ * force). */
+static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  sunindextype i;
+  (void)t; (void)q; (void)ud;
+  for (i = 0; i < SM_ROWS_D(M); i++) SM_ELEMENT_D(M, i, i) = 1.0;
+  return 0;
+}
+
+static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)g; (void)ud;
+  return 0;
+}
+
+static int Refused(int flag, int expected, const char *name)
+{
+  return flag == expected && strstr(last_msg, name) != NULL;
+}
+
+int main(void)
+{
+  SUNContext ctx;
+  LGNGroup so3 = LGNGroup_SO3(), r5 = LGNGroup_Rn(5);
+  N_Vector q, v, q5, v5, y1, vd;
+  SUNMatrix A3, A1, A5;
+  SUNLinearSolver LS1, LS3, LS5;
+  void *mem;
+  double t;
+  int flag;
+
+  SUNContext_Create(NULL, &ctx);
+  q  = N_VNew_Serial(4, ctx);
+  v  = N_VNew_Serial(3, ctx);
+  q5 = N_VNew_Serial(5, ctx);
+  v5 = N_VNew_Serial(5, ctx);
+  y1 = N_VNew_Serial(1, ctx);
+  vd = N_VNew_Serial(3, ctx);
+  A1 = SUNDenseMatrix(1, 1, ctx);
+  A3 = SUNDenseMatrix(3, 3, ctx);
+  A5 = SUNDenseMatrix(5, 5, ctx);
+  LS1 = SUNLinSol_Dense(y1, A1, ctx); /* for 1 x 1 */
+  LS3 = SUNLinSol_Dense(v, A3, ctx);
+  LS5 = SUNLinSol_Dense(v5, A5, ctx);
+  N_VConst(0.0, q);
+  N_VGetArrayPointer(q)[0] = 1.0;
+  N_VConst(1.0, v);
+  N_VConst(0.0, q5);
+  N_VConst(1.0, v5);
+
+  mem = LGNCreate(ctx);
+  LGNSetErrHandlerFn(mem, Capture, NULL);
+  LGNSetGroup(mem, so3);
+  LGNSetMassFn(mem, Mass);
+  LGNSetForceFn(mem, Force);
+  LGNSetStepSize(mem, 1e-3);
+  CHECK(LGNInit(mem, 0.0, q, v) == LGN_SUCCESS, "LGNInit");
+
+  /* a dense solver made for 1 x 1, with a 3 x 3 A */
+  CHECK(LGNSetLinearSolver(mem, LS1, A3) == LGN_SUCCESS, "attach");
+  flag = LGNSolve(mem, 0.01, &t, q, v, LGN_NORMAL);
+  CHECK(Refused(flag, LGN_LS_MISMATCH, "created for 1 x 1"), "dense solver of another size: %s (%s)",
+        LGNGetReturnFlagName(flag), last_msg);
+  CHECK(LGNSetLinearSolver(mem, LS3, A3) == LGN_SUCCESS, "attach the right one");
+
+  /* method parameters */
+  CHECK(Refused(LGNSetGenAlphaParams(mem, -INFINITY, 0.4, 0.3, 0.6), LGN_ILL_INPUT, "finite"),
+        "alpha_m = -Inf: %s", last_msg);
+  CHECK(Refused(LGNSetGenAlphaParams(mem, 0.2, NAN, 0.3, 0.6), LGN_ILL_INPUT, "finite"),
+        "alpha_f = NaN: %s", last_msg);
+
+  /* step sizes */
+  CHECK(Refused(LGNSetStepSize(mem, 1e-300), LGN_ILL_INPUT, "h = 1e-300"), "h = 1e-300: %s", last_msg);
+  CHECK(Refused(LGNSetStepSize(mem, 1e200), LGN_ILL_INPUT, "h = 1e+200"), "h = 1e200: %s", last_msg);
+  CHECK(LGNSetStepSize(mem, 1e-100) == LGN_SUCCESS, "h = 1e-100 is fine");
+  CHECK(LGNSetStepSize(mem, 1e-3) == LGN_SUCCESS, "h = 1e-3");
+
+  /* the initial state */
+  N_VConst(0.0, q);
+  CHECK(Refused(LGNReInit(mem, 0.0, q, v), LGN_ILL_INPUT, "q0 is not an element"),
+        "zero quaternion: %s", last_msg);
+  N_VGetArrayPointer(q)[0] = NAN;
+  CHECK(Refused(LGNReInit(mem, 0.0, q, v), LGN_ILL_INPUT, "q0 has a NaN"), "NaN in q0: %s", last_msg);
+  N_VGetArrayPointer(q)[0] = 1.0;
+  N_VGetArrayPointer(v)[1] = INFINITY;
+  CHECK(Refused(LGNReInit(mem, 0.0, q, v), LGN_ILL_INPUT, "v0 has a NaN or Inf"), "Inf in v0: %s",
+        last_msg);
+  N_VGetArrayPointer(v)[1] = 1.0;
+  CHECK(LGNReInit(mem, 0.0, q, v) == LGN_SUCCESS, "a good start again");
+
+  /* initial accelerations after the first step */
+  flag = LGNSolve(mem, 0.01, &t, q, v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS, "run: %s", LGNGetReturnFlagName(flag));
+  N_VConst(0.0, vd);
+  CHECK(Refused(LGNSetInitialAcceleration(mem, vd, NULL), LGN_ILL_INPUT, "before the first step"),
+        "vdot0 after a step: %s", last_msg);
+
+  /* resizing: SO(3) -> R^5 */
+  CHECK(LGNSetGroup(mem, r5) == LGN_SUCCESS, "LGNSetGroup with another size: %s", last_msg);
+  flag = LGNSolve(mem, 0.02, &t, q5, v5, LGN_NORMAL);
+  CHECK(Refused(flag, LGN_NO_MALLOC, "LGNInit"), "then LGNSolve asks for LGNInit: %s", last_msg);
+  CHECK(LGNInit(mem, 0.0, q5, v5) == LGN_SUCCESS, "LGNInit with the new sizes: %s", last_msg);
+  CHECK(LGNSetLinearSolver(mem, LS5, A5) == LGN_SUCCESS, "a solver of the new size");
+  flag = LGNSolve(mem, 0.5, &t, q5, v5, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && fabs(N_VGetArrayPointer(q5)[0] - 0.5) < 1e-12,
+        "the resized object integrates (free motion, x = t): %s, x = %.17g",
+        LGNGetReturnFlagName(flag), N_VGetArrayPointer(q5)[0]);
+
+  LGNFree(&mem);
+  SUNLinSolFree(LS1);
+  SUNLinSolFree(LS3);
+  SUNLinSolFree(LS5);
+  SUNMatDestroy(A1);
+  SUNMatDestroy(A3);
+  SUNMatDestroy(A5);
+  N_VDestroy(q);
+  N_VDestroy(v);
+  N_VDestroy(q5);
+  N_VDestroy(v5);
+  N_VDestroy(y1);
+  N_VDestroy(vd);
+  LGNGroup_Destroy(so3);
+  LGNGroup_Destroy(r5);
+  SUNContext_Free(&ctx);
+  return test_summary("test_validation");
+}
