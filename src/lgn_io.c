@@ -852,6 +852,9 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_IC_FAIL:            return "LGN_IC_FAIL";
   case LGN_ERR_FAILURE:        return "LGN_ERR_FAILURE";
   case LGN_TSTOP_RETURN:       return "LGN_TSTOP_RETURN";
+  case LGN_ROOT_RETURN:        return "LGN_ROOT_RETURN";
+  case LGN_RTFUNC_FAIL:        return "LGN_RTFUNC_FAIL";
+  case LGN_WARNING:            return "LGN_WARNING";
   case LGN_BAD_T:              return "LGN_BAD_T";
   case LGN_BAD_K:              return "LGN_BAD_K";
   case LGN_MEM_NULL:           return "LGN_MEM_NULL";
