@@ -812,6 +812,7 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
   fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  if (mem->nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->nge);
   if (mem->sp != NULL) {
     fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);
     fprintf(outfile, fmt_l, "Iteration matrix nonzeros", lgnIterationMatrixNnz(mem));
