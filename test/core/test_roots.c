@@ -524,6 +524,19 @@ static void TestMisc(void)
     }
   }
 
+  /* LGNInit again after LGNRootInit: root finding kept, from the new state */
+  Setup(&f, BALL, 10.0, 0.0, FIXED, 0.01);
+  f.p.root = G_Z;
+  LGNRootInit(f.mem, 1, Roots);
+  flag = LGNSolve(f.mem, 0.5, &t, f.q, f.v, LGN_NORMAL);
+  N_VGetArrayPointer(f.q)[0] = 5.0;
+  N_VGetArrayPointer(f.v)[0] = 0.0;
+  CHECK(flag == LGN_SUCCESS && LGNInit(f.mem, 1.0, f.q, f.v) == LGN_SUCCESS, "LGNInit again");
+  flag = LGNSolve(f.mem, 5.0, &t, f.q, f.v, LGN_NORMAL);
+  CHECK(flag == LGN_ROOT_RETURN && fabs(t - 1.0 - sqrt(10.0 / GRAV)) <= TOL_EVENT,
+        "after LGNInit again: impact at %.17g (%s)", t, LGNGetReturnFlagName(flag));
+  Teardown(&f);
+
   /* bad input */
   Setup(&f, BALL, 10.0, 0.0, FIXED, 0.01);
   CHECK(LGNRootInit(NULL, 1, Roots) == LGN_MEM_NULL, "LGNRootInit(NULL)");
