@@ -652,7 +652,7 @@ typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
  *  Root finding starts at the next LGNSolve, with g evaluated at the
  *  current time; LGNReInit (e.g. a velocity reversed at an impact) restarts
  *  it from the new state. Must be called after LGNInit (the scratch vectors
- *  are cloned from the state); it survives LGNReInit. Directions are reset
+ *  are cloned from the state); it survives LGNInit and LGNReInit. Directions are reset
  *  to 0 (both). nrtfn = 0 turns root finding off.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
  *          LGN_ILL_INPUT (nrtfn < 0, or g NULL with nrtfn > 0),
