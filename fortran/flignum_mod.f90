@@ -1139,6 +1139,69 @@ module flignum_mod
     end function LGNSetPerturbedStart
   end interface
 
+  ! ===========================================================================
+  ! lignum.h: events (root finding)
+  ! ===========================================================================
+  integer(c_int), parameter :: LGN_ROOT_RETURN = 2    !< LGNSolve returned at a root
+  integer(c_int), parameter :: LGN_RTFUNC_FAIL = -13  !< the root function failed
+  integer(c_int), parameter :: LGN_WARNING = 99       !< error_code of a warning
+
+  abstract interface
+    !> Root functions: gout(1:nrtfn) = g(t, q, v). q and v (N_Vector) hold
+    !! the solution at t. Return 0; anything else stops LGNSolve with
+    !! LGN_RTFUNC_FAIL.
+    integer(c_int) function LGNRootFn(t, q, v, gout, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v
+      real(c_double) :: gout(*)
+      type(c_ptr), value :: user_data
+    end function LGNRootFn
+  end interface
+
+  interface
+    !> Root finding on nrtfn functions g (c_funloc of an LGNRootFn); after
+    !! LGNInit. LGNSolve returns LGN_ROOT_RETURN at each root, in order;
+    !! nrtfn = 0 turns root finding off.
+    integer(c_int) function LGNRootInit(lgn_mem, nrtfn, g) bind(c, name="LGNRootInit")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: nrtfn
+      type(c_funptr), value :: g
+    end function LGNRootInit
+
+    !> Directions: rootdir(i) = +1 increasing, -1 decreasing, 0 both.
+    integer(c_int) function LGNSetRootDirection(lgn_mem, rootdir) &
+        bind(c, name="LGNSetRootDirection")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(in) :: rootdir(*)
+    end function LGNSetRootDirection
+
+    !> No warning for a g_i still exactly 0 after the first step.
+    integer(c_int) function LGNSetNoInactiveRootWarn(lgn_mem) &
+        bind(c, name="LGNSetNoInactiveRootWarn")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+    end function LGNSetNoInactiveRootWarn
+
+    !> After LGN_ROOT_RETURN: rootsfound(i) = +1 / -1 (direction) or 0.
+    integer(c_int) function LGNGetRootInfo(lgn_mem, rootsfound) &
+        bind(c, name="LGNGetRootInfo")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(inout) :: rootsfound(*)
+    end function LGNGetRootInfo
+
+    !> Root function evaluations (since LGNInit / LGNReInit).
+    integer(c_int) function LGNGetNumGEvals(lgn_mem, ngevals) &
+        bind(c, name="LGNGetNumGEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: ngevals
+    end function LGNGetNumGEvals
+  end interface
+
 contains
 
   !> Copy a NUL-terminated C string into a Fortran string ("" for c_null_ptr).

@@ -70,6 +70,7 @@ static void ResetCounters(LGNMem mem)
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
   mem->nreuse = mem->nrestart = mem->netf = 0;
+  mem->nge = 0;
   mem->err_norm = mem->h0_actual = SUN_RCONST(0.0);
   mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
   mem->nklu_refactor = mem->nklu_solve = 0;
@@ -319,6 +320,11 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
     flag = lgnAdaptiveStep(mem, tout);
     if (flag != LGN_SUCCESS) break;
     nstloc++;
+    if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
+      flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
+      if (flag == LGN_ROOT_RETURN) return flag;
+      if (flag != LGN_SUCCESS) break;
+    }
   }
   if (flag == LGN_SUCCESS && itask == LGN_NORMAL && mem->tn > tout)
     return OutputAt(mem, tout, tret, q, v);
@@ -355,6 +361,12 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     return LGN_ILL_INPUT;
   }
   flag = CheckReadyToSolve(mem);
+  if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
+    /* events: start, or the rest of the last step after a root */
+    sunbooleantype done = SUNFALSE;
+    flag = lgnRootSolveStart(mem, tout, itask, tret, q, v, &done);
+    if (flag == LGN_ROOT_RETURN || (flag == LGN_SUCCESS && done)) return flag;
+  }
   if (flag != LGN_SUCCESS) {
     CopyOut(mem, tret, q, v);
     return flag;
@@ -365,6 +377,10 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
 
   if (itask == LGN_ONE_STEP) {
     flag = lgnStep(mem, mem->h);
+    if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
+      flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
+      if (flag == LGN_ROOT_RETURN) return flag;
+    }
     CopyOut(mem, tret, q, v);
     return flag;
   }
@@ -374,6 +390,8 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
    * never produces a tiny extra step. */
   troundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
               SUNMAX(fabs(mem->tn), fabs(tout));
+  if (tout < mem->tn - troundoff && mem->dense_valid && tout >= mem->tprev)
+    return OutputAt(mem, tout, tret, q, v); /* inside the last step (after a root) */
   if (tout < mem->tn - troundoff) {
     LGN_ERROR(mem, LGN_BAD_TOUT,
               "tout = %.17g is behind the current time t = %.17g.",
@@ -397,6 +415,11 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tout; /* exact arrival */
     nstloc++;
+    if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
+      flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
+      if (flag == LGN_ROOT_RETURN) return flag;
+      if (flag != LGN_SUCCESS) break;
+    }
   }
   CopyOut(mem, tret, q, v);
   return flag;

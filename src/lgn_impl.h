@@ -232,6 +232,24 @@ typedef struct LGNMemRec {
   sunrealtype *zero_nv;     /* zeros (nv), the algebra's origin            */
   sunrealtype *dense_work;  /* the dense output's scratch (4 nv)           */
 
+  /* ---- root finding (lgn_root.c; arrays allocated by lgn_mem.c) ---- */
+  int nrtfn;                /* number of root functions (0: off)           */
+  LGNRootFn gfun;           /* g(t, q, v, gout, user_data)                 */
+  sunrealtype *glo;         /* g at tlo, the last point checked (nrtfn)    */
+  sunrealtype *ghi;         /* g at the right end of the bracket (nrtfn)   */
+  sunrealtype *grout;       /* g at the root returned / the trial point    */
+  int *iroots;              /* +1 / -1: a root found, its direction (nrtfn)*/
+  int *rootdir;             /* LGNSetRootDirection: +1, -1, 0 (nrtfn)      */
+  sunbooleantype *gactive;  /* g_i not exactly zero at tlo (nrtfn)         */
+  N_Vector rt_q, rt_v;      /* q, v handed to g (clones of the state)      */
+  sunrealtype tlo;          /* roots are sought in (tlo, ...]              */
+  sunbooleantype rt_started;/* glo holds g at tlo (dropped by STATE)       */
+  sunbooleantype rt_pending;/* a root returned before tn (LGN_ONE_STEP:    */
+                            /* tn itself is returned next, as IDA does)    */
+  sunbooleantype rt_first;  /* the first check since the start is ahead   */
+  sunbooleantype rt_nowarn; /* LGNSetNoInactiveRootWarn                    */
+  long int nge;             /* root function evaluations                   */
+
   /* ---- counters ---- */
   long int nst;      /* steps                                              */
   long int nni;      /* Newton iterations                                  */
@@ -299,6 +317,10 @@ void lgnSparseWorkFree(LGNMem mem);
 void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
 long int lgnIterationMatrixNnz(LGNMem mem);
 void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw);
+
+int lgnAllocRoots(LGNMem mem, int nrtfn);
+int lgnAllocRootVectors(LGNMem mem);
+void lgnFreeRoots(LGNMem mem);
 
 /* Report an error from inside a function: fills in line, function and file. */
 #define LGN_ERROR(mem, code, ...) \
@@ -431,6 +453,14 @@ int lgnStep(LGNMem mem, sunrealtype h);
 /* ---- lgn_adapt.c: one error-controlled step ----------------------------- */
 
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
+
+/* ---- lgn_root.c: events (root finding on the dense output) ------------- */
+
+int lgnRootSolveStart(LGNMem mem, sunrealtype tout, int itask,
+                      sunrealtype *tret, N_Vector q, N_Vector v,
+                      sunbooleantype *done);
+int lgnRootAfterStep(LGNMem mem, sunrealtype tout, int itask,
+                     sunrealtype *tret, N_Vector q, N_Vector v);
 
 /* helpers */
 /* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */

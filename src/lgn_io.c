@@ -849,6 +849,7 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
   fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  if (mem->nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->nge);
   if (mem->sp != NULL) {
     fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);
     fprintf(outfile, fmt_l, "Iteration matrix nonzeros", lgnIterationMatrixNnz(mem));
@@ -891,6 +892,9 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_STEP_TOO_SMALL:     return "LGN_STEP_TOO_SMALL";
   case LGN_INCONSISTENT_IC:    return "LGN_INCONSISTENT_IC";
   case LGN_TSTOP_RETURN:       return "LGN_TSTOP_RETURN";
+  case LGN_ROOT_RETURN:        return "LGN_ROOT_RETURN";
+  case LGN_RTFUNC_FAIL:        return "LGN_RTFUNC_FAIL";
+  case LGN_WARNING:            return "LGN_WARNING";
   case LGN_BAD_T:              return "LGN_BAD_T";
   case LGN_BAD_K:              return "LGN_BAD_K";
   case LGN_MEM_NULL:           return "LGN_MEM_NULL";

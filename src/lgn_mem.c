@@ -9,6 +9,7 @@
  *   - allocation: the state (sized by the group), the work space (sized by
  *     nv and m), the block table of the group, the model matrices of the
  *     type of A and the sparse work space, and their sizes (lgnWorkSpace);
+ *   - the arrays and scratch vectors of root finding (lgn_root.c uses them);
  *   - lgnInvalidate, the one place that knows which cached item depends on
  *     which setting: every setter calls it with what it changed.
  * ---------------------------------------------------------------------------*/
@@ -42,6 +43,9 @@
  *   predictor history (h_prev), the next   GROUP, SIZES, STATE
  *   step size (hnext), the dense output
  *   constant M evaluated (mass_current)    GROUP, SIZES, LINSOL, MASS, STATE
+ *   root finding's g at the last point     STATE (g is evaluated anew at the
+ *   checked (rt_started), the pending      new t0 at the next LGNSolve)
+ *   return of tn after a root
  *   factorised iteration matrix            every change, and MATRIX
  *   (lu_valid, klu_valid), Newton's last
  *   rate and multiplier noise level
@@ -64,6 +68,8 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->hnext       = SUN_RCONST(0.0); /* error control starts anew */
     mem->err_prev    = SUN_RCONST(0.0);
     mem->dense_valid = SUNFALSE;
+    mem->rt_started  = SUNFALSE; /* root finding restarts at the new t0 */
+    mem->rt_pending  = SUNFALSE;
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
   /* the factorised matrix in A no longer fits the model or method: the next
@@ -340,6 +346,8 @@ void lgnFreeState(LGNMem mem)
   DestroyVector(&mem->vdot1);
   DestroyVector(&mem->dq_q);
   DestroyVector(&mem->dq_v);
+  DestroyVector(&mem->rt_q);
+  DestroyVector(&mem->rt_v);
   mem->malloc_done = SUNFALSE;
 }
 
@@ -400,6 +408,64 @@ void lgnFreeAll(LGNMem mem)
   lgnFreeWork(mem);
   lgnFreeState(mem);
   DestroyVector(&mem->atol_vec);
+  lgnFreeRoots(mem);
+}
+
+/* =============================================================================
+ * Root finding: the arrays of LGNRootInit and the vectors handed to g
+ * ===========================================================================*/
+
+/* Root finding off: its arrays and scratch vectors released, nrtfn = 0. */
+void lgnFreeRoots(LGNMem mem)
+{
+  free(mem->glo);
+  free(mem->iroots);
+  free(mem->gactive);
+  mem->glo = mem->ghi = mem->grout = NULL;
+  mem->iroots = mem->rootdir = NULL;
+  mem->gactive = NULL;
+  DestroyVector(&mem->rt_q);
+  DestroyVector(&mem->rt_v);
+  mem->nrtfn      = 0;
+  mem->gfun       = NULL;
+  mem->rt_started = SUNFALSE;
+  mem->rt_pending = SUNFALSE;
+}
+
+/* The scratch q and v handed to g: clones of the state (LGNInit done). */
+int lgnAllocRootVectors(LGNMem mem)
+{
+  if (mem->rt_q == NULL) mem->rt_q = N_VClone(mem->q);
+  if (mem->rt_v == NULL) mem->rt_v = N_VClone(mem->v);
+  if (mem->rt_q == NULL || mem->rt_v == NULL) {
+    DestroyVector(&mem->rt_q);
+    DestroyVector(&mem->rt_v);
+    return LGN_MEM_FAIL;
+  }
+  return LGN_SUCCESS;
+}
+
+/* Arrays for nrtfn > 0 root functions (directions 0, all active) and the
+ * scratch vectors; on failure root finding is off. No message: the caller
+ * (LGNRootInit) reports. */
+int lgnAllocRoots(LGNMem mem, int nrtfn)
+{
+  int i;
+  lgnFreeRoots(mem);
+  mem->glo     = (sunrealtype *)calloc((size_t)(3 * nrtfn), sizeof(sunrealtype));
+  mem->iroots  = (int *)calloc((size_t)(2 * nrtfn), sizeof(int));
+  mem->gactive = (sunbooleantype *)calloc((size_t)nrtfn, sizeof(sunbooleantype));
+  if (mem->glo == NULL || mem->iroots == NULL || mem->gactive == NULL ||
+      lgnAllocRootVectors(mem) != LGN_SUCCESS) {
+    lgnFreeRoots(mem);
+    return LGN_MEM_FAIL;
+  }
+  mem->ghi     = mem->glo + nrtfn;
+  mem->grout   = mem->glo + 2 * nrtfn;
+  mem->rootdir = mem->iroots + nrtfn;
+  for (i = 0; i < nrtfn; i++) mem->gactive[i] = SUNTRUE;
+  mem->nrtfn = nrtfn;
+  return LGN_SUCCESS;
 }
 
 /* The state vectors, cloned from q0 and v0 (the sizes of the group). */
@@ -420,7 +486,8 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   mem->dq_v  = N_VClone(v0);
   if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
       mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
-      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
+      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL ||
+      (mem->nrtfn > 0 && lgnAllocRootVectors(mem) != LGN_SUCCESS)) {
     lgnFreeState(mem);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -575,6 +642,10 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   const long int nq = (long int)mem->nq, nv = (long int)mem->nv, m = (long int)mem->m;
   long int rw = 0, iw = 0;
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
+  if (mem->nrtfn > 0) {                                   /* root finding        */
+    rw += 3L * mem->nrtfn + nq + nv;
+    iw += 3L * mem->nrtfn;
+  }
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
     rw += 17 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);

@@ -730,6 +730,65 @@ LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
 LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);
 
+/* =============================================================================
+ * Events (root finding)
+ * ===========================================================================*/
+
+#define LGN_ROOT_RETURN         2   /**< LGNSolve returned at a root of g         */
+#define LGN_RTFUNC_FAIL        -13  /**< the root function failed                 */
+#define LGN_WARNING             99  /**< error_code of a warning to the handler   */
+
+/** Root functions g(t, q, v) whose zeros are events (impacts, switches):
+ *  write the nrtfn values g_i(t, q, v) into gout. q and v are scratch
+ *  vectors holding the solution at t (the dense output between steps);
+ *  do not keep them. Return 0 on success; any other value stops LGNSolve
+ *  with LGN_RTFUNC_FAIL. */
+typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
+                         sunrealtype *gout, void *user_data);
+
+/** Root finding on nrtfn functions g (as IDARootInit). After every
+ *  accepted step (fixed or adaptive, LGN_NORMAL or LGN_ONE_STEP) LGNSolve
+ *  evaluates g at its end and looks for sign changes against the last point
+ *  checked; the earliest root is located on the dense output (LGNGetDky) by
+ *  the Illinois method to 100 eps (|t| + |h|) and LGNSolve returns
+ *  LGN_ROOT_RETURN there, with tret the root and q, v interpolated at it
+ *  (the integrator's own state stays at the step's end; the next LGNSolve
+ *  continues from there and first looks at the rest of the step, so close
+ *  roots come one by one, in order, each once). Which g_i have a root:
+ *  LGNGetRootInfo. A g_i exactly 0 at the start or at a root is ignored
+ *  until it moves away from 0, so no root is reported twice. With
+ *  LGN_NORMAL no root beyond tout is reported before tout.
+ *  Root finding starts at the next LGNSolve, with g evaluated at the
+ *  current time; LGNReInit (e.g. a velocity reversed at an impact) restarts
+ *  it from the new state. Must be called after LGNInit (the scratch vectors
+ *  are cloned from the state); it survives LGNInit and LGNReInit. Directions are reset
+ *  to 0 (both). nrtfn = 0 turns root finding off.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
+ *          LGN_ILL_INPUT (nrtfn < 0, or g NULL with nrtfn > 0),
+ *          LGN_MEM_FAIL. */
+LGN_EXPORT int LGNRootInit(void *lgn_mem, int nrtfn, LGNRootFn g);
+
+/** Which sign changes count, per root function: rootdir[i] = +1 only
+ *  increasing g_i (from - to +), -1 only decreasing, 0 both (the default).
+ *  The nrtfn values are copied.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (root finding not initialised, rootdir NULL, or an entry not
+ *          -1, 0 or +1). */
+LGN_EXPORT int LGNSetRootDirection(void *lgn_mem, int *rootdir);
+
+/** No warning when a g_i is exactly 0 at the start of root finding and
+ *  still at the end of the first step (it stays ignored until it moves
+ *  away from 0). The warning goes to the error handler with LGN_WARNING. */
+LGN_EXPORT int LGNSetNoInactiveRootWarn(void *lgn_mem);
+
+/** After LGN_ROOT_RETURN: rootsfound[i] = +1 if g_i has a root there and
+ *  increases, -1 if it decreases, 0 if it has none (nrtfn entries).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (rootsfound NULL). */
+LGN_EXPORT int LGNGetRootInfo(void *lgn_mem, int *rootsfound);
+
+/** Evaluations of the root function (since LGNInit / LGNReInit). */
+LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
+
 #ifdef __cplusplus
 }
 #endif

@@ -122,6 +122,20 @@ contains
     ierr = merge(-1_c_int, 0_c_int, osc%fail_force)
   end function osc_force
 
+  !> LGNRootFn: g = (q, q - 1/2), events of the oscillator.
+  integer(c_int) function osc_root(t, q, v, gout, user_data) result(ierr) bind(c)
+    real(c_double), value :: t
+    type(c_ptr), value :: q, v
+    real(c_double) :: gout(*)
+    type(c_ptr), value :: user_data
+    real(c_double), pointer :: qq(:)
+
+    qq => FN_VGetArray(q)
+    gout(1) = qq(1)
+    gout(2) = qq(1) - 0.5_c_double
+    ierr = 0
+  end function osc_root
+
 end module test_api_callbacks
 
 program test_api
@@ -169,6 +183,8 @@ contains
     call name_is(LGN_LSOLVE_FAIL, "LGN_LSOLVE_FAIL")
     call name_is(LGN_LS_MISMATCH, "LGN_LS_MISMATCH")
     call name_is(LGN_UNRECOGNIZED_ERR, "LGN_UNRECOGNIZED_ERR")
+    call name_is(LGN_ROOT_RETURN, "LGN_ROOT_RETURN")
+    call name_is(LGN_RTFUNC_FAIL, "LGN_RTFUNC_FAIL")
     call name_is(12345_c_int, "NONE")
     call expect(FLGNString(LGNGetReturnFlagName(-2_c_long)) == "LGN_CONV_FAILURE", &
                 "LGNGetReturnFlagName(-2) through FLGNString")
@@ -378,7 +394,8 @@ contains
     real(c_double), pointer :: qq(:), vv(:), vd(:)
     real(c_double) :: t, am, af, beta, gamma, h
     integer(c_long) :: nsteps, nni, nncf, nsf, nres, ndq, nje, nls, nlsolves, lflag
-    integer(c_long) :: nreuse, nrestart
+    integer(c_long) :: nreuse, nrestart, nge
+    integer(c_int) :: rootsfound(2)
     integer(c_long) :: ncopies, nvalues, nrefactors, nsolves, npivot, npattern, nnocopy
     integer(c_int) :: flag
     real(c_double), parameter :: tol = 1.0e-6_c_double
@@ -520,6 +537,29 @@ contains
     ! tout behind the current time
     flag = LGNSolve(mem, 0.5_c_double, t, q, v, LGN_NORMAL)
     call expect_flag(flag, LGN_BAD_TOUT, "LGN_BAD_TOUT", "LGNSolve(tout behind)")
+
+    ! events through a Fortran root function: q = cos t falls through 1/2
+    ! at pi/3 and through 0 at pi/2 (the first only counted decreasing)
+    qq(1) = 1.0_c_double
+    vv(1) = 0.0_c_double
+    call expect(LGNReInit(mem, 0.0_c_double, q, v) == 0, "LGNReInit before the events")
+    call expect(LGNRootInit(mem, 2_c_int, c_funloc(osc_root)) == 0, "LGNRootInit")
+    call expect(LGNSetRootDirection(mem, [0_c_int, -1_c_int]) == 0, "LGNSetRootDirection")
+    call expect(LGNSetNoInactiveRootWarn(mem) == 0, "LGNSetNoInactiveRootWarn")
+    flag = LGNSolve(mem, 3.0_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_ROOT_RETURN, "LGN_ROOT_RETURN", "the first event")
+    call expect_near(t, acos(0.5_c_double), 1.0e-5_c_double, "q = 1/2 at pi/3")
+    call expect(LGNGetRootInfo(mem, rootsfound) == 0, "LGNGetRootInfo")
+    call expect(rootsfound(1) == 0 .and. rootsfound(2) == -1, "rootsfound = (0, -1)")
+    flag = LGNSolve(mem, 3.0_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_ROOT_RETURN, "LGN_ROOT_RETURN", "the second event")
+    call expect_near(t, 2.0_c_double * atan(1.0_c_double), 1.0e-5_c_double, "q = 0 at pi/2")
+    call expect_near(qq(1), 0.0_c_double, 1.0e-12_c_double, "q interpolated at the root")
+    call expect(LGNGetRootInfo(mem, rootsfound) == 0, "LGNGetRootInfo")
+    call expect(rootsfound(1) == -1 .and. rootsfound(2) == 0, "rootsfound = (-1, 0)")
+    call expect(LGNGetNumGEvals(mem, nge) == 0, "LGNGetNumGEvals")
+    call expect(nge > 2, "root function evaluations counted")
+    call expect(LGNRootInit(mem, 0_c_int, c_null_funptr) == 0, "LGNRootInit(0): off")
 
     ! a failing Fortran callback, after a restart (LGNReInit)
     qq(1) = 1.0_c_double

@@ -82,6 +82,10 @@ program test_constants
   call check("LGN_LSOLVE_FAIL", LGN_LSOLVE_FAIL)
   call check("LGN_LS_MISMATCH", LGN_LS_MISMATCH)
   call check("LGN_UNRECOGNIZED_ERR", LGN_UNRECOGNIZED_ERR)
+  ! events (root finding)
+  call check("LGN_ROOT_RETURN", LGN_ROOT_RETURN)
+  call check("LGN_RTFUNC_FAIL", LGN_RTFUNC_FAIL)
+  call check("LGN_WARNING", LGN_WARNING)
 
   ! --- lignum.h: other constants ----------------------------------------------------
   call check("LGN_NORMAL", LGN_NORMAL)
