@@ -31,6 +31,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "models/chain.h"
 #include "models/heavy_top.h"
 #include "lgn_reference.h"
 #include "test_util.h"
@@ -354,6 +355,52 @@ static void Proportionality(void)
     CHECK(p > 0.55 && p < 0.9, "%s: error ~ tol^%.3f, not near 2/3", kname[kin], p);
     CHECK(q < -0.25 && q > -0.45, "%s: steps ~ tol^%.3f, not near -1/3", kname[kin], q);
   }
+}
+
+/* The chain of 5 bodies (examples/models/chain.h), error control: the
+ * final state against a run at tolerance 1e-11 (four decades tighter than
+ * the tightest below). */
+static double ChainRun(double tol, double *q, long int *nsteps)
+{
+  RigidSystem *sys = chain_create(5, RB_R3XSO3, ctx);
+  RigidRunOptions o;
+  RigidRunResult r;
+  int flag, i;
+  rigid_default_run_options(&o);
+  o.adaptive = 1;
+  o.rtol = o.atol = tol;
+  o.t_end = 1.0;
+  o.h = 0.1;
+  flag = rigid_run(sys, &o, &r);
+  CHECK(flag == LGN_SUCCESS, "chain at tol %g: %s", tol, LGNGetReturnFlagName(flag));
+  for (i = 0; i < 35; i++) q[i] = r.q[i];
+  *nsteps = r.nsteps;
+  rigid_result_free(&r);
+  rigid_free(&sys);
+  return 0.0;
+}
+
+static void ChainProportionality(void)
+{
+  double ref[35], q[35], tol[4], err[4], steps[4], p;
+  long int ns;
+  int j, i;
+  ChainRun(1e-11, ref, &ns);
+  printf("(b) chain of 5 bodies, error at t = 1 against tolerance (reference: tol 1e-11, %ld steps)\n", ns);
+  for (j = 0; j < 4; j++) {
+    tol[j] = 1e-5 / pow(10.0, j);
+    ChainRun(tol[j], q, &ns);
+    err[j] = 0.0;
+    for (i = 0; i < 5; i++) { /* centres of mass */
+      int k;
+      for (k = 0; k < 3; k++) err[j] = fmax(err[j], fabs(q[7 * i + k] - ref[7 * i + k]));
+    }
+    steps[j] = (double)ns;
+    printf("  tol %.0e  steps %6ld  error %.3e\n", tol[j], ns, err[j]);
+  }
+  p = Slope(tol, err, 4);
+  printf("  error ~ tol^%.3f, steps ~ tol^%.3f\n", p, Slope(tol, steps, 4));
+  CHECK(p > 0.55 && p < 0.9, "chain: error ~ tol^%.3f, not near 2/3", p);
 }
 
 /* =============================================================================
@@ -687,6 +734,7 @@ int main(void)
   if (SUNContext_Create(NULL, &ctx) != 0) return 1;
   Estimator();
   Proportionality();
+  ChainProportionality();
   StepPattern();
   DenseOutput();
   Rollback();
