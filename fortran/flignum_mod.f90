@@ -620,6 +620,14 @@ module flignum_mod
       integer(c_long), intent(out) :: netfails
     end function LGNGetNumErrTestFails
 
+    !> Whether Newton may stop with stalled multipliers (default .true.).
+    integer(c_int) function LGNSetAcceptStalls(lgn_mem, accept) &
+        bind(c, name="LGNSetAcceptStalls")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: accept
+    end function LGNSetAcceptStalls
+
     !> After a singular matrix: the number of redundant constraints and, if
     !! rows is not c_null_ptr, their 0-based indices (an int64 array of
     !! length m, ascending).

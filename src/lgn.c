@@ -44,6 +44,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->predictor    = LGN_PREDICTOR_ZERO;
   mem->own_klu_solves = SUNFALSE;
   mem->step_control = LGN_STEP_FIXED;
+  mem->accept_stalls = SUNTRUE;
   mem->epcon        = LGN_EPCON_DEFAULT;
   mem->maxnef       = LGN_MAXNEF_DEFAULT;
   mem->maxncf       = LGN_MAXNCF_DEFAULT;
@@ -70,6 +71,7 @@ static void ResetCounters(LGNMem mem)
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
   mem->nreuse = mem->nrestart = mem->netf = 0;
+  mem->stall_warned = SUNFALSE;
   mem->nge = 0;
   mem->err_norm = mem->h0_actual = SUN_RCONST(0.0);
   mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
@@ -332,13 +334,44 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
   return flag;
 }
 
+/* A warning, once per object, when most steps of a solve were accepted
+ * with stalled multipliers (lgn_newton.c): the results then rest on the
+ * multipliers being at their roundoff level, not at the tolerance. */
+static void WarnStalls(LGNMem mem, long int nst0, long int nstall0)
+{
+  const long int steps = mem->nst - nst0, stalls = mem->nstall - nstall0;
+  if (mem->stall_warned || steps < 10 || 2 * stalls < steps) return;
+  mem->stall_warned = SUNTRUE;
+  LGN_ERROR(mem, LGN_WARNING,
+            MSG_TIME "%ld of the last %ld steps were accepted with the "
+            "multipliers' Newton corrections stalled above the tolerance, at "
+            "their roundoff level (the configuration converged). The "
+            "multipliers are only as accurate as the conditioning allows; "
+            "with LGNSetAcceptStalls(mem, SUNFALSE) Newton iterates until the "
+            "tolerance is met, or fails.",
+            (double)mem->tn, stalls, steps);
+}
+
+static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                 N_Vector v, int itask);
+
 int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
              N_Vector v, int itask)
+{
+  LGNMem mem = (LGNMem)lgn_mem;
+  const long int nst0 = mem != NULL ? mem->nst : 0, nstall0 = mem != NULL ? mem->nstall : 0;
+  int flag = Solve(lgn_mem, tout, tret, q, v, itask);
+  if (mem != NULL && mem->malloc_done) WarnStalls(mem, nst0, nstall0);
+  return flag;
+}
+
+static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                 N_Vector v, int itask)
 {
   LGNMem mem;
   sunrealtype troundoff, remaining, hstep;
   long int nstloc = 0;
-  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  int flag = lgnAccessMem(lgn_mem, "LGNSolve", &mem);
   if (flag != LGN_SUCCESS) return flag;
   if (!mem->malloc_done) {
     LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);

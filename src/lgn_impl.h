@@ -255,6 +255,8 @@ typedef struct LGNMemRec {
   long int nni;      /* Newton iterations                                  */
   long int nncf;     /* Newton convergence failures                        */
   long int nstall;   /* steps accepted with multipliers at roundoff level  */
+  sunbooleantype accept_stalls; /* LGNSetAcceptStalls (default SUNTRUE)  */
+  sunbooleantype stall_warned;  /* the warning of LGNSolve given         */
   long int nfails;   /* failed step attempts                               */
   long int nre;      /* residual evaluations in Newton                     */
   long int ndq;      /* residual-type evaluations in difference quotients  */

@@ -321,6 +321,19 @@ int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
  * Error control
  * ===========================================================================*/
 
+int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (accept != SUNTRUE && accept != SUNFALSE) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "accept = %d illegal: use SUNTRUE or SUNFALSE.",
+              (int)accept);
+    return LGN_ILL_INPUT;
+  }
+  mem->accept_stalls = accept;
+  return LGN_SUCCESS;
+}
+
 int LGNSetStepControl(void *lgn_mem, int control)
 {
   LGNMem mem;

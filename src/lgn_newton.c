@@ -168,6 +168,7 @@ static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
 static sunbooleantype StalledMultipliers(LGNMem mem, const LGNStepCoeffs *c,
                                          const NewtonTest *t)
 {
+  if (!mem->accept_stalls) return SUNFALSE; /* LGNSetAcceptStalls */
   sunbooleantype stalled = t->iter >= 2 && t->norm_sigma <= SUN_RCONST(1.0) &&
                            t->norm > SUN_RCONST(1.0) &&
                            t->norm > SUN_RCONST(0.5) * t->norm_prev;

@@ -994,6 +994,7 @@ int heavy_top_run(const HeavyTopOptions *opt, HeavyTopResult *res)
     LGNGetNumLinSolvSetups(o.mem, &res->nlsetups);
     LGNGetNumErrTestFails(o.mem, &res->netfails);
     LGNGetNumNewtonConvFails(o.mem, &res->nncfails);
+    LGNGetNumNewtonStalls(o.mem, &res->nstall);
   }
   FreeRun(&o);
   return flag;

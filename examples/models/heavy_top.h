@@ -64,6 +64,7 @@ typedef struct {
   double lambda[3];        /* joint multiplier                          */
   long int nsteps, nniters, nres, ndq, njevals, nlsolves, nlsetups;
   long int netfails, nncfails; /* error-test and Newton failures         */
+  long int nstall;         /* steps accepted with stalled multipliers      */
   long int history_points; /* points written to com_history             */
   double max_phi;          /* max over the output grid of |X - R^T x|_inf,
                               evaluated on the integrator's raw q        */

@@ -490,6 +490,8 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   }
 
   flag = LGNSetGroup(mem, sys->G);
+  if (flag == 0 && opt->ehfun != NULL) flag = LGNSetErrHandlerFn(mem, opt->ehfun, opt->eh_data);
+  if (flag == 0 && opt->reject_stalls) flag = LGNSetAcceptStalls(mem, SUNFALSE);
   if (flag == 0) flag = LGNInit(mem, 0.0, sys->q0, sys->v0);
   if (flag == 0) flag = LGNSetUserData(mem, sys);
   if (flag == 0) flag = LGNSetMassFn(mem, Mass);

@@ -69,6 +69,9 @@ typedef struct {
   int time_linear_algebra;  /* 1: time one solve and one setup after the run */
   int outputs;              /* energy samples over [0, t_end] (>= 1)        */
   FILE *csv;                /* t, energy, max |Phi| per sample (NULL: none) */
+  int reject_stalls;        /* 1: LGNSetAcceptStalls(mem, SUNFALSE)          */
+  LGNErrHandlerFn ehfun;    /* error handler (NULL: Lignum's default)        */
+  void *eh_data;
   int adaptive;             /* 1: error control (LGN_STEP_ADAPTIVE) with
                                rtol, atol the error test's tolerances (0:
                                1e-6 each); h is then only the first step

@@ -789,6 +789,26 @@ LGN_EXPORT int LGNGetRootInfo(void *lgn_mem, int *rootsfound);
 /** Evaluations of the root function (since LGNInit / LGNReInit). */
 LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
 
+/* =============================================================================
+ * Newton: stalled multipliers
+ * ===========================================================================*/
+
+/** Whether a Newton iteration may stop with stalled multipliers (default
+ *  SUNTRUE). At index 3 the multipliers of a long or stiff mechanism are
+ *  determined only to about cond(A) eps |q| / (beta h^2), which can exceed
+ *  the tolerance: their corrections then stop contracting while the
+ *  configuration has converged. With SUNTRUE such an iteration is accepted
+ *  (counted by LGNGetNumNewtonStalls, printed by LGNPrintAllStats, and a
+ *  warning (LGN_WARNING) is given once when most steps of an LGNSolve call
+ *  were accepted that way); a stall is never taken for convergence unless
+ *  the configuration part of the correction has converged, from the third
+ *  iteration on, and the multiplier corrections have stopped contracting
+ *  (a diverging iteration fails). With SUNFALSE the iteration goes on
+ *  until the correction is within the tolerance on the multipliers too
+ *  (more iterations; a convergence failure if it cannot).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
+LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
+
 #ifdef __cplusplus
 }
 #endif

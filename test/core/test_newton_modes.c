@@ -9,6 +9,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <lignum/lignum.h>
 #include <nvector/nvector_serial.h>
@@ -274,6 +275,92 @@ static void LongChainStalls(void)
 #endif
 }
 
+/* ---------------------------------------------------------------------------
+ * 4. The stall policy (LGNSetAcceptStalls): the 1000-body chain's stalls
+ * make most steps, so the default run warns once (LGN_WARNING naming the
+ * counts); with stalls refused the same run fails (LGN_CONV_FAILURE)
+ * instead of accepting multipliers above the tolerance; and a diverging
+ * iteration (a heavy top with a step 50 times too large) is never taken
+ * for a stall, with either setting.
+ * ------------------------------------------------------------------------- */
+static int nwarn = 0;
+static char warn_msg[512];
+static void CaptureWarnings(int code, const char *module, const char *fn, const char *msg,
+                            void *d)
+{
+  (void)module; (void)fn; (void)d;
+  if (code == LGN_WARNING) {
+    nwarn++;
+    snprintf(warn_msg, sizeof warn_msg, "%s", msg);
+  }
+}
+
+static void StallPolicy(void)
+{
+#if defined(LGN_HAVE_KLU)
+  const int n = 1000, steps = 20;
+  RigidRunOptions opt;
+  RigidRunResult res;
+  SUNContext ctx;
+  RigidSystem *sys;
+  HeavyTopOptions ho;
+  HeavyTopResult hr;
+  long int nni_default;
+  int k;
+
+  CHECK(SUNContext_Create(NULL, &ctx) == 0, "SUNContext_Create");
+  sys = chain_create(n, RB_R3XSO3, ctx);
+  rigid_default_run_options(&opt);
+  opt.solver    = RB_KLU_CSC;
+  opt.t_end     = steps * opt.h;
+  opt.outputs   = 1;
+  opt.predictor = LGN_PREDICTOR_EXTRAPOLATE;
+  opt.ehfun     = CaptureWarnings;
+  opt.rtol      = 1e-13; /* below what cond(A) ~ N^2 leaves of the multipliers */
+  opt.atol      = 1e-13;
+  rigid_run(sys, &opt, &res);
+  printf("stall policy: default run %s, %ld stalls in %ld steps, %d warning(s): %s\n",
+         LGNGetReturnFlagName(res.flag), res.nstall, res.nsteps, nwarn, warn_msg);
+  CHECK(res.flag == LGN_SUCCESS && res.nstall * 2 >= res.nsteps,
+        "the chain's steps stall (%ld of %ld)", res.nstall, res.nsteps);
+  CHECK(nwarn == 1 && strstr(warn_msg, "LGNSetAcceptStalls") != NULL,
+        "one warning naming the setting (%d)", nwarn);
+  nni_default = res.nni;
+  rigid_result_free(&res);
+  /* refused: no step ends on the stall rule; each iterates until its
+   * correction is within the tolerance (here the roundoff floors of the
+   * norm let it, with more iterations) or fails */
+  opt.reject_stalls = 1;
+  rigid_run(sys, &opt, &res);
+  printf("stall policy: stalls refused: %s after %ld steps, %ld Newton iterations (default %ld)\n",
+         LGNGetReturnFlagName(res.flag), res.nsteps, res.nni, nni_default);
+  CHECK(res.nstall == 0 && (res.flag == LGN_CONV_FAILURE ||
+                            (res.flag == LGN_SUCCESS && res.nni > nni_default)),
+        "with stalls refused none is accepted (%s, %ld stalls, %ld iterations)",
+        LGNGetReturnFlagName(res.flag), res.nstall, res.nni);
+  rigid_result_free(&res);
+  rigid_free(&sys);
+  SUNContext_Free(&ctx);
+
+  /* divergence is not a stall */
+  for (k = 0; k < 2; k++) {
+    heavy_top_default_options(&ho);
+    ho.h = 0.05; /* h |Omega| = 7.5 */
+    ho.t_end = 0.5;
+    ho.single_solve = 1;
+    ho.newton = k == 0 ? LGN_NEWTON_FULL : LGN_NEWTON_MODIFIED;
+    heavy_top_run(&ho, &hr);
+    printf("stall policy: heavy top, h = 0.05, %s Newton: %s, %ld stalls\n",
+           k == 0 ? "full" : "modified", LGNGetReturnFlagName(hr.flag), hr.nstall);
+    CHECK(hr.flag == LGN_CONV_FAILURE && hr.nstall == 0,
+          "a diverging iteration fails, never accepted as a stall (%s, %ld stalls)",
+          LGNGetReturnFlagName(hr.flag), hr.nstall);
+  }
+#else
+  printf("stall policy: skipped (built without KLU)\n");
+#endif
+}
+
 int main(void)
 {
   HeavyTopPair(HT_LIE, HT_NEWMARK, LGN_KINEMATICS_EXACT, LGN_CONSTR_INDEX3);
@@ -283,5 +370,6 @@ int main(void)
                LGN_CONSTR_INDEX3);
   StiffnessJump();
   LongChainStalls();
+  StallPolicy();
   return test_summary("test_newton_modes");
 }
