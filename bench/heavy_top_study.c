@@ -74,6 +74,14 @@ typedef struct {
   int kinematics;  /* LGN_KINEMATICS_*    */
 } MethodSpec;
 
+
+/* The differentiation index (3 or 2) of a LGN_CONSTR_INDEX* constant, as
+ * the CSV and the tables write it. */
+static int IndexNumber(int constraints)
+{
+  return constraints == LGN_CONSTR_INDEX3 ? 3 : 2;
+}
+
 static const MethodSpec METHODS[] = {
   {"newmark-ep",     HT_EULER_PARAMETERS, HT_NEWMARK,  LGN_KINEMATICS_SIMPLIFIED},
   {"genalpha-ep",    HT_EULER_PARAMETERS, HT_GENALPHA, LGN_KINEMATICS_SIMPLIFIED},
@@ -243,7 +251,7 @@ static int WriteCsv(const char *path, const Run *runs, int nruns)
   for (i = 0; i < nruns; i++) {
     const Run *r = &runs[i];
     const int ok = r->flag == LGN_SUCCESS;
-    fprintf(fp, "%s,%d,", METHODS[r->method].name, r->constraints);
+    fprintf(fp, "%s,%d,", METHODS[r->method].name, IndexNumber(r->constraints));
     if (r->rho >= 0.0) fprintf(fp, "%.1f", r->rho);
     fprintf(fp, ",%.6e,", r->h);
     CsvNum(fp, r->err_com, ok);
@@ -280,7 +288,7 @@ static void PrintTable(const Config *cfg, int ncfg, const Run *runs, int nk)
     const Config *g = &cfg[c];
     char rho[16] = "-";
     if (g->rho >= 0.0) snprintf(rho, sizeof rho, "%.1f", g->rho);
-    printf("\n%s, index %d, rho_inf %s\n", METHODS[g->method].name, g->constraints, rho);
+    printf("\n%s, index %d, rho_inf %s\n", METHODS[g->method].name, IndexNumber(g->constraints), rho);
     printf("  %9s  %11s %6s  %10s  %10s  %10s  %11s  %8s  %9s\n", "h", "err_com",
            "order", "err_rot", "err_omega", "err_lambda", "err_com_max",
            "newton/st", "ratio");
@@ -350,7 +358,7 @@ static void PrintSummary(const Config *cfg, int ncfg, const Run *runs, int nk)
     else snprintf(e1, sizeof e1, "F@%.4g", r[nk - 1].t);
     if (FitOrder(r, nk, &order) >= 2) snprintf(ord, sizeof ord, "%.2f", order);
     printf("  %-18s %3d %4s  %11s  %11s  %6s  %2d/%-2d  ", METHODS[g->method].name,
-           g->constraints, rho, e0, e1, ord, nok, nk);
+           IndexNumber(g->constraints), rho, e0, e1, ord, nok, nk);
     if (nok > 0) printf("%9.3f\n", nsum / nok);
     else printf("%9s\n", "-");
   }

@@ -82,27 +82,27 @@ module flignum_mod
   integer(c_int), parameter :: LGN_NORMAL = 1
   integer(c_int), parameter :: LGN_ONE_STEP = 2
   ! step size control (LGNSetStepControl)
-  integer(c_int), parameter :: LGN_STEP_FIXED = 40
-  integer(c_int), parameter :: LGN_STEP_ADAPTIVE = 41
+  integer(c_int), parameter :: LGN_STEP_FIXED = 150
+  integer(c_int), parameter :: LGN_STEP_ADAPTIVE = 151
   ! constraint formulation
-  integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 3
-  integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 2
+  integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 133
+  integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 132
   ! kinematics
-  integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 0
-  integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 1
-  integer(c_int), parameter :: LGN_KINEMATICS_SIGMA = 2
+  integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 100
+  integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 101
+  integer(c_int), parameter :: LGN_KINEMATICS_SIGMA = 102
   ! Newton predictor
-  integer(c_int), parameter :: LGN_PREDICTOR_ZERO = 0
-  integer(c_int), parameter :: LGN_PREDICTOR_EXTRAPOLATE = 1
+  integer(c_int), parameter :: LGN_PREDICTOR_ZERO = 120
+  integer(c_int), parameter :: LGN_PREDICTOR_EXTRAPOLATE = 121
 
   ! Newton variants
-  integer(c_int), parameter :: LGN_NEWTON_FULL     = 0
-  integer(c_int), parameter :: LGN_NEWTON_MODIFIED = 1
+  integer(c_int), parameter :: LGN_NEWTON_FULL     = 110
+  integer(c_int), parameter :: LGN_NEWTON_MODIFIED = 111
 
   ! icopt of LGNCalcIC
-  integer(c_int), parameter :: LGN_IC_PROJECT_Q  = 1
-  integer(c_int), parameter :: LGN_IC_PROJECT_V  = 2
-  integer(c_int), parameter :: LGN_IC_PROJECT_QV = 3
+  integer(c_int), parameter :: LGN_IC_PROJECT_Q  = 141
+  integer(c_int), parameter :: LGN_IC_PROJECT_V  = 142
+  integer(c_int), parameter :: LGN_IC_PROJECT_QV = 143
 
   ! LGNGroupKind
   enum, bind(c)
@@ -619,6 +619,69 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_long), intent(out) :: netfails
     end function LGNGetNumErrTestFails
+
+    !> Aggregate statistics (as IDAGetIntegratorStats).
+    integer(c_int) function LGNGetIntegratorStats(lgn_mem, nsteps, nrevals, nlinsetups, &
+        netfails, hinused, hlast, hcur, tcur) bind(c, name="LGNGetIntegratorStats")
+      import :: c_int, c_long, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nsteps, nrevals, nlinsetups, netfails
+      real(c_double), intent(out) :: hinused, hlast, hcur, tcur
+    end function LGNGetIntegratorStats
+
+    !> Newton iterations and convergence failures.
+    integer(c_int) function LGNGetNewtonStats(lgn_mem, nniters, nncfails) &
+        bind(c, name="LGNGetNewtonStats")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nniters, nncfails
+    end function LGNGetNewtonStats
+
+    !> The fixed step size of LGNSetStepSize.
+    integer(c_int) function LGNGetStepSize(lgn_mem, h) bind(c, name="LGNGetStepSize")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: h
+    end function LGNGetStepSize
+
+    !> The kinematics variant in use.
+    integer(c_int) function LGNGetKinematics(lgn_mem, kinematics) &
+        bind(c, name="LGNGetKinematics")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: kinematics
+    end function LGNGetKinematics
+
+    !> The constraint formulation in use.
+    integer(c_int) function LGNGetConstraintIndex(lgn_mem, index) &
+        bind(c, name="LGNGetConstraintIndex")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: index
+    end function LGNGetConstraintIndex
+
+    !> The Newton mode in use.
+    integer(c_int) function LGNGetNewtonMode(lgn_mem, mode) bind(c, name="LGNGetNewtonMode")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: mode
+    end function LGNGetNewtonMode
+
+    !> The step size control in use.
+    integer(c_int) function LGNGetStepControl(lgn_mem, control) &
+        bind(c, name="LGNGetStepControl")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: control
+    end function LGNGetStepControl
+
+    !> The tolerances in use.
+    integer(c_int) function LGNGetTolerances(lgn_mem, rtol, atol) &
+        bind(c, name="LGNGetTolerances")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), intent(out) :: rtol, atol
+    end function LGNGetTolerances
 
     !> Whether Newton may stop with stalled multipliers (default .true.).
     integer(c_int) function LGNSetAcceptStalls(lgn_mem, accept) &

@@ -393,6 +393,17 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     LGN_ERROR(mem, LGN_ILL_INPUT, "tout is not finite.");
     return LGN_ILL_INPUT;
   }
+  if (itask == LGN_ONE_STEP &&
+      tout < (mem->dense_valid ? mem->tprev : mem->tn) -
+                 SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(tout))) {
+    /* the direction of integration: forward only (a tout inside the last
+     * step is fine: an event may have returned there) */
+    LGN_ERROR(mem, LGN_BAD_TOUT,
+              "tout = %.17g is behind the current time t = %.17g (LGN_ONE_STEP "
+              "steps forward: give a tout ahead of t).", (double)tout, (double)mem->tn);
+    CopyOut(mem, tret, q, v);
+    return LGN_BAD_TOUT;
+  }
   flag = CheckReadyToSolve(mem);
   if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
     /* events: start, or the rest of the last step after a root */

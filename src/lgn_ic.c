@@ -350,8 +350,8 @@ int lgnProjectIC(LGNMem mem, int icopt)
   }
   memcpy(save, lgnData(mem->q), nq * sizeof(sunrealtype));
   memcpy(save + nq, lgnData(mem->v), nv * sizeof(sunrealtype));
-  if (icopt & LGN_IC_PROJECT_Q) flag = ProjectQ(mem);
-  if (flag == LGN_SUCCESS && (icopt & LGN_IC_PROJECT_V)) flag = ProjectV(mem);
+  if (icopt != LGN_IC_PROJECT_V) flag = ProjectQ(mem); /* Q or QV */
+  if (flag == LGN_SUCCESS && icopt != LGN_IC_PROJECT_Q) flag = ProjectV(mem);
   if (flag != LGN_SUCCESS) {
     memcpy(lgnData(mem->q), save, nq * sizeof(sunrealtype));
     memcpy(lgnData(mem->v), save + nq, nv * sizeof(sunrealtype));

@@ -769,6 +769,64 @@ SCALAR_GETTER(LGNGetCurrentStep, sunrealtype, hcur,
 SCALAR_GETTER(LGNGetActualInitStep, sunrealtype, hinused,
               mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h)
 SCALAR_GETTER(LGNGetNumErrTestFails, long int, netfails, mem->netf)
+SCALAR_GETTER(LGNGetStepSize, sunrealtype, h, mem->h)
+SCALAR_GETTER(LGNGetKinematics, int, kinematics, mem->kinematics)
+SCALAR_GETTER(LGNGetConstraintIndex, int, index, mem->constr_index)
+SCALAR_GETTER(LGNGetNewtonMode, int, mode, mem->newton_mode)
+SCALAR_GETTER(LGNGetStepControl, int, control, mem->step_control)
+
+int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (rtol == NULL || atol == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "%s = NULL illegal.", rtol == NULL ? "rtol" : "atol");
+    return LGN_ILL_INPUT;
+  }
+  *rtol = mem->rtol;
+  *atol = mem->atol; /* with LGNSVtolerances: their mean */
+  return LGN_SUCCESS;
+}
+
+int LGNGetIntegratorStats(void *lgn_mem, long int *nsteps, long int *nrevals,
+                          long int *nlinsetups, long int *netfails,
+                          sunrealtype *hinused, sunrealtype *hlast,
+                          sunrealtype *hcur, sunrealtype *tcur)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (nsteps == NULL || nrevals == NULL || nlinsetups == NULL || netfails == NULL ||
+      hinused == NULL || hlast == NULL || hcur == NULL || tcur == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "An output argument is NULL (%s).",
+              nsteps == NULL ? "nsteps" : nrevals == NULL ? "nrevals"
+              : nlinsetups == NULL ? "nlinsetups" : netfails == NULL ? "netfails"
+              : hinused == NULL ? "hinused" : hlast == NULL ? "hlast"
+              : hcur == NULL ? "hcur" : "tcur");
+    return LGN_ILL_INPUT;
+  }
+  *nsteps     = mem->nst;
+  *nrevals    = mem->nre;
+  *nlinsetups = mem->nlsetup;
+  *netfails   = mem->netf;
+  *hinused    = mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h;
+  *hlast      = mem->hlast;
+  *hcur       = mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h;
+  *tcur       = mem->tn;
+  return LGN_SUCCESS;
+}
+
+int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (nniters == NULL || nncfails == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "%s = NULL illegal.", nniters == NULL ? "nniters" : "nncfails");
+    return LGN_ILL_INPUT;
+  }
+  *nniters  = mem->nni;
+  *nncfails = mem->nncf;
+  return LGN_SUCCESS;
+}
 SCALAR_GETTER(LGNGetLastErrNorm, sunrealtype, errnorm, mem->err_norm)
 SCALAR_GETTER(LGNGetNumSteps, long int, nsteps, mem->nst)
 SCALAR_GETTER(LGNGetNumNewtonIters, long int, nniters, mem->nni)
@@ -862,6 +920,12 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
   fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  if (mem->step_control == LGN_STEP_ADAPTIVE) {
+    fprintf(outfile, fmt_l, "Error test fails", mem->netf);
+    fprintf(outfile, fmt_r, "Initial step size", (double)mem->h0_actual);
+    fprintf(outfile, fmt_r, "Current step size", (double)mem->hnext);
+    fprintf(outfile, fmt_r, "Last error norm", (double)mem->err_norm);
+  }
   if (mem->nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->nge);
   if (mem->sp != NULL) {
     fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);

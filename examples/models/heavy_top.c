@@ -716,6 +716,8 @@ void heavy_top_default_options(HeavyTopOptions *opt)
   opt->gamma              = 0.5;
   opt->constraints        = LGN_CONSTR_INDEX3;
   opt->kinematics         = LGN_KINEMATICS_SIMPLIFIED;
+  opt->newton             = LGN_NEWTON_FULL;
+  opt->predictor          = LGN_PREDICTOR_ZERO;
   opt->h                  = 1e-3;
   opt->t_end              = 1.0;
   opt->analytic_jacobians = 1;

@@ -383,6 +383,8 @@ void rigid_default_run_options(RigidRunOptions *opt)
   opt->gamma       = 0.5;
   opt->kinematics  = LGN_KINEMATICS_SIMPLIFIED;
   opt->constraints = LGN_CONSTR_INDEX3;
+  opt->newton      = LGN_NEWTON_FULL;
+  opt->predictor   = LGN_PREDICTOR_ZERO;
   opt->analytic    = 1;
   opt->h           = 1e-3;
   opt->t_end       = 1.0;

@@ -84,7 +84,10 @@ extern "C" {
 #define LGN_UNRECOGNIZED_ERR   -99  /**< unknown failure                          */
 
 /* =============================================================================
- * Other constants
+ * Other constants. Each setter has its own range of values (kinematics
+ * 100-102, Newton 110-111, predictor 120-121, constraint index 130s,
+ * LGNCalcIC 141-143, step control 150-151), so a constant given to the
+ * wrong setter is refused with a message naming the right ones.
  * ===========================================================================*/
 
 /** itask of LGNSolve: advance to tout (last step shortened to hit tout). */
@@ -94,36 +97,36 @@ extern "C" {
 
 /** Step size control (LGNSetStepControl): the fixed step of LGNSetStepSize
  *  (default). */
-#define LGN_STEP_FIXED    40
+#define LGN_STEP_FIXED    150
 /** Step size control: error control with the tolerances of LGNSStolerances
  *  or LGNSVtolerances (adaptive steps, retries, output between steps). */
-#define LGN_STEP_ADAPTIVE 41
+#define LGN_STEP_ADAPTIVE 151
 
 /** Constraint formulation: position level Phi(q) = 0 (index 3, scaled). */
-#define LGN_CONSTR_INDEX3 3
+#define LGN_CONSTR_INDEX3 133
 /** Constraint formulation: velocity level B(q) v = 0 (index 2). */
-#define LGN_CONSTR_INDEX2 2
+#define LGN_CONSTR_INDEX2 132
 
 /** Kinematics: v = xdot, vdot = xddot in each step (LGNM, LGGalpha). */
-#define LGN_KINEMATICS_SIMPLIFIED 0
+#define LGN_KINEMATICS_SIMPLIFIED 100
 /** Kinematics: v = T(x) xdot, vdot = T xddot + Tdot xdot (mod. LGNM / LGGalpha). */
-#define LGN_KINEMATICS_EXACT      1
+#define LGN_KINEMATICS_EXACT      101
 /** Kinematics of the sigma variant (Holzinger-Arnold-Gerstmayr 2025):
  *  predictor increment scaled by Xi = I - (h beta/(2 gamma)) ad(v_pred),
  *  Newton corrections composed on the right, no tangent operator. Linearly
  *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
-#define LGN_KINEMATICS_SIGMA      2
+#define LGN_KINEMATICS_SIGMA      102
 
 /** Newton predictor (default): sigma_ddot = 0 and lambda = lambda_n (spec §2). */
-#define LGN_PREDICTOR_ZERO        0
+#define LGN_PREDICTOR_ZERO        120
 /** Newton predictor: vdot and lambda extrapolated linearly from
  *  the last two steps (constant on the first step), mapped into the chart of
  *  the step for exact kinematics. */
-#define LGN_PREDICTOR_EXTRAPOLATE 1
+#define LGN_PREDICTOR_EXTRAPOLATE 121
 
 /** Newton iteration (default): the iteration matrix is evaluated and
  *  factorised at every iterate (quadratic convergence). */
-#define LGN_NEWTON_FULL     0
+#define LGN_NEWTON_FULL     110
 /** Modified Newton iteration: the factorised iteration matrix is reused over
  *  iterations and steps while the iteration contracts fast, as in IDA. It is
  *  rebuilt at the first iterate of a step when the step size differs by more
@@ -131,7 +134,7 @@ extern "C" {
  *  or after a change of the model or method; within a step when the
  *  contraction rate exceeds 0.9; and a step whose iteration fails with a
  *  reused matrix is retried once with a fresh one. */
-#define LGN_NEWTON_MODIFIED 1
+#define LGN_NEWTON_MODIFIED 111
 
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
@@ -668,11 +671,11 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 #define LGN_INCONSISTENT_IC    -14
 
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
-#define LGN_IC_PROJECT_Q  1
+#define LGN_IC_PROJECT_Q  141
 /** icopt of LGNCalcIC: project v0 onto B(q0) v = 0 only. */
-#define LGN_IC_PROJECT_V  2
+#define LGN_IC_PROJECT_V  142
 /** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
-#define LGN_IC_PROJECT_QV 3
+#define LGN_IC_PROJECT_QV 143
 
 /** Make the initial state consistent, like IDACalcIC: project the state at
  *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
@@ -808,6 +811,33 @@ LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
  *  (more iterations; a convergence failure if it cannot).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
 LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
+
+/* =============================================================================
+ * Aggregate outputs and the settings in use (as IDA's IDAGetIntegratorStats)
+ * ===========================================================================*/
+
+/** Steps, residual evaluations, linear solver setups, error-test failures,
+ *  the first step size tried (the fixed h without error control), the last
+ *  step size, the next one, and the current time, in one call.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (an output NULL, named). */
+LGN_EXPORT int LGNGetIntegratorStats(void *lgn_mem, long int *nsteps, long int *nrevals,
+                                     long int *nlinsetups, long int *netfails,
+                                     sunrealtype *hinused, sunrealtype *hlast,
+                                     sunrealtype *hcur, sunrealtype *tcur);
+/** Newton iterations and convergence failures, in one call. */
+LGN_EXPORT int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails);
+/** The fixed step size of LGNSetStepSize (0: not set). */
+LGN_EXPORT int LGNGetStepSize(void *lgn_mem, sunrealtype *h);
+/** The kinematics variant in use (LGN_KINEMATICS_*). */
+LGN_EXPORT int LGNGetKinematics(void *lgn_mem, int *kinematics);
+/** The constraint formulation in use (LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2). */
+LGN_EXPORT int LGNGetConstraintIndex(void *lgn_mem, int *index);
+/** The Newton mode in use (LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED). */
+LGN_EXPORT int LGNGetNewtonMode(void *lgn_mem, int *mode);
+/** The step size control in use (LGN_STEP_FIXED or LGN_STEP_ADAPTIVE). */
+LGN_EXPORT int LGNGetStepControl(void *lgn_mem, int *control);
+/** The tolerances in use (with LGNSVtolerances, atol is their mean). */
+LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol);
 
 #ifdef __cplusplus
 }

@@ -38,6 +38,10 @@
 
 static SUNContext ctx;
 
+/* the kinematics variants by index */
+static const int KIN[3] = {LGN_KINEMATICS_SIMPLIFIED, LGN_KINEMATICS_EXACT,
+                           LGN_KINEMATICS_SIGMA};
+
 /* =============================================================================
  * Models
  * ===========================================================================*/
@@ -271,7 +275,7 @@ static void Estimator(void)
         sunindextype i, nq, nv;
         int flag, k;
         /* error test passes always (atol 1); Newton to 1e-12 */
-        flag = ProblemCreate(&pb, (Model)model, 0.9, kin, 1e-14, 1.0);
+        flag = ProblemCreate(&pb, (Model)model, 0.9, KIN[kin], 1e-14, 1.0);
         if (!flag) flag = LGNSetNonlinConvCoef(pb.mem, 1e-12);
         if (!flag) flag = ForceStep(pb.mem, h);
         for (k = 0; k < 10 && !flag; k++) flag = LGNSolve(pb.mem, 1.0, &t, pb.q, pb.v, LGN_ONE_STEP);
@@ -335,7 +339,7 @@ static void Proportionality(void)
       HeavyTopResult r;
       int i;
       heavy_top_default_options(&o);
-      o.kinematics   = kin;
+      o.kinematics   = KIN[kin];
       o.single_solve = 1;
       o.adaptive     = 1;
       o.rtol = o.atol = tol[j] = 1e-5 / pow(10.0, j);
@@ -412,7 +416,7 @@ static double PatternRun(int kin, double H, int npairs, double *T)
   Problem pb;
   double t = 0.0, p[4], d[3];
   int k, flag;
-  flag = ProblemCreate(&pb, SO3_TOP, 0.9, kin, 1e-14, 1.0);
+  flag = ProblemCreate(&pb, SO3_TOP, 0.9, KIN[kin], 1e-14, 1.0);
   if (!flag) flag = LGNSetNonlinConvCoef(pb.mem, 1e-12);
   for (k = 0; k < 2 * npairs && !flag; k++) {
     flag = ForceStep(pb.mem, k % 2 == 0 ? H : 0.25 * H);
@@ -469,7 +473,7 @@ static void DenseOutput(void)
       hs[j]  = h;
       err[j] = 0.0;
       LGNQuaternionFromRotationVector(PSI0, p0);
-      flag = ProblemCreate(&pb, SO3_TOP, 0.9, kin, 1e-14, 1.0);
+      flag = ProblemCreate(&pb, SO3_TOP, 0.9, KIN[kin], 1e-14, 1.0);
       if (!flag) flag = LGNSetNonlinConvCoef(pb.mem, 1e-12);
       if (!flag) flag = ForceStep(pb.mem, h);
       for (k = 0; k < (int)(0.2 / h + 0.5) && !flag; k++) {
@@ -709,7 +713,7 @@ static void BadArguments(void)
   ProblemFree(&pb);
 
   /* error control without tolerances */
-  flag = ProblemCreate(&pb, SO3_TOP, 0.9, 0, 1e-6, 1e-6);
+  flag = ProblemCreate(&pb, SO3_TOP, 0.9, LGN_KINEMATICS_SIMPLIFIED, 1e-6, 1e-6);
   LGNFree(&pb.mem);
   pb.mem = LGNCreate(ctx);
   LGNSetErrHandlerFn(pb.mem, Capture, NULL);

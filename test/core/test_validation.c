@@ -131,6 +131,48 @@ int main(void)
   CHECK(Refused(LGNSetInitialAcceleration(mem, vd, NULL), LGN_ILL_INPUT, "before the first step"),
         "vdot0 after a step: %s", last_msg);
 
+  /* a constant of another setter is refused, naming the right ones */
+  CHECK(Refused(LGNSetKinematics(mem, LGN_NEWTON_MODIFIED), LGN_ILL_INPUT, "LGN_KINEMATICS_EXACT"),
+        "LGNSetKinematics(LGN_NEWTON_MODIFIED): %s", last_msg);
+  CHECK(Refused(LGNSetNewtonMode(mem, LGN_KINEMATICS_EXACT), LGN_ILL_INPUT, "LGN_NEWTON_FULL"),
+        "LGNSetNewtonMode(LGN_KINEMATICS_EXACT): %s", last_msg);
+  CHECK(Refused(LGNSetConstraintIndex(mem, LGN_ONE_STEP), LGN_ILL_INPUT, "LGN_CONSTR_INDEX3"),
+        "LGNSetConstraintIndex(LGN_ONE_STEP): %s", last_msg);
+  CHECK(Refused(LGNSetPredictor(mem, LGN_STEP_ADAPTIVE), LGN_ILL_INPUT, "LGN_PREDICTOR_ZERO"),
+        "LGNSetPredictor(LGN_STEP_ADAPTIVE): %s", last_msg);
+
+  /* the settings and the aggregate statistics read back */
+  {
+    int kin = 0, idx = 0, mode = 0, ctl = 0;
+    sunrealtype h = 0, rt = 0, at = 0, hin, hl, hc, tc;
+    long int nst, nre, nls, netf, nst1 = -1, nni, nncf, nni1 = -1;
+    CHECK(LGNSetKinematics(mem, LGN_KINEMATICS_EXACT) == LGN_SUCCESS &&
+              LGNGetKinematics(mem, &kin) == LGN_SUCCESS && kin == LGN_KINEMATICS_EXACT,
+          "LGNGetKinematics");
+    CHECK(LGNGetConstraintIndex(mem, &idx) == LGN_SUCCESS && idx == LGN_CONSTR_INDEX3,
+          "LGNGetConstraintIndex");
+    CHECK(LGNGetNewtonMode(mem, &mode) == LGN_SUCCESS && mode == LGN_NEWTON_FULL, "LGNGetNewtonMode");
+    CHECK(LGNGetStepControl(mem, &ctl) == LGN_SUCCESS && ctl == LGN_STEP_FIXED, "LGNGetStepControl");
+    CHECK(LGNGetStepSize(mem, &h) == LGN_SUCCESS && h == 1e-3, "LGNGetStepSize");
+    CHECK(LGNSStolerances(mem, 1e-7, 1e-9) == LGN_SUCCESS &&
+              LGNGetTolerances(mem, &rt, &at) == LGN_SUCCESS && rt == 1e-7 && at == 1e-9,
+          "LGNGetTolerances");
+    CHECK(LGNGetIntegratorStats(mem, &nst, &nre, &nls, &netf, &hin, &hl, &hc, &tc) == LGN_SUCCESS &&
+              LGNGetNumSteps(mem, &nst1) == LGN_SUCCESS && nst == nst1 && nst == 10 &&
+              fabs(hl - 1e-3) < 1e-15 && tc == t,
+          "LGNGetIntegratorStats: %ld steps, h %g, t %g", nst, hl, tc);
+    CHECK(LGNGetNewtonStats(mem, &nni, &nncf) == LGN_SUCCESS &&
+              LGNGetNumNewtonIters(mem, &nni1) == LGN_SUCCESS && nni == nni1 && nncf == 0,
+          "LGNGetNewtonStats");
+    CHECK(Refused(LGNGetIntegratorStats(mem, &nst, &nre, &nls, &netf, &hin, &hl, NULL, &tc),
+                  LGN_ILL_INPUT, "hcur"),
+          "a NULL output named: %s", last_msg);
+  }
+
+  /* LGN_ONE_STEP with a tout behind t */
+  flag = LGNSolve(mem, -1.0, &t, q, v, LGN_ONE_STEP);
+  CHECK(Refused(flag, LGN_BAD_TOUT, "behind"), "LGN_ONE_STEP, tout behind t: %s", last_msg);
+
   /* resizing: SO(3) -> R^5 */
   CHECK(LGNSetGroup(mem, r5) == LGN_SUCCESS, "LGNSetGroup with another size: %s", last_msg);
   flag = LGNSolve(mem, 0.02, &t, q5, v5, LGN_NORMAL);
