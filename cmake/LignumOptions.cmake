@@ -17,6 +17,6 @@ if(NOT DEFINED LGN_ENABLE_FORTRAN)
   endif()
 endif()
 option(LGN_ENABLE_FORTRAN
-  "Build the Fortran 2003 interface (modules flignum_mod, flignum_sundials_mod, flignum_joints_mod, and flignum_klu_mod with KLU)"
+  "Build the Fortran 2003 interface (modules flignum_mod, flignum_sundials_mod, flignum_joints_mod, flignum_bodies_mod, and flignum_klu_mod with KLU)"
   ${_lgn_fortran_default})
 option(LGN_ENABLE_VALGRIND_TESTS "Run examples under valgrind when it is found" ON)

@@ -3,8 +3,8 @@
 ! SPDX-License-Identifier: BSD-3-Clause
 ! -----------------------------------------------------------------------------
 ! flignum_joints_mod: hand-written ISO_C_BINDING interface to the joint
-! helpers of include/lignum/lignum_joints.h (spherical, revolute and
-! universal joints between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
+! helpers of include/lignum/lignum_joints.h (spherical, revolute, universal,
+! prismatic and cylindrical joints between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
 ! configuration group: Phi, B, the constraint forces B^T lambda, the
 ! curvature Z(q)(v, v) and the geometric stiffness d/dq (B^T lambda), ready
 ! to call from the constraint callbacks).
@@ -114,6 +114,27 @@ module flignum_joints_mod
       real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
     end function LGNJoints_AddUniversal
 
+    !> Prismatic joint (5 rows): sb of body b on the line through sa of
+    !! body a along axis_a, the relative rotation locked at R_a^T R_b = R0,
+    !! the smallest rotation taking axis_b to axis_a.
+    integer(c_int) function LGNJoints_AddPrismatic(J, a, sa, axis_a, b, sb, axis_b) &
+        bind(c, name="LGNJoints_AddPrismatic")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
+    end function LGNJoints_AddPrismatic
+
+    !> Cylindrical joint (4 rows): axis_a, axis_b kept parallel and sb on
+    !! the line through sa along axis_a.
+    integer(c_int) function LGNJoints_AddCylindrical(J, a, sa, axis_a, b, sb, axis_b) &
+        bind(c, name="LGNJoints_AddCylindrical")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
+    end function LGNJoints_AddCylindrical
+
     ! =========================================================================
     ! Sizes
     ! =========================================================================
@@ -190,8 +211,8 @@ module flignum_joints_mod
 
     !> K = d/dq (B(q)^T lambda), nv x nv: the joints' part of K_t (for an
     !! LGNStiffnessFn). Added to a dense K; a sparse K is overwritten with
-    !! its pattern (6x6 blocks of the bodies and of the pairs coupled by a
-    !! revolute or universal joint).
+    !! its pattern (blocks of the bodies and of the pairs coupled by a
+    !! revolute, universal, prismatic or cylindrical joint).
     integer(c_int) function LGNJoints_Stiffness(J, q, lambda, K) &
         bind(c, name="LGNJoints_Stiffness")
       import :: c_int, c_ptr

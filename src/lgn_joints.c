@@ -3,14 +3,17 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Joint constraints (include/lignum/lignum_joints.h). Every joint is made of
- * two primitives:
+ * three primitives:
  *   POINT (3 rows):  x_a + R_a s_a - x_b - R_b s_b
  *   PERP  (1 row):   (R_a e) . (R_b c)
+ *   LINE  (1 row):   (R_a e) . (p_b - p_a),  p = x + R s  (point on a line)
  * with, along q o exp(w) (body velocity w = (w_x, w_theta)):
  *   d x = P w_x  (P = I on R^3 x SO(3), P = R on SE(3)),  d R = R w_theta~
  * so that
  *   B_POINT = [ P_a, -R_a s_a~ | -P_b, R_b s_b~ ]
  *   B_PERP  = [ 0, (e x R_a^T R_b c)^T | 0, (c x R_b^T R_a e)^T ]
+ *   B_LINE  = [ -(P_a^T r)^T, (e x rho)^T | (P_b^T r)^T, (s_b x R_b^T r)^T ]
+ * (r = R_a e, rho = R_a^T (p_b - x_a): p_b in the frame of a).
  * The curvature Z(q)(v,v) is the second time derivative of Phi along the
  * flow with constant body velocities, and the geometric stiffness is
  * d/dq (B^T lambda) along the group; the formulas are at each routine.
@@ -39,13 +42,14 @@
 #error "lgn_joints.c is a pure helper: it must not see the integrator's memory record"
 #endif
 
-typedef enum { PRIM_POINT = 0, PRIM_PERP = 1 } PrimKind;
+typedef enum { PRIM_POINT = 0, PRIM_PERP = 1, PRIM_LINE = 2 } PrimKind;
 
 typedef struct {
   PrimKind kind;
   int a, b;             /* bodies, or LGN_GROUND                          */
   sunrealtype u[3];     /* POINT: s_a;  PERP: e (body a)                   */
   sunrealtype w[3];     /* POINT: s_b;  PERP: c (body b)                   */
+  sunrealtype e[3];     /* LINE: e (body a), with s_a in u and s_b in w    */
   sunindextype row;     /* first row in Phi                                */
   int joint;            /* the joint it belongs to (0, 1, ... in order)    */
   const char *jkind;    /* ... and its kind: "spherical", "revolute", ...  */
@@ -58,6 +62,8 @@ struct LGNJointsRec {
   sunindextype *qoff, *voff;  /* offsets of each body                      */
   sunbooleantype *se3;        /* body on SE(3) (else R^3 x SO(3))          */
   sunbooleantype *injoint;    /* body appears in a primitive               */
+  sunbooleantype *online;     /* body appears in a LINE primitive: its
+                                 blocks of the sparse K are full 6 x 6    */
   sunrealtype *rot;           /* ROT_STRIDE per body: R(p) (9, row-major)
                                  and the quaternion p it is of (4)        */
   Primitive *prim;
@@ -254,10 +260,11 @@ LGNJoints LGNJoints_Create(LGNGroup G)
   J->voff = (sunindextype *)malloc((size_t)nb * sizeof *J->voff);
   J->se3  = (sunbooleantype *)malloc((size_t)nb * sizeof *J->se3);
   J->injoint  = (sunbooleantype *)calloc((size_t)nb, sizeof *J->injoint);
+  J->online   = (sunbooleantype *)calloc((size_t)nb, sizeof *J->online);
   J->rot      = (sunrealtype *)malloc((size_t)nb * ROT_STRIDE * sizeof *J->rot);
   J->bfmt     = NO_PATTERN;
   if (J->qoff == NULL || J->voff == NULL || J->se3 == NULL || J->injoint == NULL ||
-      J->rot == NULL) {
+      J->online == NULL || J->rot == NULL) {
     LGNJoints_Destroy(&J);
     lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return NULL;
@@ -296,6 +303,7 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   free(J->voff);
   free(J->se3);
   free(J->injoint);
+  free(J->online);
   free(J->rot);
   free(J->prim);
   free(J);
@@ -390,8 +398,14 @@ static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
   /* per body in B: 3 rows x 6 columns (POINT at an SE(3) body), 3 rows x
    * (1 + 3) columns (POINT at an R^3 x SO(3) body, whose translation part
    * is +-I), 1 row x 3 columns (PERP) */
-  if (a != LGN_GROUND) J->nnzB += kind == PRIM_PERP ? 3 : (J->se3[a] ? 18 : 12);
-  if (b != LGN_GROUND) J->nnzB += kind == PRIM_PERP ? 3 : (J->se3[b] ? 18 : 12);
+  if (a != LGN_GROUND)
+    J->nnzB += kind == PRIM_PERP ? 3 : kind == PRIM_LINE ? 6 : (J->se3[a] ? 18 : 12);
+  if (b != LGN_GROUND)
+    J->nnzB += kind == PRIM_PERP ? 3 : kind == PRIM_LINE ? 6 : (J->se3[b] ? 18 : 12);
+  if (kind == PRIM_LINE) {
+    if (a != LGN_GROUND) J->online[a] = SUNTRUE;
+    if (b != LGN_GROUND) J->online[b] = SUNTRUE;
+  }
   if (a != LGN_GROUND) J->injoint[a] = SUNTRUE;
   if (b != LGN_GROUND) J->injoint[b] = SUNTRUE;
   FreeJacobianPattern(J);    /* the pattern of B changed */
@@ -483,6 +497,97 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
   return flag;
 }
 
+/* An orthonormal pair e1, e2 perpendicular to the unit vector n (the rule
+ * of the revolute joint). */
+static void PerpPair(const sunrealtype *n, sunrealtype *e1, sunrealtype *e2)
+{
+  sunrealtype t[3] = {0, 0, 0}, l;
+  t[fabs(n[0]) < SUN_RCONST(0.6) ? 0 : (fabs(n[1]) < SUN_RCONST(0.6) ? 1 : 2)] = SUN_RCONST(1.0);
+  Cross(n, t, e1);
+  l = sqrt(Dot(e1, e1)); /* |n x t| >= 0.8 */
+  e1[0] /= l;
+  e1[1] /= l;
+  e1[2] /= l;
+  Cross(n, e1, e2);
+}
+
+/* Append a LINE primitive: (R_a e) . (p_b - p_a). */
+static int AddLine(struct LGNJointsRec *J, int a, const sunrealtype *sa,
+                   const sunrealtype *e, int b, const sunrealtype *sb, const char *func)
+{
+  int flag = AddPrimitive(J, PRIM_LINE, a, sa, b, sb, func);
+  if (flag == LGN_SUCCESS) memcpy(J->prim[J->nprim - 1].e, e, 3 * sizeof(sunrealtype));
+  return flag;
+}
+
+int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
+                           const sunrealtype axis_a[3], int b,
+                           const sunrealtype sb[3], const sunrealtype axis_b[3])
+{
+  sunrealtype n[3], c[3], d1[3], d2[3], e1[3], e2[3], k[3], R0[9], cs;
+  int flag, first, i, j;
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  /* R0: the smallest rotation taking c to n (row-major); the locked
+   * relative rotation is R_a^T R_b = R0 */
+  PerpPair(c, d1, d2);
+  cs = Dot(c, n);
+  Cross(c, n, k);
+  if (cs > SUN_RCONST(-1.0) + SUN_RCONST(1e-8)) {
+    sunrealtype K[9], K2[9];
+    K[0] = 0;     K[1] = -k[2]; K[2] = k[1];
+    K[3] = k[2];  K[4] = 0;     K[5] = -k[0];
+    K[6] = -k[1]; K[7] = k[0];  K[8] = 0;
+    for (i = 0; i < 3; i++)
+      for (j = 0; j < 3; j++)
+        K2[3 * i + j] = K[3 * i] * K[j] + K[3 * i + 1] * K[3 + j] + K[3 * i + 2] * K[6 + j];
+    for (i = 0; i < 9; i++) R0[i] = K[i] + K2[i] / (SUN_RCONST(1.0) + cs);
+    R0[0] += SUN_RCONST(1.0);
+    R0[4] += SUN_RCONST(1.0);
+    R0[8] += SUN_RCONST(1.0);
+  } else { /* antiparallel: half a turn about d1 */
+    for (i = 0; i < 3; i++)
+      for (j = 0; j < 3; j++)
+        R0[3 * i + j] = SUN_RCONST(2.0) * d1[i] * d1[j] - (i == j ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
+  }
+  RotApply(R0, d1, e1);
+  RotApply(R0, d2, e2);
+  /* rotation locked: (R_a R0 d1).(R_b c), (R_a R0 d2).(R_b c), (R_a R0 d1).(R_b d2);
+   * sb on the line through sa along axis_a: e1, e2 perpendicular to it */
+  first = J->nprim;
+  flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, d2, __func__);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e1, b, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e2, b, sb, __func__);
+  if (flag == LGN_SUCCESS) EndJoint(J, first, "prismatic");
+  return flag;
+}
+
+int LGNJoints_AddCylindrical(LGNJoints J, int a, const sunrealtype sa[3],
+                             const sunrealtype axis_a[3], int b,
+                             const sunrealtype sb[3], const sunrealtype axis_b[3])
+{
+  sunrealtype n[3], c[3], e1[3], e2[3];
+  int flag, first;
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  PerpPair(n, e1, e2);
+  first = J->nprim;
+  flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, __func__);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e1, b, sb, __func__);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e2, b, sb, __func__);
+  if (flag == LGN_SUCCESS) EndJoint(J, first, "cylindrical");
+  return flag;
+}
+
 int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
                                  size_t len)
 {
@@ -538,6 +643,36 @@ static int CheckVec(const struct LGNJointsRec *J, N_Vector x, sunindextype len,
   return LGN_SUCCESS;
 }
 
+/* The geometry of a LINE primitive: r = R_a e, d = p_b - p_a, rho =
+ * R_a^T (p_b - x_a), y = R_b^T r, and its rows of B at a and b
+ * (translation, rotation): ga = (-(P_a^T r), e x rho), gb = (P_b^T r,
+ * s_b x y). */
+typedef struct {
+  sunrealtype r[3], d[3], rho[3], y[3];
+  sunrealtype ga[6], gb[6];
+} LineGeom;
+
+static void LineGeometry(const Pose *A, const Pose *B, const Primitive *p, LineGeom *L)
+{
+  sunrealtype ya[3], yb[3], t[3];
+  int i;
+  RotApply(A->R, p->e, L->r);
+  RotApply(A->R, p->u, ya);
+  RotApply(B->R, p->w, yb);
+  for (i = 0; i < 3; i++) {
+    L->d[i] = B->x[i] + yb[i] - A->x[i] - ya[i];
+    t[i]    = B->x[i] + yb[i] - A->x[i];
+  }
+  RotApplyT(A->R, t, L->rho);
+  RotApplyT(B->R, L->r, L->y);
+  for (i = 0; i < 3; i++) {
+    L->ga[i] = -(A->se3 ? p->e[i] : L->r[i]);
+    L->gb[i] = B->se3 ? L->y[i] : L->r[i];
+  }
+  Cross(p->e, L->rho, L->ga + 3);
+  Cross(p->w, L->y, L->gb + 3);
+}
+
 int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
 {
   const sunrealtype *qd;
@@ -559,7 +694,11 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
     RotApply(B.R, p->w, yb);
     if (p->kind == PRIM_POINT)
       for (i = 0; i < 3; i++) f[p->row + i] = A.x[i] + ya[i] - B.x[i] - yb[i];
-    else
+    else if (p->kind == PRIM_LINE) {
+      LineGeom L;
+      LineGeometry(&A, &B, p, &L);
+      f[p->row] = Dot(L.r, L.d);
+    } else
       f[p->row] = Dot(ya, yb);
   }
   return LGN_SUCCESS;
@@ -678,6 +817,13 @@ static void JacobianEntries(const struct LGNJointsRec *J, const sunrealtype *qd,
             PutRow(s, p->row + i, P[o].voff + 3, blk[o] + 6 * i + 3, 3);
           }
         }
+    } else if (p->kind == PRIM_LINE) {
+      LineGeom L;
+      LineGeometry(&P[0], &P[1], p, &L);
+      for (side = 0; side < 2; side++) {
+        const int o = order[side];
+        if (!P[o].ground) PutRow(s, p->row, P[o].voff, o == 0 ? L.ga : L.gb, 6);
+      }
     } else {
       sunrealtype g[2][3];
       PerpRows(&P[0], &P[1], p->u, p->w, g);
@@ -829,6 +975,16 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
     GetPose(J, p->a, qd, NULL, &P[0]);
     GetPose(J, p->b, qd, NULL, &P[1]);
     if (p->kind == PRIM_PERP) PerpRows(&P[0], &P[1], p->u, p->w, g);
+    if (p->kind == PRIM_LINE) {
+      LineGeom L;
+      LineGeometry(&P[0], &P[1], p, &L);
+      for (side = 0; side < 2; side++) {
+        const sunrealtype *gr = side == 0 ? L.ga : L.gb;
+        if (P[side].ground) continue;
+        for (i = 0; i < 6; i++) fd[P[side].voff + i] += l[0] * gr[i];
+      }
+      continue;
+    }
     for (side = 0; side < 2; side++) {
       const sunrealtype sign = side == 0 ? SUN_RCONST(1.0) : SUN_RCONST(-1.0);
       sunrealtype *fb;
@@ -863,6 +1019,55 @@ static void Accel(const Pose *P, const sunrealtype *y, sunrealtype *out)
   RotApply(P->R, t2, out);
 }
 
+/* Velocity and acceleration of the point x + R s along constant body
+ * velocities: xdot = u or R U, pdot = xdot + R (Omega x s), pddot =
+ * R (Omega x (Omega x s)) + [SE(3)] R (Omega x U). Zero at the ground. */
+static void PointMotion(const Pose *P, const sunrealtype *s, sunrealtype *pd,
+                        sunrealtype *pdd)
+{
+  sunrealtype t1[3], t2[3];
+  int i;
+  if (P->ground) {
+    for (i = 0; i < 3; i++) pd[i] = pdd[i] = SUN_RCONST(0.0);
+    return;
+  }
+  Cross(P->v + 3, s, t1);
+  RotApply(P->R, t1, pd);
+  if (P->se3) {
+    RotApply(P->R, P->v, t2);
+    for (i = 0; i < 3; i++) pd[i] += t2[i];
+  } else
+    for (i = 0; i < 3; i++) pd[i] += P->v[i];
+  Accel(P, s, pdd);
+  if (P->se3) {
+    Cross(P->v + 3, P->v, t1);
+    RotApply(P->R, t1, t2);
+    for (i = 0; i < 3; i++) pdd[i] += t2[i];
+  }
+}
+
+/* (r . d)'' = r'' . d + 2 r' . d' + r . d'' of a LINE primitive. */
+static sunrealtype LineCurvature(const Pose *A, const Pose *B, const Primitive *p)
+{
+  LineGeom L;
+  sunrealtype rd[3], rdd[3], pa[3], paa[3], pb[3], pbb[3], dd[3], ddd[3], t[3];
+  int i;
+  LineGeometry(A, B, p, &L);
+  for (i = 0; i < 3; i++) rd[i] = rdd[i] = SUN_RCONST(0.0);
+  if (!A->ground) { /* r = R_a e turns with a */
+    Cross(A->v + 3, p->e, t);
+    RotApply(A->R, t, rd);
+    Accel(A, p->e, rdd);
+  }
+  PointMotion(A, p->u, pa, paa);
+  PointMotion(B, p->w, pb, pbb);
+  for (i = 0; i < 3; i++) {
+    dd[i]  = pb[i] - pa[i];
+    ddd[i] = pbb[i] - paa[i];
+  }
+  return Dot(rdd, L.d) + SUN_RCONST(2.0) * Dot(rd, dd) + Dot(L.r, ddd);
+}
+
 int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
 {
   const sunrealtype *qd, *vd;
@@ -882,6 +1087,10 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, vd, &A);
     GetPose(J, p->b, qd, vd, &B);
+    if (p->kind == PRIM_LINE) {
+      zd[p->row] = LineCurvature(&A, &B, p);
+      continue;
+    }
     Accel(&A, p->u, aa);
     Accel(&B, p->w, ab);
     if (p->kind == PRIM_POINT) {
@@ -932,7 +1141,7 @@ static int BuildStiffnessStructure(struct LGNJointsRec *J)
   if (cnt == NULL) return LGN_MEM_FAIL;
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
-    if (p->kind == PRIM_PERP && p->a != LGN_GROUND && p->b != LGN_GROUND) {
+    if (p->kind != PRIM_POINT && p->a != LGN_GROUND && p->b != LGN_GROUND) {
       cnt[p->a]++;
       cnt[p->b]++;
     }
@@ -957,7 +1166,7 @@ static int BuildStiffnessStructure(struct LGNJointsRec *J)
   }
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
-    if (p->kind == PRIM_PERP && p->a != LGN_GROUND && p->b != LGN_GROUND) {
+    if (p->kind != PRIM_POINT && p->a != LGN_GROUND && p->b != LGN_GROUND) {
       J->kbody[J->kptr[p->a] + cnt[p->a]++] = p->b;
       J->kbody[J->kptr[p->b] + cnt[p->b]++] = p->a;
     }
@@ -993,6 +1202,87 @@ static void AddSub(sunrealtype *blk, int ro, int co, const sunrealtype *X,
     for (i = 0; i < 3; i++) blk[(ro + i) + 6 * (co + j)] += f * X[i + 3 * j];
 }
 
+/* X = R (column-major) of a row-major rotation R; its transpose R^T in
+ * column-major is the row-major array itself. */
+static void ColMajor(const sunrealtype *Rrow, sunrealtype *X)
+{
+  int i, j;
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) X[i + 3 * j] = Rrow[3 * i + j];
+}
+
+/* Geometric stiffness of a LINE primitive with multiplier l (column-major
+ * 3x3 blocks, t: translation, r: rotation; P_b's type decides):
+ *   (a_t, a_r)  R^3 x SO(3): l R_a e~            SE(3): 0
+ *   (a_r, a_t)  R^3 x SO(3): -l e~ R_a^T         SE(3): -l e~
+ *   (a_r, a_r)  l e~ rho~
+ *   (a_r, b_t)  l e~ R_a^T P_b
+ *   (a_r, b_r)  -l e~ R_a^T R_b s_b~
+ *   (b_t, a_r)  -l P_b^T R_a e~
+ *   (b_t, b_r)  R^3 x SO(3): 0                   SE(3): l y~
+ *   (b_r, a_r)  -l s_b~ R_b^T R_a e~
+ *   (b_r, b_r)  l s_b~ y~ */
+static void LineStiffness(struct LGNJointsRec *J, const Primitive *p, const Pose *A,
+                          const Pose *B, sunrealtype l)
+{
+  LineGeom L;
+  sunrealtype E[9], Ra[9], RaT[9], Rb[9], RbT[9], X[9], Y[9], Z[9], W[9], Sb[9], Pb[9];
+  const int a = p->a, b = p->b;
+  int i;
+  LineGeometry(A, B, p, &L);
+  Skew(p->e, E);
+  ColMajor(A->R, Ra);
+  memcpy(RaT, A->R, sizeof RaT);
+  ColMajor(B->R, Rb);
+  memcpy(RbT, B->R, sizeof RbT);
+  Skew(p->w, Sb);
+  /* P_b (column-major) */
+  if (B->se3) memcpy(Pb, Rb, sizeof Pb);
+  else
+    for (i = 0; i < 9; i++) Pb[i] = (i % 4 == 0) ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
+  if (a != LGN_GROUND) {
+    sunrealtype *aa = Block(J, a, a);
+    if (!A->se3) {
+      Mul3(Ra, E, X);
+      AddSub(aa, 0, 3, X, l);
+      Mul3(E, RaT, X);
+      AddSub(aa, 3, 0, X, -l);
+    } else
+      AddSub(aa, 3, 0, E, -l);
+    Skew(L.rho, Y);
+    Mul3(E, Y, X);
+    AddSub(aa, 3, 3, X, l);
+    if (b != LGN_GROUND) {
+      sunrealtype *ab = Block(J, a, b);
+      Mul3(E, RaT, X);  /* e~ R_a^T */
+      Mul3(X, Pb, Y);
+      AddSub(ab, 3, 0, Y, l);
+      Mul3(X, Rb, Y);
+      Mul3(Y, Sb, Z);
+      AddSub(ab, 3, 3, Z, -l);
+    }
+  }
+  if (b != LGN_GROUND) {
+    sunrealtype *bb = Block(J, b, b);
+    Skew(L.y, Y);
+    if (B->se3) AddSub(bb, 0, 3, Y, l);
+    Mul3(Sb, Y, X);
+    AddSub(bb, 3, 3, X, l);
+    if (a != LGN_GROUND) {
+      sunrealtype *ba = Block(J, b, a), PbT[9];
+      int r, c;
+      for (r = 0; r < 3; r++)
+        for (c = 0; c < 3; c++) PbT[r + 3 * c] = Pb[c + 3 * r];
+      Mul3(Ra, E, X);   /* R_a e~ */
+      Mul3(PbT, X, Y);
+      AddSub(ba, 0, 3, Y, -l);
+      Mul3(RbT, X, W);  /* R_b^T R_a e~ */
+      Mul3(Sb, W, Z);
+      AddSub(ba, 3, 3, Z, -l);
+    }
+  }
+}
+
 /* Geometric stiffness of one primitive into the blocks. With mu = R^T l:
  *   POINT, body a: K_{th,th} += s_a~ mu_a~ (SE(3): K_{x,th} += mu_a~), body
  *          b with the opposite sign;
@@ -1006,6 +1296,10 @@ static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
   int side, i, j;
   GetPose(J, p->a, qd, NULL, &P[0]);
   GetPose(J, p->b, qd, NULL, &P[1]);
+  if (p->kind == PRIM_LINE) {
+    LineStiffness(J, p, &P[0], &P[1], l[0]);
+    return;
+  }
   if (p->kind == PRIM_POINT) {
     for (side = 0; side < 2; side++) {
       const int body = side == 0 ? p->a : p->b;
@@ -1053,7 +1347,16 @@ static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
  * body's own block, where the point rows' R^T lambda adds rows 0..2. */
 static int StiffnessFirstRow(const struct LGNJointsRec *J, int r, int c)
 {
+  if (J->online[r] || J->online[c]) return 0; /* full blocks: see below */
   return r == c && J->se3[r] ? 0 : 3;
+}
+
+/* The first column of the block: 3, or 0 (all of the 6 x 6 block stored)
+ * when either body is in a point-on-line constraint (prismatic,
+ * cylindrical), whose B^T lambda depends on the translations. */
+static int StiffnessFirstCol(const struct LGNJointsRec *J, int r, int c)
+{
+  return J->online[r] || J->online[c] ? 0 : 3;
 }
 
 sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
@@ -1065,7 +1368,7 @@ sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
     int b, i;
     for (b = 0; b < J->nb; b++)
       for (i = J->kptr[b]; i < J->kptr[b + 1] && J->kbody[i] >= 0; i++)
-        n += 3 * (6 - StiffnessFirstRow(J, J->kbody[i], b));
+        n += (6 - StiffnessFirstCol(J, J->kbody[i], b)) * (6 - StiffnessFirstRow(J, J->kbody[i], b));
     return n;
   }
 }
@@ -1130,8 +1433,8 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
           const int o = J->kbody[i];
           const sunrealtype *blk_bo = J->kblk + 36 * (size_t)i; /* (row o, col b) */
           const sunrealtype *blk_ob = Block(J, b, o);           /* (row b, col o) */
-          const int r0 = csc ? StiffnessFirstRow(J, o, b) : 3;
-          if (csc ? c < 3 : c < StiffnessFirstRow(J, b, o)) continue;
+          const int r0 = csc ? StiffnessFirstRow(J, o, b) : StiffnessFirstCol(J, b, o);
+          if (csc ? c < StiffnessFirstCol(J, o, b) : c < StiffnessFirstRow(J, b, o)) continue;
           for (r = r0; r < 6; r++) {
             ind[pos] = J->voff[o] + r;
             val[pos] = csc ? blk_bo[r + 6 * c] : blk_ob[c + 6 * r];

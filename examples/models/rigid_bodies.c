@@ -369,6 +369,14 @@ static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud
   return LGNJoints_Curvature(((RigidSystem *)ud)->joints, q, v, z) == 0 ? 0 : -1;
 }
 
+void rigid_get_callbacks(RigidCallbacks *cb)
+{
+  cb->mass      = Mass;
+  cb->force     = Force;
+  cb->stiffness = Stiffness;
+  cb->damping   = Damping;
+}
+
 /* ---------------------------------------------------------------------------
  * Running
  * ------------------------------------------------------------------------ */

@@ -45,6 +45,18 @@ void rigid_place(RigidSystem *sys, int k, const double x[3], const double R[9]);
 /* Total energy: kinetic + gravitational potential (zero at the origin). */
 double rigid_energy(const RigidSystem *sys, N_Vector q, N_Vector v);
 
+/* The model's callbacks (user data: the system): M, g, K_t (the joints'
+ * geometric stiffness plus gravity's term on SE(3)) and C_t, written by hand
+ * here; for the tests that compare the body helpers (lignum_bodies.h) with
+ * them. */
+typedef struct {
+  LGNMassFn mass;
+  LGNForceFn force;
+  LGNStiffnessFn stiffness;
+  LGNDampingFn damping;
+} RigidCallbacks;
+void rigid_get_callbacks(RigidCallbacks *cb);
+
 /* Run options and results shared by the multibody examples. */
 typedef struct {
   RigidSolver solver;

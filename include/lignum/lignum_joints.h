@@ -20,6 +20,12 @@
  *   revolute:   spherical and (R_a e_i) . (R_b c) = 0, i = 1, 2, with
  *               e_1, e_2 perpendicular to axis_a, c = axis_b          (5 rows)
  *   universal:  spherical and (R_a axis_a) . (R_b axis_b) = 0         (4 rows)
+ *   prismatic:  relative rotation locked, R_a^T R_b = R0 (3 rows), and
+ *               (R_a e_i) . (p_b - p_a) = 0, i = 1, 2 (p = x + R s, e_i
+ *               perpendicular to axis_a: sb on the line through sa along
+ *               axis_a)                                               (5 rows)
+ *   cylindrical: axes parallel as in the revolute joint (2 rows) and sb on
+ *               the line as in the prismatic joint (2 rows)           (4 rows)
  *
  * A joint set keeps workspace for its evaluations (the bodies' rotations, the
  * pattern of the sparse B): evaluate one set from one thread at a time.
@@ -113,6 +119,37 @@ LGN_EXPORT int LGNJoints_AddUniversal(LGNJoints J, int a,
                                       const sunrealtype axis_b[3]);
 
 /**
+ * Prismatic (sliding) joint: point sb of body b stays on the line through
+ * point sa of body a along axis_a, and the relative rotation is locked at
+ * R_a^T R_b = R0, the smallest rotation taking axis_b to axis_a (the
+ * identity when axis_b = axis_a: the body frames keep the relative
+ * orientation they have when aligned). Rows: (R_a R0 d_1).(R_b c),
+ * (R_a R0 d_2).(R_b c), (R_a R0 d_1).(R_b d_2) with c = axis_b / |axis_b|
+ * and d_1, d_2 perpendicular to it, then (R_a R0 d_i).(p_b - p_a), i = 1, 2.
+ * Five constraints; the configuration must satisfy them at the start.
+ * @param axis_a, axis_b nonzero (need not be unit)
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
+LGN_EXPORT int LGNJoints_AddPrismatic(LGNJoints J, int a,
+                                      const sunrealtype sa[3],
+                                      const sunrealtype axis_a[3], int b,
+                                      const sunrealtype sb[3],
+                                      const sunrealtype axis_b[3]);
+
+/**
+ * Cylindrical joint: axis_a and axis_b kept parallel (the revolute joint's
+ * two rows) and point sb of body b on the line through sa along axis_a
+ * (the prismatic joint's two rows): rotation about and sliding along the
+ * axis are free. Four constraints.
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
+LGN_EXPORT int LGNJoints_AddCylindrical(LGNJoints J, int a,
+                                        const sunrealtype sa[3],
+                                        const sunrealtype axis_a[3], int b,
+                                        const sunrealtype sb[3],
+                                        const sunrealtype axis_b[3]);
+
+/**
  * Describe constraint row `row` (0-based, as in Phi and B and in
  * LGNGetRedundantConstraints): its joint, kind and bodies, e.g.
  * "revolute joint 2 (body 1 - body 2), its constraint 4 of 5".
@@ -129,7 +166,8 @@ LGN_EXPORT sunindextype LGNJoints_NumConstraints(LGNJoints J);
 /** Number of stored entries of the sparse B written by LGNJoints_Jacobian
  *  (explicit zeros included; the pattern does not depend on q). A point
  *  row stores 6 entries at an SE(3) body and 4 at an R^3 x SO(3) body,
- *  whose translation part is +-I. */
+ *  whose translation part is +-I; a perpendicularity row 3 per body, a
+ *  point-on-line row (prismatic, cylindrical) 6 per body. */
 LGN_EXPORT sunindextype LGNJoints_JacobianNnz(LGNJoints J);
 
 /** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
@@ -169,9 +207,12 @@ LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
  * stiffness K_t (the geometric stiffness). A dense K gets the term added;
  * a sparse K is overwritten with its pattern: the blocks of the bodies and
- * of pairs coupled by a revolute or universal joint, in their rotation
- * columns only (B^T lambda does not depend on the translations) and their
- * rotation rows, plus the translation rows of an SE(3) body's own block.
+ * of pairs coupled by a revolute, universal, prismatic or cylindrical
+ * joint, in their rotation columns only (B^T lambda of the point and
+ * perpendicularity rows does not depend on the translations) and their
+ * rotation rows, plus the translation rows of an SE(3) body's own block;
+ * a block with a body in a prismatic or cylindrical joint is stored whole
+ * (6 x 6: the point-on-line rows depend on the translations).
  * Combine it with other terms with SUNMatScaleAdd.
  */
 LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda,

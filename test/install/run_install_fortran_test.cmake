@@ -21,6 +21,7 @@ set(_moddir ${LGN_INCDIR}/lignum/fortran)
 set(_files
   ${_moddir}/flignum_mod.mod
   ${_moddir}/flignum_joints_mod.mod
+  ${_moddir}/flignum_bodies_mod.mod
   ${_moddir}/flignum_sundials_mod.mod
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumTargets.cmake)

@@ -23,6 +23,7 @@ lgn_expect_files(
   ${LGN_INCDIR}/lignum/lignum.h
   ${LGN_INCDIR}/lignum/lignum_group.h
   ${LGN_INCDIR}/lignum/lignum_joints.h
+  ${LGN_INCDIR}/lignum/lignum_bodies.h
   ${LGN_INCDIR}/lignum/lignum_config.h
   ${LGN_INCDIR}/lignum/lignum_export.h
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
