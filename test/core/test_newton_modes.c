@@ -283,6 +283,7 @@ static void LongChainStalls(void)
  * iteration (a heavy top with a step 50 times too large) is never taken
  * for a stall, with either setting.
  * ------------------------------------------------------------------------- */
+#if defined(LGN_HAVE_KLU) /* only the chain (KLU) part captures warnings */
 static int nwarn = 0;
 static char warn_msg[512];
 static void CaptureWarnings(int code, const char *module, const char *fn, const char *msg,
@@ -294,6 +295,7 @@ static void CaptureWarnings(int code, const char *module, const char *fn, const 
     snprintf(warn_msg, sizeof warn_msg, "%s", msg);
   }
 }
+#endif
 
 static void StallPolicy(void)
 {
