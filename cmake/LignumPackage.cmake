@@ -6,7 +6,10 @@
 #     tree (-DLignum_DIR=<build dir> works without installing);
 #   - lignum.pc for pkg-config, which lists the SUNDIALS libraries explicitly
 #     because SUNDIALS ships no .pc file;
-#   - the target `doc` (Doxygen), only when Doxygen is found.
+#   - the target `doc` (Doxygen), only when Doxygen is found, which fails on
+#     any Doxygen warning, and the CTest test doc_no_warnings that runs it;
+#   - the manual (README.md, doc/*.md, doc/figures) in share/doc/lignum, with
+#     the HTML API reference in share/doc/lignum/html when it was built.
 #
 # Included at the end of the top-level CMakeLists.txt, after src/ (and the
 # optional Fortran module) have defined their targets.
@@ -158,4 +161,25 @@ if(DOXYGEN_FOUND)
     WORKING_DIRECTORY ${PROJECT_BINARY_DIR}/doc
     COMMENT "Generating the API documentation with Doxygen"
     VERBATIM)
+  # Doxyfile.in sets WARN_AS_ERROR = FAIL_ON_WARNINGS: the run fails on any
+  # warning (all of them in build/doc/doxygen-warnings.log).
+  add_test(NAME doc_no_warnings
+    COMMAND Doxygen::doxygen ${PROJECT_BINARY_DIR}/doc/Doxyfile
+    WORKING_DIRECTORY ${PROJECT_BINARY_DIR}/doc)
+  set_tests_properties(doc_no_warnings PROPERTIES LABELS doc)
 endif()
+
+# -----------------------------------------------------------------------------
+# The manual: share/doc/lignum (README.md, doc/*.md, doc/figures, and the
+# HTML reference if `cmake --build build --target doc` was run)
+# -----------------------------------------------------------------------------
+set(LGN_INSTALL_DOCDIR "${CMAKE_INSTALL_DATAROOTDIR}/doc/lignum")
+file(GLOB _lgn_manual ${PROJECT_SOURCE_DIR}/doc/*.md)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md ${_lgn_manual}
+  DESTINATION ${LGN_INSTALL_DOCDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/doc/figures
+  DESTINATION ${LGN_INSTALL_DOCDIR}
+  FILES_MATCHING PATTERN "*.png" PATTERN "*.csv")
+install(DIRECTORY ${PROJECT_BINARY_DIR}/doc/html
+  DESTINATION ${LGN_INSTALL_DOCDIR}
+  OPTIONAL)

@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Main user interface. The model is the DAE on a Lie group G (spec numerics.md §1)
+ * Main user interface. The model is the DAE on a Lie group G (doc/theory.md)
  *
  *     qdot = q v~ ,   M(q) vdot + g(q, v, t) + B(q)^T lambda = 0 ,   Phi(q, t) = 0,
  *
@@ -117,7 +117,8 @@ extern "C" {
  *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
 #define LGN_KINEMATICS_SIGMA      102
 
-/** Newton predictor (default): sigma_ddot = 0 and lambda = lambda_n (spec §2). */
+/** Newton predictor (default): sigma_ddot = 0 and lambda = lambda_n (the
+ *  predictor of Brüls and Cardona 2010). */
 #define LGN_PREDICTOR_ZERO        120
 /** Newton predictor: vdot and lambda extrapolated linearly from
  *  the last two steps (constant on the first step), mapped into the chart of
@@ -138,7 +139,14 @@ extern "C" {
 
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
- * an unrecoverable one. Matrices passed to the user are zeroed beforehand.
+ * an unrecoverable one. Matrices passed to the user are of the type of the
+ * iteration matrix (LGNSetLinearSolver). A dense matrix is zeroed beforehand
+ * (every entry 0.0): write the nonzero entries. A sparse matrix (CSC or
+ * CSR) arrives empty, not zeroed: its index pointers are 0 and it holds no
+ * entry; the callback writes the whole structure (pointers, indices,
+ * values) and calls SUNSparseMatrix_Reallocate when it needs more entries
+ * than SUNSparseMatrix_NNZ. Explicit zeros are stored entries (part of the
+ * pattern). See doc/conventions.md.
  * ===========================================================================*/
 
 /** Mass matrix: M = M(q, t), nv x nv. */
@@ -241,6 +249,7 @@ LGN_EXPORT int LGNSetMassFn(void *lgn_mem, LGNMassFn mass);
 LGN_EXPORT int LGNSetForceFn(void *lgn_mem, LGNForceFn force);
 
 /** Set the number of constraints and their callbacks.
+ *  @param lgn_mem memory block
  *  @param m   number of constraints (0 for an unconstrained system)
  *  @param phi Phi(q, t) (required if m > 0)
  *  @param B   its Jacobian in Lie algebra directions (required if m > 0) */
@@ -278,9 +287,12 @@ LGN_EXPORT int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
  * Method and solver settings (zero restores a default where stated)
  * ===========================================================================*/
 
-/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)).
- *  Supported now: SUNDenseMatrix with SUNLinSol_Dense (or any direct solver
- *  on a dense matrix). Lignum does not take ownership. */
+/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)):
+ *  a SUNDenseMatrix with SUNLinSol_Dense (or another direct solver on a
+ *  dense matrix), or a SUNSparseMatrix (CSC or CSR; any initial nnz, Lignum
+ *  sizes it) with SUNLinSol_KLU when Lignum was built with KLU
+ *  (LGN_ENABLE_KLU). The model's matrices handed to the callbacks are then
+ *  of the same type and format. Lignum does not take ownership. */
 LGN_EXPORT int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS,
                                   SUNMatrix A);
 
@@ -364,6 +376,7 @@ LGN_EXPORT int LGNGetNumOwnKLUSolves(void *lgn_mem, long int *nsolves);
 
 /** Number of times KLU factored where Lignum would have refactored into the
  *  copy, or its factors could not be copied, by cause:
+ *  @param lgn_mem  memory block
  *  @param npivot   Lignum's refactorisation left a pivot below SUNDIALS'
  *                  rcond threshold (its work is spent; KLU may pivot anew)
  *  @param npattern A's sparsity pattern changed (a new symbolic analysis)
@@ -696,6 +709,7 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *  the linear solver (dense or KLU), as LGNSolve does. The result is the
  *  state LGNSolve starts from (and returns for tout = t0); read it with
  *  LGNGetConsistentIC.
+ *  @param lgn_mem memory block
  *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
  *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
@@ -729,6 +743,7 @@ LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
  *  transients of the growing step sizes dominate the multipliers' error
  *  there (doc/user-guide.md). Takes effect at the next start (before the
  *  first step after LGNInit, LGNReInit or LGNCalcIC).
+ *  @param lgn_mem memory block
  *  @param on SUNTRUE or SUNFALSE
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
 LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);

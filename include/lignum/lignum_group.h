@@ -5,7 +5,7 @@
  * The Lie group object LGNGroup: a configuration space G with its Lie algebra
  * identified with R^nv, carried around like an N_Vector carries its ops.
  *
- * Conventions (spec numerics.md §1):
+ * Conventions (doc/theory.md, doc/conventions.md):
  *  - velocities are left-invariant (body-fixed), exp is composed on the RIGHT:
  *    q_{n+1} = q_n o exp(w);
  *  - T(w) = sum_i (-1)^i/(i+1)! ad(w)^i  (= dexp_{-w}), so that
@@ -100,8 +100,9 @@ LGN_EXPORT LGNGroup LGNGroup_SO3(void);
 LGN_EXPORT LGNGroup LGNGroup_R3xSO3(void);
 
 /** SE(3): q = (x, p), v = (U, Omega), both body-fixed; xdot = R U.
- *  q o exp(U, Omega) = (x + R(p) T_SO3(Omega)^T U, p * expq(Omega)); T, T^{-1}
- *  and Tdot as in spec numerics.md §4.3 (ordering (U, Omega)).
+ *  q o exp(U, Omega) = (x + R(p) T_SO3(Omega)^T U, p * expq(Omega)); in the
+ *  ordering (U, Omega), T = [[T_SO3(Omega), Tdot_SO3(Omega, U)],
+ *  [0, T_SO3(Omega)]], with T^{-1} and Tdot in closed form (doc/theory.md).
  *  @return the group, or NULL if allocation failed. */
 LGN_EXPORT LGNGroup LGNGroup_SE3(void);
 

@@ -12,8 +12,8 @@
  * or SE(3) factor, or a product of them (body k = factor k, products of
  * products flattened in order). Body points and axes are given in the body
  * frame; for LGN_GROUND they are fixed inertial vectors. B is the derivative
- * along the group, B(q) w = d/de Phi(q o exp(e w)) at e = 0 (spec
- * numerics.md §1): with R^3 x SO(3), dx = w_x and dR = R w_theta~; with
+ * along the group, B(q) w = d/de Phi(q o exp(e w)) at e = 0
+ * (doc/theory.md): with R^3 x SO(3), dx = w_x and dR = R w_theta~; with
  * SE(3), dx = R w_U.
  *
  *   spherical:  x_a + R_a s_a - x_b - R_b s_b = 0                     (3 rows)
@@ -92,6 +92,10 @@ LGN_EXPORT int LGNJoints_NumBodies(LGNJoints J);
 
 /**
  * Spherical joint: point sa of body a coincides with point sb of body b.
+ * Its three multipliers lambda are the joint force in the inertial frame
+ * acting on body b (body a feels -lambda); doc/conventions.md gives the
+ * signs of every joint.
+ * @param J     the joint set
  * @param a, b  body indices (0-based leaves of G) or LGN_GROUND, a != b
  * @param sa, sb points in the body frames (inertial for LGN_GROUND)
  * @return LGN_SUCCESS, LGN_ILL_INPUT (bad body index or NULL point) or
@@ -153,6 +157,8 @@ LGN_EXPORT int LGNJoints_AddCylindrical(LGNJoints J, int a,
  * Describe constraint row `row` (0-based, as in Phi and B and in
  * LGNGetRedundantConstraints): its joint, kind and bodies, e.g.
  * "revolute joint 2 (body 1 - body 2), its constraint 4 of 5".
+ * @param J         the joint set
+ * @param row       the constraint row
  * @param buf, len  the text (truncated to len - 1 characters)
  * @return LGN_SUCCESS, or LGN_ILL_INPUT (J NULL, buf NULL, len 0, row out
  *         of range).
@@ -198,7 +204,8 @@ LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
 LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q,
                                          N_Vector lambda, N_Vector f);
 
-/** z = Z(q)(v, v) = D_q(B(q) v).(q v~) (spec numerics.md §1), length m: the
+/** z = Z(q)(v, v) = D_q(B(q) v).(q v~), i.e. d/dt(B v) = B vdot + Z(q)(v, v)
+ *  (doc/theory.md), length m: the
  *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */
 LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
                                    N_Vector z);

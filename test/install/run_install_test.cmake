@@ -29,7 +29,14 @@ lgn_expect_files(
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfigVersion.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumTargets.cmake
-  ${LGN_LIBDIR}/pkgconfig/lignum.pc)
+  ${LGN_LIBDIR}/pkgconfig/lignum.pc
+  ${LGN_PREFIX}/share/doc/lignum/README.md
+  ${LGN_PREFIX}/share/doc/lignum/tutorial.md
+  ${LGN_PREFIX}/share/doc/lignum/theory.md
+  ${LGN_PREFIX}/share/doc/lignum/conventions.md
+  ${LGN_PREFIX}/share/doc/lignum/which-method.md
+  ${LGN_PREFIX}/share/doc/lignum/user-guide.md
+  ${LGN_PREFIX}/share/doc/lignum/figures/heavy_top_study.png)
 file(GLOB _libs ${LGN_LIBDIR}/liblignum.*)
 if(NOT _libs)
   message(FATAL_ERROR "[install] no liblignum.* in ${LGN_LIBDIR}")
