@@ -8,7 +8,7 @@
  * They must have the same number of lines and, line by line, the same
  * number of fields. A field that reads entirely as a number in both files
  * (strtod) passes if |a - b| <= atol + rtol |b| (b from the answer file;
- * defaults rtol = 1e-6, atol = 1e-10), except that a field written as an
+ * defaults rtol = 1e-5, atol = 1e-6), except that a field written as an
  * integer in both (counters: steps, Newton iterations) passes if
  * |a - b| <= itol |b| (default 0.1: counts of
  * iterations and adaptive steps move with round-off); any other field must
@@ -58,7 +58,7 @@ int main(int argc, char **argv)
 {
   FILE *fo, *fa;
   char lo[MAXLINE], la[MAXLINE], wo[MAXLINE], wa[MAXLINE];
-  double rtol = 1e-6, atol = 1e-10, itol = 0.1;
+  double rtol = 1e-5, atol = 1e-6, itol = 0.1;
   long line = 0, ndiff = 0;
 
   if (argc < 3 || argc > 6) {

@@ -3,7 +3,7 @@
 # other text equal), as SUNDIALS' examples are tested.
 #
 #   cmake -DEXE=<example> -DCOMPARE=<compare_output> -DANSWER=<name>.out
-#         -DOUTPUT=<file to write> [-DRTOL=1e-6] [-DATOL=1e-10] -P run_and_compare.cmake
+#         -DOUTPUT=<file to write> [-DRTOL=1e-5] [-DATOL=1e-6] -P run_and_compare.cmake
 #
 # The example must exit with 0; its output is kept in OUTPUT (to refresh an
 # answer file, copy it over <name>.out after checking it).
@@ -14,10 +14,10 @@ foreach(_var EXE COMPARE ANSWER OUTPUT)
   endif()
 endforeach()
 if(NOT DEFINED RTOL)
-  set(RTOL 1e-6)
+  set(RTOL 1e-5)
 endif()
 if(NOT DEFINED ATOL)
-  set(ATOL 1e-10)
+  set(ATOL 1e-6)
 endif()
 execute_process(COMMAND ${EXE} RESULT_VARIABLE _rc OUTPUT_FILE ${OUTPUT} ERROR_VARIABLE _err)
 if(NOT _rc EQUAL 0)
