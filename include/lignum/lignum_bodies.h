@@ -94,6 +94,8 @@ LGN_EXPORT int LGNBodies_NumBodies(LGNBodies B);
 
 /**
  * Mass and inertia of body k.
+ * @param B      the body set
+ * @param k      the body (0-based leaf of the group)
  * @param m      mass, > 0
  * @param inertia 3x3 inertia about the centre of mass in body axes
  *               (row-major), symmetric (to 1e-12 relative) and positive
@@ -114,6 +116,9 @@ LGN_EXPORT int LGNBodies_SetGravity(LGNBodies B, const sunrealtype gravity[3]);
 /**
  * Translational spring-damper between point sa of body a and point sb of
  * body b (body frames; inertial for LGN_GROUND).
+ * @param B     the body set
+ * @param a, b  the bodies (0-based leaves, or LGN_GROUND), a != b
+ * @param sa, sb the points in the bodies' frames
  * @param k, c  stiffness and damping, >= 0
  * @param L0    rest length, >= 0
  * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.

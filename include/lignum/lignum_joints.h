@@ -131,6 +131,9 @@ LGN_EXPORT int LGNJoints_AddUniversal(LGNJoints J, int a,
  * (R_a R0 d_2).(R_b c), (R_a R0 d_1).(R_b d_2) with c = axis_b / |axis_b|
  * and d_1, d_2 perpendicular to it, then (R_a R0 d_i).(p_b - p_a), i = 1, 2.
  * Five constraints; the configuration must satisfy them at the start.
+ * @param J     the joint set
+ * @param a, b  the bodies (0-based leaves of G, or LGN_GROUND), a != b
+ * @param sa, sb points in the body frames (inertial for LGN_GROUND)
  * @param axis_a, axis_b nonzero (need not be unit)
  * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
  */
