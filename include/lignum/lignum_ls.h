@@ -1,0 +1,155 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * The linear solver interface (included by lignum.h): attaching a SUNDIALS
+ * linear solver and matrix, Lignum's solves with a copy of KLU's factors,
+ * the sparsity pattern of the iteration matrix, and the linear solver's
+ * statistics.
+ * ---------------------------------------------------------------------------*/
+
+#ifndef LIGNUM_LS_H
+#define LIGNUM_LS_H
+
+#include <lignum/lignum.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)):
+ *  a SUNDenseMatrix with SUNLinSol_Dense (or another direct solver on a
+ *  dense matrix), or a SUNSparseMatrix (CSC or CSR; any initial nnz, Lignum
+ *  sizes it) with SUNLinSol_KLU when Lignum was built with KLU
+ *  (LGN_ENABLE_KLU). The model's matrices handed to the callbacks are then
+ *  of the same type and format. Lignum does not take ownership. */
+LGN_EXPORT int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS,
+                                  SUNMatrix A);
+
+/** Solve with Lignum's own triangular solves on a copy of KLU's factors
+ *  (SUNLinSol_KLU only). Off by default: opt in with own = SUNTRUE.
+ *  Lignum copies L, U, the off-diagonal BTF blocks, the permutations and
+ *  the row scaling out of KLU (klu_l_extract) with 32-bit indices and
+ *  solves with the copy instead of calling SUNLinSolSolve: 12 instead of
+ *  16 bytes per entry to read and a shorter chain of dependences make a
+ *  solve about twice as fast.
+ *  - CSC matrix: the copy holds L and U by rows and is made at the first
+ *    solve after KLU's factorisation. From then on Lignum also refactors
+ *    in its place: each row of Rs^{-1} A(P, Q) is eliminated against the
+ *    rows of U with KLU's pivots, blocks, pattern and row scaling
+ *    (klu_common.scale), which gives KLU's factors up to roundoff without
+ *    klu_l_refactor and without copying them out again. As SUNLinSolSetup
+ *    does, it checks KLU's cheap rcond, min |U(i,i)| / max |U(i,i)|: below
+ *    eps^(2/3), and after a change of A's pattern, KLU factors (and may
+ *    pivot anew) and its factors are copied again.
+ *  - CSR matrix: the copy holds the columns of KLU's factors and is made
+ *    at the second solve with a factorisation (so never with full Newton);
+ *    after klu_l_refactor only the new values are taken.
+ *  By columns (CSR) the solves do KLU's operations in KLU's order: the
+ *  results agree with SUNLinSolSolve to the last bit without fused
+ *  multiply-add. By rows (CSC) U's rows are kept divided by U's diagonal,
+ *  which takes the division off the solve's chain of dependences, and
+ *  Lignum refactors: the results agree with SUNLinSolSolve to roundoff
+ *  (backward errors within a small factor of KLU's: at most 2.5 times in
+ *  the tests, which allow 10). The copy takes 12 bytes per
+ *  entry of L + U, 56 per row, 8 per entry of A for the refactorisation's
+ *  maps, and 8 per entry of the larger factor for the extraction (counted
+ *  in LGNGetWorkSpace; doc/user-guide.md, section 7). Factors beyond 32-bit
+ *  indices, or memory refused, make Lignum fall back to SUNLinSolSetup and
+ *  SUNLinSolSolve (LGNGetNumKLUFallbacks).
+ *  What it buys (bench/chain_scaling, the 1000- and 10000-body chains,
+ *  KLU CSC, CPU ms per step, copy off -> on): full Newton 3.16 -> 2.60
+ *  and 33.2 -> 20.8, modified Newton 0.608 -> 0.397 and 8.49 -> 4.61
+ *  (1.2 to 1.8 times faster; doc/user-guide.md, section 7), for 3.2 kB
+ *  more memory per body (16.8 instead of 13.6 kB with KLU's).
+ *  Why it is off by default: it reads KLU's Numeric and Symbolic objects
+ *  and packed columns and SUNLinSol_KLU's private content, layouts that
+ *  neither library publishes. So it accepts only the versions it was
+ *  written and tested against: KLU 1.3 (SuiteSparse 5; the version
+ *  compiled against) with SUNDIALS 6.4 (the version found at run time and
+ *  the one compiled against).
+ *  @param lgn_mem memory block
+ *  @param own     SUNTRUE: Lignum's solves (and, CSC, its
+ *                 refactorisations); SUNFALSE (default): SUNLinSolSetup and
+ *                 SUNLinSolSolve, a copy is freed and the next step sets
+ *                 the matrix up anew. With a dense solver the setting is
+ *                 only recorded.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for own = SUNTRUE
+ *          when the copy is not available: other versions of KLU or
+ *          SUNDIALS (the message names those found and those supported),
+ *          SUNDIALS with 32-bit indices, or Lignum built without KLU
+ *          (LGN_ENABLE_KLU=OFF); the setting then stays off. */
+LGN_EXPORT int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own);
+
+/** Number of whole copies of KLU's factors (klu_l_extract) made for
+ *  Lignum's solves (LGNSetOwnKLUSolves): after each factorisation by KLU
+ *  with new pivots or a new pattern. Counted from LGNInit / LGNReInit, as
+ *  all counters; 0 with the copy off.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (ncopies = NULL). */
+LGN_EXPORT int LGNGetNumKLUFactorCopies(void *lgn_mem, long int *ncopies);
+
+/** Number of copies of the values only of KLU's factors, after
+ *  klu_l_refactor kept the pattern (CSR matrices: KLU refactors).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (nvalues = NULL). */
+LGN_EXPORT int LGNGetNumKLUValueCopies(void *lgn_mem, long int *nvalues);
+
+/** Number of Lignum's refactorisations into the copy that took the place
+ *  of SUNLinSolSetup (CSC matrices). LGNGetNumLinSolvSetups counts these
+ *  and KLU's factorisations together.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (nrefactors = NULL). */
+LGN_EXPORT int LGNGetNumOwnKLURefactors(void *lgn_mem, long int *nrefactors);
+
+/** Number of linear solves with the copy instead of SUNLinSolSolve (of
+ *  LGNGetNumLinSolves, which counts both).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (nsolves = NULL). */
+LGN_EXPORT int LGNGetNumOwnKLUSolves(void *lgn_mem, long int *nsolves);
+
+/** Number of times KLU factored where Lignum would have refactored into the
+ *  copy, or its factors could not be copied, by cause:
+ *  @param lgn_mem  memory block
+ *  @param npivot   Lignum's refactorisation left a pivot below SUNDIALS'
+ *                  rcond threshold (its work is spent; KLU may pivot anew)
+ *  @param npattern A's sparsity pattern changed (a new symbolic analysis)
+ *  @param nnocopy  the factors could not be copied or A did not fit the
+ *                  copy (sizes beyond 32-bit indices, memory refused):
+ *                  KLU's setups and solves until the next factorisation
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (an output NULL,
+ *          named in the message). */
+LGN_EXPORT int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
+                          long int *nnocopy);
+
+/** Tell Lignum that the sparsity pattern of M, B, K_t or C_t has changed:
+ *  at the next assembly the pattern of the iteration matrix and the column
+ *  colouring of the difference quotients are rebuilt, and KLU analyses the
+ *  new pattern. Without this call the pattern found at the first assembly is
+ *  kept (KLU only refactors); entries outside it extend it automatically.
+ *  A no-op for dense matrices. */
+LGN_EXPORT int LGNResetSparsityPattern(void *lgn_mem);
+
+/** Number of patterns of the sparse iteration matrix built (each followed
+ *  by a symbolic analysis in KLU); 0 for dense matrices. */
+LGN_EXPORT int LGNGetNumSparsityAnalyses(void *lgn_mem, long int *nanalyses);
+
+/** Number of stored entries of the iteration matrix: its pattern's size for
+ *  sparse matrices (0 before the first assembly), (nv + m)^2 for dense ones. */
+LGN_EXPORT int LGNGetIterationMatrixNnz(void *lgn_mem, long int *nnz);
+
+/** Number of displaced evaluations per difference-quotient stiffness matrix:
+ *  the number of column colours (sparse) or nv (dense); 0 before the first
+ *  assembly of a sparse matrix. */
+LGN_EXPORT int LGNGetNumDQColors(void *lgn_mem, long int *ncolors);
+
+/** Number of linear solver setups (factorisations). */
+LGN_EXPORT int LGNGetNumLinSolvSetups(void *lgn_mem, long int *nlsetups);
+
+/** Number of linear solves. */
+LGN_EXPORT int LGNGetNumLinSolves(void *lgn_mem, long int *nlsolves);
+
+/** Return flag of the last linear solver call. */
+LGN_EXPORT int LGNGetLastLinFlag(void *lgn_mem, long int *flag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
