@@ -32,11 +32,13 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
+#define _POSIX_C_SOURCE 200809L /* fileno, dup, dup2 */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <lignum/lignum.h>
 #include <lignum/lignum_config.h>
@@ -141,6 +143,7 @@ typedef struct {
   int known;       /* q, v of the state at the current time are known */
   double kq[14], kv[12];
   int nsolves;
+  int huge_m; /* m = 2^40 was passed to LGNSetConstraints (finding 2) */
 } Obj;
 
 static const double MASS = 2.0, JB[3] = {0.3, 0.5, 0.7}, XP[3] = {0.0, 0.0, 0.4};
@@ -490,6 +493,7 @@ static int CheckFlag(const Obj *o, int flag, const char *call)
 static SUNContext ctx;
 static LGNGroup spare_group; /* a group of other dimensions, alive all input */
 static FILE *devnull;
+static int null_fd = -1;
 
 static void ObjFreeSolver(Obj *o)
 {
@@ -725,6 +729,9 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
       memcpy(after.vdot, before.vdot, sizeof after.vdot);
       memcpy(after.lambda, before.lambda, sizeof after.lambda);
       memcpy(after.aux, before.aux, sizeof after.aux);
+      after.fa = before.fa; /* LGNGetMultipliers: LGN_ILL_INPUT, then 0 */
+      after.fl = before.fl;
+      after.fx = before.fx;
     }
     REQUIRE(memcmp(&before, &after, sizeof before) == 0,
             "LGNSolve failed (%s) without a step but changed the state: t %.17g -> %.17g, "
@@ -780,7 +787,7 @@ enum {
 static void Run(In *in)
 {
   Obj objs[NOBJ];
-  int steps = 0, k;
+  int steps = 0, k, saved_fd = -1;
   memset(objs, 0, sizeof objs);
   while (in->i < in->n && steps < 64) {
     const unsigned op = U8(in) % NOP;
@@ -793,6 +800,15 @@ static void Run(In *in)
       continue;
     }
     mem = o->mem;
+    /* After LGNFree there is no memory block to silence: Lignum's messages
+     * about mem = NULL go to stderr, which is pointed at /dev/null for this
+     * operation (a sanitizer report would be lost here, the crash is not:
+     * run the saved input again to see it). */
+    if (mem == NULL && null_fd >= 0) {
+      fflush(stderr);
+      saved_fd = dup(2);
+      if (saved_fd >= 0) dup2(null_fd, 2);
+    }
     switch (op) {
     case OP_SETGROUP: {
       const unsigned s = U8(in) % 3;
@@ -817,7 +833,7 @@ static void Run(In *in)
       case 0: m = 0; break;
       case 1: m = -1; break;
       case 2: m = o->m + 1; break;
-      case 3: m = (sunindextype)1 << 40; break;
+      case 3: m = (sunindextype)1 << 40; o->huge_m = 1; break;
       default: break;
       }
       CheckFlag(o, LGNSetConstraints(mem, m, (s & 8) ? Phi : NULL, (s & 16) ? Jac : NULL),
@@ -1012,7 +1028,10 @@ static void Run(In *in)
       CheckFlag(o, LGNGetNumJacEvals(mem, lp), "LGNGetNumJacEvals");
       CheckFlag(o, LGNGetNumNewtonStalls(mem, &l), "LGNGetNumNewtonStalls");
       CheckFlag(o, LGNGetNumSparsityAnalyses(mem, &l), "LGNGetNumSparsityAnalyses");
-      CheckFlag(o, LGNGetIterationMatrixNnz(mem, &l), "LGNGetIterationMatrixNnz");
+      /* (nv + m)^2 overflows with m = 2^40: finding 2 in README.md,
+       * reproducer crashes/iteration_matrix_nnz_overflow.c */
+      if (!o->huge_m)
+        CheckFlag(o, LGNGetIterationMatrixNnz(mem, &l), "LGNGetIterationMatrixNnz");
       CheckFlag(o, LGNGetNumDQColors(mem, &l), "LGNGetNumDQColors");
       CheckFlag(o, LGNGetWorkSpace(mem, &l, lp), "LGNGetWorkSpace");
       CheckFlag(o, LGNGetNumLinSolvSetups(mem, &l), "LGNGetNumLinSolvSetups");
@@ -1116,6 +1135,12 @@ static void Run(In *in)
     }
     default: break;
     }
+    if (saved_fd >= 0) {
+      fflush(stderr);
+      dup2(saved_fd, 2);
+      close(saved_fd);
+      saved_fd = -1;
+    }
     (void)flag;
   }
   for (k = 0; k < NOBJ; k++) ObjDestroy(&objs[k]);
@@ -1124,7 +1149,10 @@ static void Run(In *in)
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
   In in = {data, size, 0};
-  if (devnull == NULL) devnull = fopen("/dev/null", "w");
+  if (devnull == NULL) {
+    devnull = fopen("/dev/null", "w");
+    if (devnull) null_fd = fileno(devnull);
+  }
   if (SUNContext_Create(NULL, &ctx) != 0) abort();
   spare_group = LGNGroup_Rn(5);
   Run(&in);
