@@ -544,7 +544,10 @@ static void MakeSolver(Obj *o, int kind, sunindextype n)
 
 static void ObjCreate(Obj *o, In *in)
 {
-  const unsigned sel = U8(in);
+  /* sel: the model (bits 0-1), the preset unless bit 7; opt: adaptive
+   * (bit 0), modified Newton (1), tangent callbacks (2), a revolute joint
+   * (3), the oscillator's n - 1 (4-5), the linear solver (6-7) */
+  const unsigned sel = U8(in), opt = U8(in);
   const int preset = (sel & 0x80) == 0; /* mostly the sane preset */
   int flag;
   ObjDestroy(o);
@@ -558,7 +561,7 @@ static void ObjCreate(Obj *o, In *in)
     o->m = o->model == MOD_BODY3 ? 3 : 0;
     break;
   case MOD_OSC:
-    o->n_osc = 1 + (sunindextype)((sel >> 2) % 4);
+    o->n_osc = 1 + (sunindextype)((opt >> 4) % 4);
     o->G     = LGNGroup_Rn(o->n_osc);
     o->m     = 0;
     break;
@@ -571,7 +574,7 @@ static void ObjCreate(Obj *o, In *in)
     o->J          = LGNJoints_Create(o->G);
     LGNJoints_SetErrFile(o->J, NULL);
     LGNJoints_AddSpherical(o->J, LGN_GROUND, s0, 0, s1);
-    if (sel & 4) LGNJoints_AddRevolute(o->J, 0, s2, ax, 1, s1, ax);
+    if (opt & 8) LGNJoints_AddRevolute(o->J, 0, s2, ax, 1, s1, ax);
     else LGNJoints_AddSpherical(o->J, 0, s2, 1, s1);
     o->m = LGNJoints_NumConstraints(o->J);
   }
@@ -590,7 +593,7 @@ static void ObjCreate(Obj *o, In *in)
   N_VConst(1.0, o->qbad);
   N_VConst(1.0, o->vbad);
   InitialState(o, N_VGetArrayPointer(o->q0), N_VGetArrayPointer(o->v0));
-  MakeSolver(o, (int)((sel >> 4) % 3), o->nv + o->m);
+  MakeSolver(o, (int)((opt >> 6) % 3), o->nv + o->m);
 
   o->mem = LGNCreate(ctx);
   REQUIRE(o->mem != NULL, "LGNCreate failed");
@@ -601,7 +604,7 @@ static void ObjCreate(Obj *o, In *in)
   if (!flag) flag = LGNSetMassFn(o->mem, Mass);
   if (!flag) flag = LGNSetForceFn(o->mem, Force);
   if (!flag && o->m > 0) flag = LGNSetConstraints(o->mem, o->m, Phi, Jac);
-  if (!flag && (sel & 8)) {
+  if (!flag && (opt & 4)) {
     flag = LGNSetStiffnessFn(o->mem, Stiffness);
     if (!flag) flag = LGNSetDampingFn(o->mem, Damping);
     if (!flag && o->m > 0) flag = LGNSetCurvatureFn(o->mem, Curvature);
@@ -612,8 +615,8 @@ static void ObjCreate(Obj *o, In *in)
   if (!flag) flag = LGNSetGenAlpha(o->mem, 0.8);
   if (!flag) flag = LGNSetStepSize(o->mem, 1e-3);
   if (!flag) flag = LGNSetMaxNumSteps(o->mem, 50);
-  if (!flag) flag = LGNSetNewtonMode(o->mem, (sel & 2) ? LGN_NEWTON_MODIFIED : LGN_NEWTON_FULL);
-  if (!flag && (sel & 1)) {
+  if (!flag) flag = LGNSetNewtonMode(o->mem, (opt & 2) ? LGN_NEWTON_MODIFIED : LGN_NEWTON_FULL);
+  if (!flag && (opt & 1)) {
     flag = LGNSetStepControl(o->mem, LGN_STEP_ADAPTIVE);
     if (!flag) flag = LGNSStolerances(o->mem, 1e-6, 1e-6);
     o->adaptive = 1;
