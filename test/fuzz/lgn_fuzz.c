@@ -1051,6 +1051,10 @@ static void Run(In *in)
       /* m = 2^40 makes LGNSolve allocate terabytes, which ASan and
        * libFuzzer report as a crash before malloc can return NULL */
       if (o->huge_m && o->mem) break;
+      /* LGN_NORMAL with fixed steps shortens the last step to land on tout,
+       * down to 1e-12 h: a following step of h (a ratio of 1e12) may then
+       * legitimately fail to converge at index 3. Not sane any more. */
+      if (itask == LGN_NORMAL && !o->adaptive) o->sane = 0;
       flag = Solve(o, t + dt, itask, badvec);
       break;
     }
