@@ -150,6 +150,7 @@ typedef struct {
   int huge_m; /* m = 2^40 was passed to LGNSetConstraints (finding 2) */
   int nonfinite_start; /* LGNInit / LGNReInit accepted NaN or Inf (finding 3) */
   int own_klu; /* LGNSetOwnKLUSolves was accepted once (finding 4) */
+  int vdot0_set; /* LGNSetInitialAcceleration accepted, not yet stepped (finding 5) */
 } Obj;
 
 static const double MASS = 2.0, JB[3] = {0.3, 0.5, 0.7}, XP[3] = {0.0, 0.0, 0.4};
@@ -720,6 +721,7 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     return flag;
   }
   Snap(o, &after);
+  if (after.nst > before.nst) o->vdot0_set = 0;
   if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN) {
     REQUIRE(badvec == 0 && (itask == LGN_NORMAL || itask == LGN_ONE_STEP),
             "LGNSolve succeeded with bad arguments (%d, itask %d)", badvec, itask);
@@ -760,6 +762,7 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
      * even when the call fails later, e.g. with LGN_BAD_TOUT: finding 1 in
      * test/fuzz/README.md, reproducer crashes/bad_tout_changes_vdot.c), so
      * they are compared only once a step has been taken. */
+    if (o->vdot0_set) memcpy(after.aux, before.aux, sizeof after.aux); /* finding 5 */
     if (before.nst == 0) {
       memcpy(after.vdot, before.vdot, sizeof after.vdot);
       memcpy(after.lambda, before.lambda, sizeof after.lambda);
@@ -966,8 +969,11 @@ static void Run(In *in)
       if (s & 1) {
         N_Vector l = o->mv ? o->mv : o->vbad;
         if (o->mv) N_VConst(Real(in), o->mv);
-        CheckFlag(o, LGNSetInitialAcceleration(mem, PickVec(in, o, o->tmp), (s & 2) ? l : NULL),
-                  "LGNSetInitialAcceleration");
+        flag = CheckFlag(o, LGNSetInitialAcceleration(mem, PickVec(in, o, o->tmp), (s & 2) ? l : NULL),
+                         "LGNSetInitialAcceleration");
+        /* accepted after steps too; the next LGNSolve sets a = vdot0 even
+         * when it fails: finding 5 in README.md */
+        if (flag == 0) o->vdot0_set = 1;
       } else {
         CheckFlag(o, LGNSetInitialAux(mem, PickVec(in, o, o->tmp)), "LGNSetInitialAux");
       }
