@@ -572,6 +572,7 @@ static void ObjCreate(Obj *o, In *in)
   const int preset = (sel & 0x80) == 0; /* mostly the sane preset */
   int flag;
   ObjDestroy(o);
+  if (trace) fprintf(stderr, "  create sel 0x%02x opt 0x%02x\n", sel, opt);
   o->used     = 1;
   o->model    = (int)(sel % NMOD);
   o->fault_cb = -1;
@@ -713,7 +714,12 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     for (i = 0; i < o->nq; i++) fprintf(stderr, " %g", N_VGetArrayPointer(o->q)[i]);
     fprintf(stderr, "\n  v");
     for (i = 0; i < o->nv; i++) fprintf(stderr, " %g", N_VGetArrayPointer(o->v)[i]);
-    fprintf(stderr, "\n");
+    {
+      double hc = 0.0, en = 0.0;
+      LGNGetCurrentStep(o->mem, &hc);
+      LGNGetLastErrNorm(o->mem, &en);
+      fprintf(stderr, "\n  next h %g, last error norm %g\n", hc, en);
+    }
   }
   o->nsolves++;
   if (o->mem == NULL) {
@@ -1061,6 +1067,9 @@ static void Run(In *in)
        * down to 1e-12 h: a following step of h (a ratio of 1e12) may then
        * legitimately fail to converge at index 3. Not sane any more. */
       if (itask == LGN_NORMAL && !o->adaptive) o->sane = 0;
+      /* error control takes its first step no longer than |tout - t|: with
+       * tout - t = 1e-300 every later step fails (finding 6) */
+      if (!(dt >= 1e-4 && dt <= 10.0)) o->sane = 0;
       flag = Solve(o, t + dt, itask, badvec);
       break;
     }
