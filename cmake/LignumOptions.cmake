@@ -5,6 +5,8 @@ option(LGN_BUILD_TESTS "Build the test suite" ON)
 option(LGN_BUILD_BENCHMARKS "Build the benchmarks in bench/" ON)
 option(LGN_WARNINGS_AS_ERRORS "Compile with -Wall -Wextra -Wpedantic -Werror" ON)
 option(LGN_ENABLE_SANITIZERS "Build with AddressSanitizer and UBSan" OFF)
+option(LGN_ENABLE_TSAN "Build with ThreadSanitizer (not with LGN_ENABLE_SANITIZERS)" OFF)
+option(LGN_BUILD_FUZZ "Build the libFuzzer target test/fuzz (Clang only; implies ASan + UBSan)" OFF)
 option(LGN_ENABLE_KLU "Enable the sparse path with SUNDIALS' KLU linear solver" ON)
 # The Fortran interface is built by default when a Fortran compiler works
 # (checked only while the option is not yet set).

@@ -9,6 +9,25 @@
 # Clang's also stops on an offset applied to a null pointer), every report
 # fatal.
 add_library(lignum_build_flags INTERFACE)
+# The fuzz target (LGN_BUILD_FUZZ, test/fuzz): Clang's libFuzzer; every
+# object is compiled with its coverage instrumentation and with ASan + UBSan.
+if(LGN_BUILD_FUZZ)
+  if(NOT CMAKE_C_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "LGN_BUILD_FUZZ needs Clang (-DCMAKE_C_COMPILER=clang)")
+  endif()
+  set(LGN_ENABLE_SANITIZERS ON)
+  target_compile_options(lignum_build_flags INTERFACE
+    $<$<COMPILE_LANGUAGE:C>:-fsanitize=fuzzer-no-link>)
+endif()
+# ThreadSanitizer (LGN_ENABLE_TSAN): GCC or Clang; excludes ASan.
+if(LGN_ENABLE_TSAN)
+  if(LGN_ENABLE_SANITIZERS)
+    message(FATAL_ERROR "LGN_ENABLE_TSAN and LGN_ENABLE_SANITIZERS exclude each other")
+  endif()
+  target_compile_options(lignum_build_flags INTERFACE
+    $<$<COMPILE_LANGUAGE:C>:-fsanitize=thread -fno-omit-frame-pointer>)
+  target_link_options(lignum_build_flags INTERFACE -fsanitize=thread)
+endif()
 set(LGN_SANITIZE_FLAG -fsanitize=address,undefined,pointer-overflow)
 if(CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
   target_compile_options(lignum_build_flags INTERFACE
