@@ -393,14 +393,16 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     LGN_ERROR(mem, LGN_ILL_INPUT, "tout is not finite.");
     return LGN_ILL_INPUT;
   }
-  if (itask == LGN_ONE_STEP &&
-      tout < (mem->dense_valid ? mem->tprev : mem->tn) -
+  if (tout < (mem->dense_valid ? mem->tprev : mem->tn) -
                  SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(tout))) {
-    /* the direction of integration: forward only (a tout inside the last
-     * step is fine: an event may have returned there) */
+    /* forward only (a tout inside the last step is interpolated, and an
+     * event may have returned there); checked before anything is computed,
+     * so a refused call changes nothing */
     LGN_ERROR(mem, LGN_BAD_TOUT,
-              "tout = %.17g is behind the current time t = %.17g (LGN_ONE_STEP "
-              "steps forward: give a tout ahead of t).", (double)tout, (double)mem->tn);
+              "tout = %.17g is behind the current time t = %.17g%s.", (double)tout,
+              (double)mem->tn,
+              itask == LGN_ONE_STEP ? " (LGN_ONE_STEP steps forward: give a tout ahead of t)"
+                                    : "");
     CopyOut(mem, tret, q, v);
     return LGN_BAD_TOUT;
   }

@@ -45,11 +45,15 @@ static sunrealtype ErrorFactor(sunrealtype err)
   return SAFETY * pow(err, -SUN_RCONST(1.0) / SUN_RCONST(3.0));
 }
 
-/* h limited to [hmin, hmax]. */
+/* The smallest step error control takes: the step divides by h^2, which
+ * must stay a normal number (as LGNSetStepSize requires). */
+#define H_FLOOR SUN_RCONST(1.0e-150)
+
+/* h limited to [hmin, hmax] (and the floor). */
 static sunrealtype Limit(LGNMem mem, sunrealtype h)
 {
   if (mem->hmax > SUN_RCONST(0.0)) h = SUNMIN(h, mem->hmax);
-  return SUNMAX(h, mem->hmin);
+  return SUNMAX(SUNMAX(h, mem->hmin), H_FLOOR);
 }
 
 /* The first step size when the user gives none: the displacement by the
@@ -183,7 +187,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       lgnStepRejected(mem); /* (the estimate itself failed) */
       return flag; /* unrecoverable: reported where it happened */
     }
-    h = SUNMAX(h * factor, mem->hmin);
+    h = Limit(mem, h * factor);
     mem->hnext = h;
   }
 }

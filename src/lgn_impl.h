@@ -26,6 +26,7 @@
 #define LGN_MAXCOR_DEFAULT    20
 #define LGN_MSBP_DEFAULT      10L  /* modified Newton: steps between setups */
 #define LGN_MXSTEP_DEFAULT    1000000L
+#define LGN_MAX_CONSTRAINTS   ((sunindextype)1 << 31) /* sizes stay far from overflow */
 #define LGN_EPCON_DEFAULT     SUN_RCONST(0.33) /* Newton / error-test tolerance */
 #define LGN_MAXNEF_DEFAULT    10  /* error-test failures per step         */
 #define LGN_MAXNCF_DEFAULT    10  /* Newton or callback failures per step */
@@ -162,7 +163,8 @@ typedef struct LGNMemRec {
   int sparsetype;           /* CSC_MAT or CSR_MAT when sparse               */
   struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
   sunbooleantype ls_initialized;
-  sunbooleantype ls_failed; /* the last setup failed: start clean (lgn_ls.c) */
+  sunbooleantype ls_restart; /* the next setup starts clean (lgn_ls.c): the
+                                last one failed, or A's pattern was dropped */
 
   /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
   sunindextype *diag_red;   /* redundant constraints (m; work space)       */

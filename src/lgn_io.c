@@ -107,9 +107,9 @@ int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (m < 0) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "m = %lld illegal: must be >= 0.",
-              (long long)m);
+  if (m < 0 || m > LGN_MAX_CONSTRAINTS) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "m = %lld illegal: must lie in [0, %lld].",
+              (long long)m, (long long)LGN_MAX_CONSTRAINTS);
     return LGN_ILL_INPUT;
   }
   if (m > 0 && (phi == NULL || B == NULL)) {

@@ -343,10 +343,12 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 #endif
 }
 
-/* After a failed setup the solver starts clean: KLU's numeric object may
- * be gone or hold a factorisation of a non-finite or singular matrix, and
- * refactoring it would fail for good; a new analysis and factorisation at
- * the next setup (dense LU keeps no state between setups). */
+/* After a failed setup, or when A's pattern was dropped, the solver starts
+ * clean: KLU's numeric object may be gone, hold a factorisation of a
+ * non-finite or singular matrix, or belong to another pattern, and
+ * refactoring it would fail for good or write past its factors; a new
+ * analysis and factorisation at the next setup (dense LU keeps no state
+ * between setups). */
 static void ResetSolver(LGNMem mem)
 {
 #if defined(LGN_HAVE_KLU)
@@ -355,7 +357,7 @@ static void ResetSolver(LGNMem mem)
                         SUNKLU_REINIT_PARTIAL);
 #endif
   lgnKluCopyFree(&mem->klu);
-  mem->ls_failed = SUNFALSE;
+  mem->ls_restart = SUNFALSE;
 }
 
 /* SUNDIALS' dense LU stops only at an exact zero pivot; a matrix whose
@@ -389,10 +391,10 @@ int lgnLsSetup(LGNMem mem)
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
   mem->klu_pattern = PatternNumber(mem);
-  if (mem->ls_failed) ResetSolver(mem);
+  if (mem->ls_restart) ResetSolver(mem);
   ret = SUNLinSolSetup(mem->LS, mem->A);
   mem->last_lin_flag = ret;
-  mem->ls_failed = ret != 0 ? SUNTRUE : SUNFALSE;
+  mem->ls_restart = ret != 0 ? SUNTRUE : SUNFALSE;
   if (ret == 0) ret = DenseNearlySingular(mem);
   if (ret != 0) {
     lgnDiagnoseSingular(mem, ret, mem->diag_text, sizeof mem->diag_text);

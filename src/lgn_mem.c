@@ -14,6 +14,7 @@
  *     which setting: every setter calls it with what it changed.
  * ---------------------------------------------------------------------------*/
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -365,6 +366,9 @@ void lgnFreeMatrices(LGNMem mem)
   lgnKluCopyFree(&mem->klu);
   mem->klu_valid = SUNFALSE;
   mem->mat_done = SUNFALSE;
+  /* the pattern of A is built anew and may differ: KLU analyses again
+   * (refactoring with the old analysis would write past its factors) */
+  mem->ls_restart = SUNTRUE;
 }
 
 void lgnFreeWork(LGNMem mem)
@@ -492,6 +496,9 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
+  /* defined before the consistent values are computed (the getters) */
+  N_VConst(SUN_RCONST(0.0), mem->vdot);
+  N_VConst(SUN_RCONST(0.0), mem->a);
   mem->malloc_done = SUNTRUE;
   return LGN_SUCCESS;
 }
@@ -624,7 +631,8 @@ long int lgnIterationMatrixNnz(LGNMem mem)
 {
   const long int n = (long int)(mem->nv + mem->m);
   if (mem->sp != NULL) return mem->sp->have_pattern ? (long int)mem->sp->A.colptr[n] : 0L;
-  return n * n;
+  /* dense: n^2, saturated rather than overflowing */
+  return n > 0 && n > LONG_MAX / n ? LONG_MAX : n * n;
 }
 
 /* Reals and integers of one model matrix. */

@@ -92,6 +92,17 @@ int main(void)
   LGNSetStepSize(mem, 1e-3);
   CHECK(LGNInit(mem, 0.0, q, v) == LGN_SUCCESS, "LGNInit");
 
+  /* m so large that sizes would overflow */
+  CHECK(Refused(LGNSetConstraints(mem, (sunindextype)1 << 40, NULL, NULL), LGN_ILL_INPUT, "m = "),
+        "m = 2^40: %s", last_msg);
+
+  /* a tout behind t refused before anything is computed: vdot stays 0 */
+  N_VConst(1.0, vd);
+  flag = LGNSolve(mem, -1.0, &t, q, v, LGN_NORMAL);
+  CHECK(Refused(flag, LGN_BAD_TOUT, "behind") && LGNGetAcceleration(mem, vd) == LGN_SUCCESS &&
+            N_VMaxNorm(vd) == 0.0,
+        "tout behind t before the first step: %s, |vdot| = %g", last_msg, N_VMaxNorm(vd));
+
   /* a dense solver made for 1 x 1, with a 3 x 3 A */
   CHECK(LGNSetLinearSolver(mem, LS1, A3) == LGN_SUCCESS, "attach");
   flag = LGNSolve(mem, 0.01, &t, q, v, LGN_NORMAL);

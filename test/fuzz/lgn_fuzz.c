@@ -1031,11 +1031,8 @@ static void Run(In *in)
       {
         N_Vector q0 = (s & 8) ? PickVec(in, o, o->q0) : o->q0;
         N_Vector v0 = (s & 16) ? PickVec(in, o, o->v0) : o->v0;
-        /* own KLU solves, LGNInit again and a new pattern of the iteration
-         * matrix corrupt the heap (switching them off before does not
-         * help): finding 4 in README.md, reproducer
-         * crashes/klu_own_solves_reinit.c. No second LGNInit then. */
-        if (o->own_klu && mem) break;
+        /* (own KLU solves, LGNInit again and a new pattern corrupted the
+         * heap: finding 4 in README.md, fixed: KLU analyses anew) */
         flag        = op == OP_INIT ? LGNInit(mem, t0, q0, v0) : LGNReInit(mem, t0, q0, v0);
         if (trace) fprintf(stderr, "  init 0x%02x t0 %g -> %d\n", s, t0, flag);
         CheckFlag(o, flag, op == OP_INIT ? "LGNInit" : "LGNReInit");
@@ -1067,9 +1064,10 @@ static void Run(In *in)
        * down to 1e-12 h: a following step of h (a ratio of 1e12) may then
        * legitimately fail to converge at index 3. Not sane any more. */
       if (itask == LGN_NORMAL && !o->adaptive) o->sane = 0;
-      /* error control takes its first step no longer than |tout - t|: with
-       * tout - t = 1e-300 every later step fails (finding 6) */
-      if (!(dt >= 1e-4 && dt <= 10.0)) o->sane = 0;
+      /* (error control's first step with tout - t = 1e-300 was 1e-300 and
+       * every later step failed: finding 6, fixed: steps of at least
+       * 1e-150). A huge tout may fail legitimately. */
+      if (!(dt > 0.0 && dt <= 10.0)) o->sane = 0;
       flag = Solve(o, t + dt, itask, badvec);
       break;
     }
