@@ -153,27 +153,6 @@ static void MTM(const sunrealtype *A, const sunrealtype *Bm, sunrealtype *C)
  * Construction
  * ------------------------------------------------------------------------ */
 
-/* The leaves of G in order (as LGNJoints_Create finds them); with B->qoff
- * allocated, also their offsets. Returns the count, -1 for another leaf. */
-static int FindBodies(LGNGroup G, sunindextype qo, sunindextype vo,
-                      struct LGNBodiesRec *B, int k)
-{
-  int nf, i;
-  const LGNGroup *f;
-  const sunindextype *qoff, *voff;
-  if (lgnGroupProductFactors(G, &nf, &f, &qoff, &voff) == 0) {
-    for (i = 0; i < nf && k >= 0; i++) k = FindBodies(f[i], qo + qoff[i], vo + voff[i], B, k);
-    return k;
-  }
-  if (G->kind != LGN_GROUP_R3XSO3 && G->kind != LGN_GROUP_SE3) return -1;
-  if (B->qoff != NULL) {
-    B->qoff[k] = qo;
-    B->voff[k] = vo;
-    B->se3[k]  = G->kind == LGN_GROUP_SE3;
-  }
-  return k + 1;
-}
-
 LGNBodies LGNBodies_Create(LGNGroup G)
 {
   struct LGNBodiesRec *B;
@@ -189,7 +168,7 @@ LGNBodies LGNBodies_Create(LGNGroup G)
   }
   lgnErrSinkInit(&B->err);
   B->G = G;
-  nb   = FindBodies(G, 0, 0, B, 0);
+  nb   = lgnGroupRigidBodies(G, NULL, NULL, NULL);
   if (nb < 1) {
     lgnReport(NULL, LGN_ILL_INPUT, __func__,
               "G: the body helpers need bodies on R^3 x SO(3) or SE(3) (or a "
@@ -209,7 +188,7 @@ LGNBodies LGNBodies_Create(LGNGroup G)
     lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return NULL;
   }
-  FindBodies(G, 0, 0, B, 0);
+  lgnGroupRigidBodies(G, B->qoff, B->voff, B->se3);
   for (k = 0; k < nb; k++) {
     sunrealtype *J = B->inertia + 9 * (size_t)k;
     B->mass[k] = SUN_RCONST(1.0);

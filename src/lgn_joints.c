@@ -210,25 +210,6 @@ static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
  * Construction
  * ------------------------------------------------------------------------ */
 
-static int CountBodies(LGNGroup G, sunindextype qo, sunindextype vo,
-                       struct LGNJointsRec *J, int k)
-{
-  int nf, i;
-  const LGNGroup *f;
-  const sunindextype *qoff, *voff;
-  if (lgnGroupProductFactors(G, &nf, &f, &qoff, &voff) == 0) {
-    for (i = 0; i < nf && k >= 0; i++) k = CountBodies(f[i], qo + qoff[i], vo + voff[i], J, k);
-    return k;
-  }
-  if (G->kind != LGN_GROUP_R3XSO3 && G->kind != LGN_GROUP_SE3) return -1;
-  if (J->qoff != NULL) {
-    J->qoff[k] = qo;
-    J->voff[k] = vo;
-    J->se3[k]  = G->kind == LGN_GROUP_SE3;
-  }
-  return k + 1;
-}
-
 /* A new joint set reports to stderr (its sink's default) until the user
  * sets a handler or stream; so do its failures, which have no set yet. */
 LGNJoints LGNJoints_Create(LGNGroup G)
@@ -247,7 +228,7 @@ LGNJoints LGNJoints_Create(LGNGroup G)
   }
   lgnErrSinkInit(&J->err);
   J->G = G;
-  nb   = CountBodies(G, 0, 0, J, 0);
+  nb   = lgnGroupRigidBodies(G, NULL, NULL, NULL);
   if (nb < 1) {
     lgnReport(NULL, LGN_ILL_INPUT, __func__,
               "G: the joint helpers need bodies on R^3 x SO(3) or SE(3) (or a "
@@ -269,7 +250,7 @@ LGNJoints LGNJoints_Create(LGNGroup G)
     lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
     return NULL;
   }
-  CountBodies(G, 0, 0, J, 0);
+  lgnGroupRigidBodies(G, J->qoff, J->voff, J->se3);
   for (k = 0; k < (size_t)nb * ROT_STRIDE; k++) J->rot[k] = NAN;
   return J;
 }

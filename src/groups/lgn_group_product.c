@@ -214,3 +214,31 @@ int lgnGroupProductFactors(LGNGroup G, int *nf, const LGNGroup **factors,
   *voff    = c->voff;
   return 0;
 }
+
+/* The bodies of G, which sits at offsets (qo, vo), numbered from k on
+ * (lgnGroupRigidBodies). */
+static int RigidBodies(LGNGroup G, sunindextype qo, sunindextype vo, sunindextype *qoff,
+                       sunindextype *voff, sunbooleantype *se3, int k)
+{
+  int nf, i;
+  const LGNGroup *f;
+  const sunindextype *fq, *fv;
+  if (lgnGroupProductFactors(G, &nf, &f, &fq, &fv) == 0) {
+    for (i = 0; i < nf && k >= 0; i++)
+      k = RigidBodies(f[i], qo + fq[i], vo + fv[i], qoff, voff, se3, k);
+    return k;
+  }
+  if (G == NULL || (G->kind != LGN_GROUP_R3XSO3 && G->kind != LGN_GROUP_SE3)) return -1;
+  if (qoff != NULL) {
+    qoff[k] = qo;
+    voff[k] = vo;
+    se3[k]  = G->kind == LGN_GROUP_SE3;
+  }
+  return k + 1;
+}
+
+int lgnGroupRigidBodies(LGNGroup G, sunindextype *qoff, sunindextype *voff,
+                        sunbooleantype *se3)
+{
+  return RigidBodies(G, 0, 0, qoff, voff, se3, 0);
+}
