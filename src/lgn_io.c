@@ -534,24 +534,17 @@ int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky)
   return lgnDenseOutput(mem, t, k, N_VGetArrayPointer(dky));
 }
 
-/* Copy an array of length nv (a getter's output) into a checked vector. */
-static int GetArray(void *lgn_mem, N_Vector out, const char *name,
-                    const char *func, sunbooleantype error_control)
+/* The getters' output x (length nv; NULL: no step attempted yet, zeros)
+ * into the checked vector out (named name). */
+static int CopyNv(LGNMem mem, const sunrealtype *x, N_Vector out, const char *name,
+                  const char *func)
 {
-  LGNMem mem;
-  int flag = lgnAccessMem(lgn_mem, func, &mem);
+  int flag = lgnCheckVector(mem, out, mem->nv, name, func);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->malloc_done) {
-    lgnProcessError(mem, LGN_NO_MALLOC, __LINE__, func, __FILE__, MSG_NO_MALLOC);
-    return LGN_NO_MALLOC;
-  }
-  flag = lgnCheckVector(mem, out, mem->nv, name, func);
-  if (flag != LGN_SUCCESS) return flag;
-  if (mem->work_done && error_control)
-    memcpy(N_VGetArrayPointer(out), strcmp(name, "ele") == 0 ? mem->ele : mem->ewt,
-           (size_t)mem->nv * sizeof(sunrealtype));
+  if (x != NULL)
+    memcpy(N_VGetArrayPointer(out), x, (size_t)mem->nv * sizeof(sunrealtype));
   else
-    N_VConst(SUN_RCONST(0.0), out); /* no step attempted yet */
+    N_VConst(SUN_RCONST(0.0), out);
   return LGN_SUCCESS;
 }
 
@@ -584,12 +577,16 @@ int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown)
 
 int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele)
 {
-  return GetArray(lgn_mem, ele, "ele", __func__, SUNTRUE);
+  LGNMem mem;
+  ACCESS_MALLOC(lgn_mem, mem);
+  return CopyNv(mem, mem->work_done ? mem->ele : NULL, ele, "ele", __func__);
 }
 
 int LGNGetErrWeights(void *lgn_mem, N_Vector eweight)
 {
-  return GetArray(lgn_mem, eweight, "eweight", __func__, SUNTRUE);
+  LGNMem mem;
+  ACCESS_MALLOC(lgn_mem, mem);
+  return CopyNv(mem, mem->work_done ? mem->ewt : NULL, eweight, "eweight", __func__);
 }
 
 int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
