@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum demonstration: the heavy top (spec numerics.md §5) on [0, 1] s with
+ * Lignum demonstration: the heavy top (Brüls and Cardona 2010) on [0, 1] s with
  * every method Lignum offers, errors against an independent reference
  * (ARKODE, 8th-order Fehlberg, rtol 1e-13 on the equivalent ODE).
  *
@@ -99,7 +99,8 @@ int main(int argc, char **argv)
          "R^3 x SO(3) with simplified kinematics; mod. = exact kinematics\n"
          "v = T(x) xdot (Maekinen / Holzinger-Arnold-Gerstmayr).\n");
   /* A failed run in the demo is reported in the table, not an error: undamped
-   * index-3 Newmark is known to fail with simplified kinematics (spec §2). */
+   * index-3 Newmark is known to fail with simplified kinematics
+   * (doc/user-guide.md §4). */
   (void)failures;
   return 0;
 }

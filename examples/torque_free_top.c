@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: the torque-free symmetric top on SO(3) (spec numerics.md
- * §7.1) against its analytic solution. J = diag(J1, J1, J3), no constraints:
+ * Lignum example: the torque-free symmetric top on SO(3) against its
+ * analytic solution. J = diag(J1, J1, J3), no constraints:
  *
  *   Omega(t) = (cos nu t W1 - sin nu t W2, sin nu t W1 + cos nu t W2, W3),
  *   R(t)     = exp(t pi~ / J1) R0 exp(-t nu e3~),

@@ -1,5 +1,5 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the heavy top (spec numerics.md §5) on R^3 x SO(3),
+! Lignum Fortran example: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
 ! the Fortran counterpart of `heavy_top --formulation lie` (examples/heavy_top.c):
 !
 !   heavy_top_f [--formulation lie] [--method newmark|genalpha] [--rho-inf R]

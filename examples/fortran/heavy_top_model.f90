@@ -1,5 +1,5 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the heavy top (spec numerics.md §5) on R^3 x SO(3),
+! Lignum Fortran example: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
 ! the callbacks of examples/models/heavy_top.c (formulation HT_LIE) written
 ! as bind(C) Fortran functions. The model data reach them as user data:
 ! LGNSetUserData(mem, c_loc(model)), c_f_pointer(user_data, model) inside.
@@ -25,7 +25,7 @@ module heavy_top_model
   public :: ht_mass, ht_force, ht_constr, ht_constr_jac
   public :: ht_stiffness, ht_damping, ht_curvature, ht_joint_violation
 
-  !> Data of the benchmark (Brüls-Cardona 2010, spec §5), passed as user data.
+  !> Data of the benchmark (Brüls and Cardona 2010), passed as user data.
   type :: heavy_top_data
     real(c_double) :: mass = 15.0_c_double
     real(c_double) :: J(3) = [0.234375_c_double, 0.46875_c_double, 0.234375_c_double]

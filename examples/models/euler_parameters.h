@@ -3,7 +3,7 @@
  * (examples/models/heavy_top.c) and the IDA opponent (bench/ida_heavy_top.c).
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * p = (p0, pbar) in R^4, matrices row-major (spec numerics.md §3).
+ * p = (p0, pbar) in R^4, matrices row-major (doc/theory.md).
  * ---------------------------------------------------------------------------*/
 
 #ifndef LGN_EXAMPLES_EULER_PARAMETERS_H
@@ -18,7 +18,7 @@ static inline void ep_matrix_g(const double p[4], double G[12])
 }
 
 /* R(p) = (p0^2 - pbar.pbar) I + 2 pbar pbar^T + 2 p0 pbar~ (row-major),
- * the quadratic form used in Phi (spec §3). */
+ * the quadratic form used in Phi (doc/theory.md). */
 static inline void ep_rotation(const double p[4], double R[9])
 {
   const double s = p[0] * p[0] - p[1] * p[1] - p[2] * p[2] - p[3] * p[3];

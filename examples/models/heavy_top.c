@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the heavy top (spec numerics.md §5) in three formulations.
+ * Lignum examples: the heavy top (Brüls and Cardona 2010) in three formulations.
  *
  *  Lie group R^3 x SO(3): q = (x, p), v = (u, Omega), spherical joint at 0:
  *    M = diag(m I, J),  g = [-m gamma_g ; Omega x J Omega],
@@ -7,7 +7,7 @@
  *    K_t = [[0, R lambda~], [0, 0]],  C_t = [[0, 0], [0, Omega~ J - (J Omega)~]],
  *    Z(q)(v, v) = Omega x (R^T u).
  *
- *  Lie group SE(3) (spec §5 "SE(3) variant", §7.4): q = (x, p) with x the
+ *  Lie group SE(3) (doc/theory.md): q = (x, p) with x the
  *  centre of mass (the body frame's origin), v = (U, Omega) both body-fixed,
  *  xdot = R U, q o exp(w) moves x by R dU and R by R dpsi~:
  *    M = diag(m I, J),  g = [m Omega x U - m R^T gamma_g ; Omega x J Omega],
@@ -15,12 +15,12 @@
  *    K_t = [[0, -m (R^T gamma_g)~], [0, 0]],
  *    C_t = [[m Omega~, -m U~], [0, Omega~ J - (J Omega)~]],   Z = 0.
  *  The exact derivative is B(q) = [-I, -(R^T x)~]; it equals [-I, -X~] on the
- *  constraint manifold, and the constant form (as in the spec) is used, as the
+ *  constraint manifold, and the constant form (as in Brüls and Cardona 2010) is used, as the
  *  R^3 x SO(3) model uses -X~ for -(R^T x)~. B is constant, so Z = 0 and B^T
  *  lambda adds nothing to K_t. The multiplier is the same as in R^3 x SO(3):
  *  m(Udot + Omega x U) = R^T m udot, so lambda = R^T(m udot - m gamma_g).
  *
- *  Euler parameters on R^7 (spec §3): q = (x, p), v = (xdot, pdot):
+ *  Euler parameters on R^7 (doc/theory.md): q = (x, p), v = (xdot, pdot):
  *    M = diag(m I, 4 G^T J G),  g = [-m gamma_g ; 8 Gdot^T J G pdot],
  *    Phi = [X - R(p)^T x ; p^T p - 1],  B = dPhi/dq,
  *    with G(p) = [-pbar, -pbar~ + p0 I] and R(p) = (p0^2 - pbar.pbar) I

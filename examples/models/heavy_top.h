@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the heavy top benchmark (spec numerics.md §5), as a model
+ * Lignum examples: the heavy top benchmark (Brüls and Cardona 2010), as a model
  * (callbacks for R^3 x SO(3), for SE(3) and for Euler parameters on R^7) and as a driver
  * that runs one configuration and reports the final state and statistics.
  * Shared by the heavy_top example, the demo, the tests and the benchmarks.
@@ -12,7 +12,7 @@
 #include <stdio.h>
 #include <lignum/lignum.h>
 
-/* Data of the benchmark (Brüls-Cardona 2010, spec §5). */
+/* Data of the benchmark (Brüls and Cardona 2010). */
 #define HT_MASS     15.0
 #define HT_J1       0.234375
 #define HT_J2       0.46875
@@ -21,7 +21,7 @@
 #define HT_OMEGA0_Y 150.0
 #define HT_OMEGA0_Z (-4.61538)  /* Omega0 = (0, 150, -4.61538), body frame */
 
-/* HT_LIE: R^3 x SO(3); HT_EULER_PARAMETERS: R^7; HT_SE3: SE(3) (spec §5, §7.4). */
+/* HT_LIE: R^3 x SO(3); HT_EULER_PARAMETERS: R^7; HT_SE3: SE(3) (doc/theory.md). */
 typedef enum { HT_LIE = 0, HT_EULER_PARAMETERS = 1, HT_SE3 = 2 } HeavyTopFormulation;
 typedef enum { HT_NEWMARK = 0, HT_GENALPHA = 1 } HeavyTopMethod;
 

@@ -5,7 +5,7 @@
  * Equations of body k (mass m, principal moments J, f = m g the weight):
  *   R^3 x SO(3):  m udot - f = 0,                 J Omegadot + Omega x J Omega = 0
  *   SE(3):        m (Udot + Omega x U) - R^T f = 0, J Omegadot + Omega x J Omega = 0
- * plus B^T lambda of the joints. Tangent matrices (spec numerics.md §1):
+ * plus B^T lambda of the joints. Tangent matrices (doc/theory.md):
  *   C_t: Omega block  Omega~ J - (J Omega)~;  SE(3): U block m Omega~, U-Omega
  *        block -m U~;
  *   K_t: the joints' geometric stiffness; SE(3) adds d(-R^T f)/dtheta = -(R^T f)~
