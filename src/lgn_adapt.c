@@ -102,7 +102,7 @@ static void NewtonTolerances(LGNMem mem, sunrealtype h)
   mem->nls_atolv = NULL;
   if (mem->atol_vec != NULL) {
     /* per component in the configuration part; the multipliers with the
-     * mean (lgnSVtolerances keeps it in atol) */
+     * mean (LGNSVtolerances keeps it in atol) */
     mem->nls_atolv = lgnData(mem->atol_vec);
   }
 }

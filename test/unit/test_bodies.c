@@ -32,6 +32,8 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "rigid_test_util.h"
+
 static int failures = 0;
 
 static void Check(const char *what, double err, double tol)
@@ -40,18 +42,6 @@ static void Check(const char *what, double err, double tol)
   if (!(err <= tol)) failures++;
 }
 
-static double Rand(void) { return 2.0 * rand() / (double)RAND_MAX - 1.0; }
-
-static void RandomConfiguration(int nb, double *qd)
-{
-  int k, i;
-  for (k = 0; k < nb; k++) {
-    double p[4], n = 0;
-    for (i = 0; i < 3; i++) qd[7 * k + i] = Rand();
-    for (i = 0; i < 4; i++) { p[i] = Rand(); n += p[i] * p[i]; }
-    for (i = 0; i < 4; i++) qd[7 * k + 3 + i] = p[i] / sqrt(n);
-  }
-}
 
 static double MaxDiff(SUNMatrix A, SUNMatrix B)
 {
@@ -70,23 +60,6 @@ static double MaxAbs(SUNMatrix A)
   return e;
 }
 
-static double SparseVsDense(SUNMatrix S, SUNMatrix D)
-{
-  sunindextype k, p, n;
-  const int csc = SUNSparseMatrix_SparseType(S) == CSC_MAT;
-  double err = 0;
-  SUNMatrix T = SUNDenseMatrix(SM_ROWS_D(D), SM_COLUMNS_D(D), S->sunctx);
-  SUNMatZero(T);
-  n = csc ? SUNSparseMatrix_Columns(S) : SUNSparseMatrix_Rows(S);
-  for (k = 0; k < n; k++)
-    for (p = SUNSparseMatrix_IndexPointers(S)[k]; p < SUNSparseMatrix_IndexPointers(S)[k + 1]; p++) {
-      sunindextype o = SUNSparseMatrix_IndexValues(S)[p];
-      SM_ELEMENT_D(T, csc ? o : k, csc ? k : o) += SUNSparseMatrix_Data(S)[p];
-    }
-  err = MaxDiff(T, D);
-  SUNMatDestroy(T);
-  return err;
-}
 
 /* ------------------------------------------------------------------------
  * 1. against rigid_bodies.c
