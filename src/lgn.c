@@ -82,8 +82,33 @@ static void ResetCounters(LGNMem mem)
   mem->last_lin_flag = 0;
 }
 
+/* q0 is an element of the group up to rounding: its normalisation (on a
+ * copy, so that a refused q0 leaves the state as it was) is finite. */
+static int CheckNormalisable(LGNMem mem, N_Vector q0, const char *func)
+{
+  N_Vector q = N_VClone(q0);
+  int ok;
+  if (q == NULL) {
+    lgnProcessError(mem, LGN_MEM_FAIL, __LINE__, func, __FILE__,
+                    "A copy of q0 could not be allocated.");
+    return LGN_MEM_FAIL;
+  }
+  N_VScale(SUN_RCONST(1.0), q0, q);
+  ok = LGNGroup_Normalize(mem->G, lgnData(q)) == 0 &&
+       lgnAllFinite(lgnData(q), mem->G->nq);
+  N_VDestroy(q);
+  if (!ok) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "q0 is not an element of the Lie group (it could not be "
+                    "normalised: a zero quaternion?).");
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
 /* The arguments of LGNInit and LGNReInit: a group set, q0 and v0 of its
- * sizes, a finite t0. */
+ * sizes, a finite t0, a q0 that normalises. All is checked before the
+ * state is touched. */
 static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
                              N_Vector v0, const char *func)
 {
@@ -108,28 +133,22 @@ static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
                     "t0 is not finite.");
     return LGN_ILL_INPUT;
   }
-  return LGN_SUCCESS;
+  return CheckNormalisable(mem, q0, func);
 }
 
-/* Copy the (checked) initial state; shared by LGNInit and LGNReInit. */
-static int SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
-                           N_Vector v0, const char *func)
+/* Copy the initial state, checked by CheckInitialState (its normalisation
+ * cannot fail); shared by LGNInit and LGNReInit. */
+static void SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
+                            N_Vector v0)
 {
   N_VScale(SUN_RCONST(1.0), q0, mem->q);
   N_VScale(SUN_RCONST(1.0), v0, mem->v);
-  if (LGNGroup_Normalize(mem->G, lgnData(mem->q)) != 0 ||
-      !lgnAllFinite(lgnData(mem->q), mem->nq)) {
-    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "q0 is not an element of the Lie group (it could not be "
-                    "normalised: a zero quaternion?).");
-    return LGN_ILL_INPUT;
-  }
+  (void)LGNGroup_Normalize(mem->G, lgnData(mem->q));
   mem->tn         = t0;
   mem->user_vdot0 = SUNFALSE;
   mem->user_a0    = SUNFALSE;
   lgnInvalidate(mem, LGN_CHANGE_STATE);
   ResetCounters(mem);
-  return LGN_SUCCESS;
 }
 
 int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
@@ -142,9 +161,8 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
 
   flag = lgnAllocState(mem, q0, v0);
   if (flag != LGN_SUCCESS) return flag;
-  flag = SetInitialState(mem, t0, q0, v0, __func__);
-  if (flag != LGN_SUCCESS) lgnFreeState(mem);
-  return flag;
+  SetInitialState(mem, t0, q0, v0);
+  return LGN_SUCCESS;
 }
 
 int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
@@ -163,7 +181,8 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   }
   flag = CheckInitialState(mem, t0, q0, v0, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  return SetInitialState(mem, t0, q0, v0, __func__);
+  SetInitialState(mem, t0, q0, v0);
+  return LGN_SUCCESS;
 }
 
 /* =============================================================================

@@ -6,8 +6,9 @@
  *    write past its pivot array);
  *  - method parameters that are not finite (alpha = -Inf);
  *  - step sizes whose square or its inverse is not a finite number;
- *  - an initial configuration that is not on the group (zero quaternion) or
- *    has a NaN, and a NaN velocity;
+ *  - an initial configuration that is not on the group (zero quaternion, or
+ *    one whose normalisation overflows: refused without touching the state)
+ *    or has a NaN, and a NaN velocity;
  *  - initial accelerations set after the first step (as LGNSetInitialAux);
  *  - and an object may be resized: LGNSetGroup with another size after
  *    LGNInit drops the state, LGNSolve asks for LGNInit, and LGNInit with
@@ -138,6 +139,29 @@ int main(void)
   /* initial accelerations after the first step */
   flag = LGNSolve(mem, 0.01, &t, q, v, LGN_NORMAL);
   CHECK(flag == LGN_SUCCESS, "run: %s", LGNGetReturnFlagName(flag));
+
+  /* a finite q0 whose normalisation overflows (|q| = 2e300), refused by
+   * LGNReInit and by LGNInit: the state at t = 0.01 is kept (fuzzer finding:
+   * the refused LGNReInit had overwritten q and v) */
+  {
+    N_Vector qbad = N_VClone(q), qk = N_VClone(q), vk = N_VClone(v);
+    double tk = 0.0;
+    N_VConst(1e300, qbad);
+    CHECK(Refused(LGNReInit(mem, 5.0, qbad, v), LGN_ILL_INPUT, "q0 is not an element"),
+          "|q0| = 2e300 to LGNReInit: %s", last_msg);
+    CHECK(Refused(LGNInit(mem, 5.0, qbad, v), LGN_ILL_INPUT, "q0 is not an element"),
+          "|q0| = 2e300 to LGNInit: %s", last_msg);
+    CHECK(LGNGetCurrentTime(mem, &tk) == LGN_SUCCESS && tk == t, "t kept: %g", tk);
+    CHECK(LGNGetDky(mem, t, 0, qk) == LGN_SUCCESS && LGNGetDky(mem, t, 1, vk) == LGN_SUCCESS,
+          "q, v at t still there");
+    N_VLinearSum(1.0, qk, -1.0, q, qk);
+    N_VLinearSum(1.0, vk, -1.0, v, vk);
+    CHECK(N_VMaxNorm(qk) == 0.0 && N_VMaxNorm(vk) == 0.0, "q, v kept: |dq| = %g, |dv| = %g",
+          N_VMaxNorm(qk), N_VMaxNorm(vk));
+    N_VDestroy(qbad);
+    N_VDestroy(qk);
+    N_VDestroy(vk);
+  }
   N_VConst(0.0, vd);
   CHECK(Refused(LGNSetInitialAcceleration(mem, vd, NULL), LGN_ILL_INPUT, "before the first step"),
         "vdot0 after a step: %s", last_msg);
