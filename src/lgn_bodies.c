@@ -39,6 +39,7 @@
 
 #include "groups/lgn_group_impl.h"
 #include "groups/lgn_so3.h"
+#include "lgn_argcheck.h"
 #include "lgn_err.h"
 
 #ifdef LGN_IMPL_H
@@ -249,21 +250,6 @@ static int CheckBody(const struct LGNBodiesRec *B, int k, const char *func)
   return LGN_SUCCESS;
 }
 
-static int CheckVec3(const struct LGNBodiesRec *B, const sunrealtype *x,
-                     const char *name, const char *func)
-{
-  if (x == NULL) {
-    BErr(B, LGN_ILL_INPUT, func, "%s = NULL illegal.", name);
-    return LGN_ILL_INPUT;
-  }
-  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) {
-    BErr(B, LGN_ILL_INPUT, func, "%s = (%g, %g, %g) illegal: not finite.", name,
-         (double)x[0], (double)x[1], (double)x[2]);
-    return LGN_ILL_INPUT;
-  }
-  return LGN_SUCCESS;
-}
-
 static int CheckMassValue(const struct LGNBodiesRec *B, sunrealtype m, const char *func)
 {
   if (!(m > SUN_RCONST(0.0)) || !isfinite(m)) {
@@ -321,7 +307,7 @@ int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m, const sunre
   sunrealtype In[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (B == NULL) return NullBodies(__func__);
   if (CheckBody(B, k, __func__) != LGN_SUCCESS || CheckMassValue(B, m, __func__) != LGN_SUCCESS ||
-      CheckVec3(B, J, "J", __func__) != LGN_SUCCESS)
+      lgnCheckVec3(&B->err, J, "J", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   if (!(J[0] > 0) || !(J[1] > 0) || !(J[2] > 0)) {
     BErr(B, LGN_ILL_INPUT, __func__, "J = (%g, %g, %g) illegal: must be positive.",
@@ -339,7 +325,7 @@ int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m, const sunre
 int LGNBodies_SetGravity(LGNBodies B, const sunrealtype gravity[3])
 {
   if (B == NULL) return NullBodies(__func__);
-  if (CheckVec3(B, gravity, "gravity", __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
+  if (lgnCheckVec3(&B->err, gravity, "gravity", __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
   memcpy(B->gravity, gravity, sizeof B->gravity);
   return LGN_SUCCESS;
 }
@@ -387,8 +373,8 @@ int LGNBodies_AddSpringDamper(LGNBodies B, int a, const sunrealtype sa[3], int b
 {
   Element *e;
   if (B == NULL) return NullBodies(__func__);
-  if (CheckPair(B, a, b, __func__) != LGN_SUCCESS || CheckVec3(B, sa, "sa", __func__) != LGN_SUCCESS ||
-      CheckVec3(B, sb, "sb", __func__) != LGN_SUCCESS || CheckCoef(B, k, "k", __func__) != LGN_SUCCESS ||
+  if (CheckPair(B, a, b, __func__) != LGN_SUCCESS || lgnCheckVec3(&B->err, sa, "sa", __func__) != LGN_SUCCESS ||
+      lgnCheckVec3(&B->err, sb, "sb", __func__) != LGN_SUCCESS || CheckCoef(B, k, "k", __func__) != LGN_SUCCESS ||
       CheckCoef(B, c, "c", __func__) != LGN_SUCCESS || CheckCoef(B, L0, "L0", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   e = NewElement(B, __func__);
@@ -511,17 +497,6 @@ sunindextype LGNBodies_TangentNnz(LGNBodies B)
 /* ---------------------------------------------------------------------------
  * Evaluation helpers
  * ------------------------------------------------------------------------ */
-
-static int CheckVec(const struct LGNBodiesRec *B, N_Vector x, sunindextype len,
-                    const char *name, const char *func)
-{
-  if (x == NULL || N_VGetArrayPointer(x) == NULL || N_VGetLength(x) != len) {
-    BErr(B, LGN_ILL_INPUT, func, "%s is NULL or does not have length %lld.", name,
-         (long long)len);
-    return LGN_ILL_INPUT;
-  }
-  return LGN_SUCCESS;
-}
 
 static int CheckMat(const struct LGNBodiesRec *B, SUNMatrix A, const char *name,
                     const char *func)
@@ -721,7 +696,7 @@ static int WriteBlocks(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
 int LGNBodies_Mass(LGNBodies B, N_Vector q, SUNMatrix M)
 {
   if (B == NULL) return NullBodies(__func__);
-  if (CheckVec(B, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
+  if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
       CheckMat(B, M, "M", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   return WriteBlocks(B, M, SUNTRUE, __func__);
@@ -733,9 +708,9 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
   sunrealtype *gd;
   int k, i, side;
   if (B == NULL) return NullBodies(__func__);
-  if (CheckVec(B, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
-      CheckVec(B, v, B->G->nv, "v", __func__) != LGN_SUCCESS ||
-      CheckVec(B, g, B->G->nv, "g", __func__) != LGN_SUCCESS)
+  if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
+      lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS ||
+      lgnCheckSerialVector(&B->err, g, B->G->nv, "g", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
@@ -798,8 +773,8 @@ int LGNBodies_Energy(LGNBodies B, N_Vector q, N_Vector v, sunrealtype *kinetic,
   sunrealtype T = SUN_RCONST(0.0), V = SUN_RCONST(0.0), Jw[3];
   int k;
   if (B == NULL) return NullBodies(__func__);
-  if (CheckVec(B, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
-      CheckVec(B, v, B->G->nv, "v", __func__) != LGN_SUCCESS)
+  if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
+      lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
@@ -1006,8 +981,8 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
 static int TangentPublic(struct LGNBodiesRec *B, N_Vector q, N_Vector v, SUNMatrix A,
                          sunbooleantype stiff, const char *func)
 {
-  if (CheckVec(B, q, B->G->nq, "q", func) != LGN_SUCCESS ||
-      CheckVec(B, v, B->G->nv, "v", func) != LGN_SUCCESS ||
+  if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", func) != LGN_SUCCESS ||
+      lgnCheckSerialVector(&B->err, v, B->G->nv, "v", func) != LGN_SUCCESS ||
       CheckMat(B, A, stiff ? "K" : "C", func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   if (B->kptr == NULL && BuildStructure(B) != LGN_SUCCESS) {

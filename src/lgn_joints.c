@@ -36,6 +36,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
+#include "lgn_argcheck.h"
 #include "lgn_err.h"
 
 #ifdef LGN_IMPL_H
@@ -324,22 +325,6 @@ static int CheckBodies(const struct LGNJointsRec *J, int a, int b, const char *f
   return LGN_SUCCESS;
 }
 
-/* A point or axis (named name) given to the public function func. */
-static int CheckPoint(const struct LGNJointsRec *J, const sunrealtype *x,
-                      const char *name, const char *func)
-{
-  if (x == NULL) {
-    JErr(J, LGN_ILL_INPUT, func, "%s = NULL illegal.", name);
-    return LGN_ILL_INPUT;
-  }
-  if (!isfinite(x[0]) || !isfinite(x[1]) || !isfinite(x[2])) {
-    JErr(J, LGN_ILL_INPUT, func, "%s = (%g, %g, %g) illegal: not finite.", name,
-         (double)x[0], (double)x[1], (double)x[2]);
-    return LGN_ILL_INPUT;
-  }
-  return LGN_SUCCESS;
-}
-
 /* Label the primitives from first on as joint number J->njoints of kind
  * kind (after an Add* call succeeded). */
 static void EndJoint(struct LGNJointsRec *J, int first, const char *kind)
@@ -400,8 +385,8 @@ int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
   int flag;
   if (J == NULL) return NullJoints(__func__);
   flag = CheckBodies(J, a, b, __func__);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sa, "sa", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sb, "sb", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sa, "sa", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sb, "sb", __func__);
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
   if (flag == LGN_SUCCESS) EndJoint(J, J->nprim - 1, "spherical");
   return flag;
@@ -429,10 +414,10 @@ static int CheckJointArgs(const struct LGNJointsRec *J, int a,
                           const char *func)
 {
   int flag = CheckBodies(J, a, b, func);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sa, "sa", func);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, axis_a, "axis_a", func);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, sb, "sb", func);
-  if (flag == LGN_SUCCESS) flag = CheckPoint(J, axis_b, "axis_b", func);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sa, "sa", func);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, axis_a, "axis_a", func);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sb, "sb", func);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, axis_b, "axis_b", func);
   return flag;
 }
 
@@ -611,19 +596,6 @@ int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
  * Evaluation
  * ------------------------------------------------------------------------ */
 
-/* The vector x (named name) given to the public function func: serial data
- * of length len. */
-static int CheckVec(const struct LGNJointsRec *J, N_Vector x, sunindextype len,
-                    const char *name, const char *func)
-{
-  if (x == NULL || N_VGetArrayPointer(x) == NULL || N_VGetLength(x) != len) {
-    JErr(J, LGN_ILL_INPUT, func, "%s is NULL or does not have length %lld.",
-         name, (long long)len);
-    return LGN_ILL_INPUT;
-  }
-  return LGN_SUCCESS;
-}
-
 /* The geometry of a LINE primitive: r = R_a e, d = p_b - p_a, rho =
  * R_a^T (p_b - x_a), y = R_b^T r, and its rows of B at a and b
  * (translation, rotation): ga = (-(P_a^T r), e x rho), gb = (P_b^T r,
@@ -661,8 +633,8 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   Pose A, B;
   int k, i, flag;
   if (J == NULL) return NullJoints(__func__);
-  flag = CheckVec(J, q, J->G->nq, "q", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVec(J, phi, J->m, "phi", __func__);
+  flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phi, J->m, "phi", __func__);
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   f  = N_VGetArrayPointer(phi);
@@ -900,7 +872,7 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
   const sunrealtype *qd;
   int flag;
   if (J == NULL) return NullJoints(__func__);
-  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (B == NULL ||
       (SUNMatGetID(B) == SUNMATRIX_DENSE &&
@@ -939,10 +911,10 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
   Pose P[2];
   int k, i, side, flag;
   if (J == NULL) return NullJoints(__func__);
-  flag = CheckVec(J, q, J->G->nq, "q", __func__);
+  flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   /* no joints: lambda has no entries (and may have no data) */
-  if (flag == LGN_SUCCESS && J->m > 0) flag = CheckVec(J, lambda, J->m, "lambda", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVec(J, f, J->G->nv, "f", __func__);
+  if (flag == LGN_SUCCESS && J->m > 0) flag = lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, f, J->G->nv, "f", __func__);
   if (flag != LGN_SUCCESS) return flag;
   fd = N_VGetArrayPointer(f);
   memset(fd, 0, (size_t)J->G->nv * sizeof(sunrealtype)); /* the data checked above */
@@ -1056,9 +1028,9 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
   Pose A, B;
   int k, i, flag;
   if (J == NULL) return NullJoints(__func__);
-  flag = CheckVec(J, q, J->G->nq, "q", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVec(J, v, J->G->nv, "v", __func__);
-  if (flag == LGN_SUCCESS) flag = CheckVec(J, z, J->m, "z", __func__);
+  flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, v, J->G->nv, "v", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, z, J->m, "z", __func__);
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
@@ -1361,8 +1333,8 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
   int k, b, i, r, c;
   if (J == NULL) return NullJoints(__func__);
   nv = J->G->nv;
-  if (CheckVec(J, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
-      (J->m > 0 && CheckVec(J, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
+  if (lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
+      (J->m > 0 && lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
     return LGN_ILL_INPUT;
   if (K == NULL ||
       (SUNMatGetID(K) == SUNMATRIX_DENSE && (SM_ROWS_D(K) != nv || SM_COLUMNS_D(K) != nv)) ||
