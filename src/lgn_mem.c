@@ -674,7 +674,6 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   *leniw = iw;
 }
 
-
 /* =============================================================================
  * The sparse work space (lgn_sparse.h): patterns, maps and colourings
  * ===========================================================================*/

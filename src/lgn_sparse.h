@@ -117,5 +117,4 @@ int lgnCscReserve(LGNCsc *A, sunindextype nrows, sunindextype ncols,
 void lgnColoringFree(LGNColoring *c);
 int lgnColorColumns(const LGNCsc *sym, sunindextype *mark, LGNColoring *c);
 
-
 #endif

@@ -42,7 +42,6 @@ static void Check(const char *what, double err, double tol)
   if (!(err <= tol)) failures++;
 }
 
-
 static double MaxDiff(SUNMatrix A, SUNMatrix B)
 {
   sunindextype k;
@@ -59,7 +58,6 @@ static double MaxAbs(SUNMatrix A)
   for (k = 0; k < SM_ROWS_D(A) * SM_COLUMNS_D(A); k++) e = fmax(e, fabs(SM_DATA_D(A)[k]));
   return e;
 }
-
 
 /* ------------------------------------------------------------------------
  * 1. against rigid_bodies.c

@@ -39,9 +39,6 @@ static void Check(const char *what, double err, double tol)
   if (!(err <= tol)) failures++;
 }
 
-
-
-
 /* Leave a sparse matrix as a caller may between calls: no entries (index
  * pointers zeroed, as Lignum does before an LGNConstrJacFn), wrong but
  * valid indices and NaN data in all of its capacity. */

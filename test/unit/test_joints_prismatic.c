@@ -42,9 +42,6 @@ static void Check(const char *what, double err, double tol)
   if (!(err <= tol)) failures++;
 }
 
-
-
-
 static const double sa[3] = {0.1, -0.2, 0.5}, sb[3] = {-0.3, 0.2, -0.4};
 static const double ax[3] = {0, 0, 1}, axy[3] = {1, 1, 0.5}, ay[3] = {0, 2, 0};
 
