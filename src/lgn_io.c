@@ -443,28 +443,32 @@ int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax)
   return LGN_SUCCESS;
 }
 
+/* A limit of the step (maxnef, maxncf, maxiters): >= 0, where 0 restores
+ * the default dflt. */
+static int SetLimit(LGNMem mem, int value, int dflt, const char *name,
+                    const char *func, int *limit)
+{
+  if (value < 0) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %d illegal: must be >= 0.", name, value);
+    return LGN_ILL_INPUT;
+  }
+  *limit = value == 0 ? dflt : value;
+  return LGN_SUCCESS;
+}
+
 int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (maxnef < 0) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "maxnef = %d illegal: must be >= 0.", maxnef);
-    return LGN_ILL_INPUT;
-  }
-  mem->maxnef = maxnef == 0 ? LGN_MAXNEF_DEFAULT : maxnef;
-  return LGN_SUCCESS;
+  return SetLimit(mem, maxnef, LGN_MAXNEF_DEFAULT, "maxnef", __func__, &mem->maxnef);
 }
 
 int LGNSetMaxConvFails(void *lgn_mem, int maxncf)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (maxncf < 0) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "maxncf = %d illegal: must be >= 0.", maxncf);
-    return LGN_ILL_INPUT;
-  }
-  mem->maxncf = maxncf == 0 ? LGN_MAXNCF_DEFAULT : maxncf;
-  return LGN_SUCCESS;
+  return SetLimit(mem, maxncf, LGN_MAXNCF_DEFAULT, "maxncf", __func__, &mem->maxncf);
 }
 
 int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon)
@@ -593,12 +597,7 @@ int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (maxiters < 0) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "maxiters = %d illegal: must be >= 0.", maxiters);
-    return LGN_ILL_INPUT;
-  }
-  mem->maxcor = maxiters == 0 ? LGN_MAXCOR_DEFAULT : maxiters;
-  return LGN_SUCCESS;
+  return SetLimit(mem, maxiters, LGN_MAXCOR_DEFAULT, "maxiters", __func__, &mem->maxcor);
 }
 
 int LGNSetNewtonMode(void *lgn_mem, int mode)
