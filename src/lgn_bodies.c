@@ -101,38 +101,6 @@ static int NullBodies(const char *func)
  * 3-vector and 3x3 (row-major) kernels
  * ------------------------------------------------------------------------ */
 
-static void Cross(const sunrealtype *x, const sunrealtype *y, sunrealtype *z)
-{
-  z[0] = x[1] * y[2] - x[2] * y[1];
-  z[1] = x[2] * y[0] - x[0] * y[2];
-  z[2] = x[0] * y[1] - x[1] * y[0];
-}
-
-static sunrealtype Dot(const sunrealtype *x, const sunrealtype *y)
-{
-  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-}
-
-/* y = A x, y = A^T x (A row-major) */
-static void MV(const sunrealtype *A, const sunrealtype *x, sunrealtype *y)
-{
-  int i;
-  for (i = 0; i < 3; i++) y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
-}
-
-static void MTV(const sunrealtype *A, const sunrealtype *x, sunrealtype *y)
-{
-  int i;
-  for (i = 0; i < 3; i++) y[i] = A[i] * x[0] + A[3 + i] * x[1] + A[6 + i] * x[2];
-}
-
-static void Skew(const sunrealtype *x, sunrealtype *X)
-{
-  X[0] = 0;     X[1] = -x[2]; X[2] = x[1];
-  X[3] = x[2];  X[4] = 0;     X[5] = -x[0];
-  X[6] = -x[1]; X[7] = x[0];  X[8] = 0;
-}
-
 /* C = A B, C = A^T B (3x3 row-major); C may not alias. */
 static void MM(const sunrealtype *A, const sunrealtype *Bm, sunrealtype *C)
 {
@@ -550,14 +518,14 @@ static void PointKin(const Pose *P, const sunrealtype *s, sunrealtype *H,
     pd[0] = pd[1] = pd[2] = SUN_RCONST(0.0);
     return;
   }
-  Skew(s, S);
+  lgnSO3_Tilde(s, S);
   MM(P->R, S, RS);
   for (i = 0; i < 3; i++)
     for (j = 0; j < 3; j++) {
       H[6 * i + j]     = P->se3 ? P->R[3 * i + j] : (i == j ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
       H[6 * i + 3 + j] = -RS[3 * i + j];
     }
-  MV(P->R, s, t);
+  lgnMat3Apply(P->R, s, t);
   for (i = 0; i < 3; i++) p[i] = P->x[i] + t[i];
   for (i = 0; i < 3; i++)
     pd[i] = H[6 * i] * P->v[0] + H[6 * i + 1] * P->v[1] + H[6 * i + 2] * P->v[2] +
@@ -586,16 +554,16 @@ static int SpringEval(const struct LGNBodiesRec *B, const Element *e,
     S->d[i]  = pb[i] - pa[i];
     S->dd[i] = vb[i] - va[i];
   }
-  S->L = sqrt(Dot(S->d, S->d));
+  S->L = sqrt(lgnVec3Dot(S->d, S->d));
   if (!(S->L > SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
-                   (SUN_RCONST(1.0) + sqrt(Dot(pa, pa)) + sqrt(Dot(pb, pb))))) {
+                   (SUN_RCONST(1.0) + sqrt(lgnVec3Dot(pa, pa)) + sqrt(lgnVec3Dot(pb, pb))))) {
     BErr(B, LGN_ILL_INPUT, func,
          "spring-damper %d: length %g (the points coincide): its direction is undefined.",
          (int)(e - B->elem), (double)S->L);
     return LGN_ILL_INPUT;
   }
   for (i = 0; i < 3; i++) S->n[i] = S->d[i] / S->L;
-  S->f = e->k * (S->L - e->L0) + e->c * Dot(S->n, S->dd);
+  S->f = e->k * (S->L - e->L0) + e->c * lgnVec3Dot(S->n, S->dd);
   return LGN_SUCCESS;
 }
 
@@ -719,13 +687,13 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
     const sunrealtype *u = vd + B->voff[k], *w = u + 3, *J = B->inertia + 9 * (size_t)k;
     const sunrealtype m = B->mass[k];
     sunrealtype *gk = gd + B->voff[k], Jw[3], R[9], mu[3], f[3];
-    MV(J, w, Jw);
-    Cross(w, Jw, gk + 3);
+    lgnMat3Apply(J, w, Jw);
+    lgnVec3Cross(w, Jw, gk + 3);
     for (i = 0; i < 3; i++) f[i] = m * B->gravity[i];
     if (B->se3[k]) {
       LGNQuaternionToRotation(qd + B->qoff[k] + 3, R);
-      MTV(R, f, mu);
-      Cross(w, u, gk);
+      lgnMat3ApplyT(R, f, mu);
+      lgnVec3Cross(w, u, gk);
       for (i = 0; i < 3; i++) gk[i] = m * gk[i] - mu[i];
     } else {
       for (i = 0; i < 3; i++) gk[i] = -f[i];
@@ -753,12 +721,12 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
       RotEval(B, e, qd, vd, &S);
       if (e->a != LGN_GROUND) {
         sunrealtype *ga = gd + B->voff[e->a] + 3;
-        MV(S.Rrel, S.P[1].v + 3, t1);
+        lgnMat3Apply(S.Rrel, S.P[1].v + 3, t1);
         for (i = 0; i < 3; i++) ga[i] += -e->k * S.theta[i] - e->c * (t1[i] - S.P[0].v[3 + i]);
       }
       if (e->b != LGN_GROUND) {
         sunrealtype *gb = gd + B->voff[e->b] + 3;
-        MTV(S.Rrel, S.P[0].v + 3, t2);
+        lgnMat3ApplyT(S.Rrel, S.P[0].v + 3, t2);
         for (i = 0; i < 3; i++) gb[i] += e->k * S.theta[i] + e->c * (S.P[1].v[3 + i] - t2[i]);
       }
     }
@@ -780,9 +748,9 @@ int LGNBodies_Energy(LGNBodies B, N_Vector q, N_Vector v, sunrealtype *kinetic,
   vd = N_VGetArrayPointer(v);
   for (k = 0; k < B->nb; k++) {
     const sunrealtype *u = vd + B->voff[k], *w = u + 3;
-    MV(B->inertia + 9 * (size_t)k, w, Jw);
-    T += SUN_RCONST(0.5) * (B->mass[k] * Dot(u, u) + Dot(w, Jw));
-    V -= B->mass[k] * Dot(B->gravity, qd + B->qoff[k]);
+    lgnMat3Apply(B->inertia + 9 * (size_t)k, w, Jw);
+    T += SUN_RCONST(0.5) * (B->mass[k] * lgnVec3Dot(u, u) + lgnVec3Dot(w, Jw));
+    V -= B->mass[k] * lgnVec3Dot(B->gravity, qd + B->qoff[k]);
   }
   for (k = 0; k < B->nelem; k++) {
     const Element *e = B->elem + k;
@@ -793,7 +761,7 @@ int LGNBodies_Energy(LGNBodies B, N_Vector q, N_Vector v, sunrealtype *kinetic,
     } else {
       RotState S;
       RotEval(B, e, qd, vd, &S);
-      V += SUN_RCONST(0.5) * e->k * Dot(S.theta, S.theta);
+      V += SUN_RCONST(0.5) * e->k * lgnVec3Dot(S.theta, S.theta);
     }
   }
   if (kinetic != NULL) *kinetic = T;
@@ -838,22 +806,22 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
       /* d(-R^T m gvec)/dtheta = -(R^T m gvec)~ */
       LGNQuaternionToRotation(qd + B->qoff[k] + 3, R);
       for (i = 0; i < 3; i++) f[i] = B->mass[k] * B->gravity[i];
-      MTV(R, f, mu);
-      Skew(mu, X);
+      lgnMat3ApplyT(R, f, mu);
+      lgnSO3_Tilde(mu, X);
       AddSub(blk, 0, 3, X, SUN_RCONST(-1.0));
       continue;
     }
     /* d(w x J w)/dw = w~ J - (J w)~ */
-    Skew(w, X);
+    lgnSO3_Tilde(w, X);
     MM(X, J, R);
     AddSub(blk, 3, 3, R, SUN_RCONST(1.0));
-    MV(J, w, t);
-    Skew(t, X);
+    lgnMat3Apply(J, w, t);
+    lgnSO3_Tilde(t, X);
     AddSub(blk, 3, 3, X, SUN_RCONST(-1.0));
     if (B->se3[k]) { /* d m (w x U) = m w~ dU - m U~ dw */
-      Skew(w, X);
+      lgnSO3_Tilde(w, X);
       AddSub(blk, 0, 0, X, B->mass[k]);
-      Skew(u, X);
+      lgnSO3_Tilde(u, X);
       AddSub(blk, 0, 3, X, -B->mass[k]);
     }
   }
@@ -873,10 +841,10 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
         sunrealtype y[3], Y[9], RY[9];
         for (i = 0; i < 18; i++) D[sa][i] = sign * S.H[sa][i];
         /* E = sign [0, -R (Omega x s + [SE(3)] U)~] */
-        Cross(P->v + 3, sa == 0 ? e->sa : e->sb, y);
+        lgnVec3Cross(P->v + 3, sa == 0 ? e->sa : e->sb, y);
         if (P->se3)
           for (i = 0; i < 3; i++) y[i] += P->v[i];
-        Skew(y, Y);
+        lgnSO3_Tilde(y, Y);
         MM(P->R, Y, RY);
         for (i = 0; i < 3; i++)
           for (j = 0; j < 3; j++) {
@@ -887,7 +855,7 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
       }
       if (stiff) {
         const sunrealtype fl = S.f / S.L, cl = e->c / S.L;
-        sunrealtype sdot = Dot(S.n, S.dd);
+        sunrealtype sdot = lgnVec3Dot(S.n, S.dd);
         for (i = 0; i < 3; i++) Pp[i] = S.dd[i] - sdot * S.n[i]; /* (I - nn^T) Deltadot */
         for (i = 0; i < 3; i++)
           for (j = 0; j < 3; j++)
@@ -912,9 +880,9 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
           const sunrealtype sign = sa == 0 ? SUN_RCONST(-1.0) : SUN_RCONST(1.0);
           sunrealtype mu[3], Sx[9], Mu[9], SM[9];
           sunrealtype *blk = Block(B, body[sa], body[sa]);
-          MTV(S.P[sa].R, F, mu);
-          Skew(sa == 0 ? e->sa : e->sb, Sx);
-          Skew(mu, Mu);
+          lgnMat3ApplyT(S.P[sa].R, F, mu);
+          lgnSO3_Tilde(sa == 0 ? e->sa : e->sb, Sx);
+          lgnSO3_Tilde(mu, Mu);
           MM(Sx, Mu, SM);
           AddSub(blk, 3, 3, SM, sign);
           if (S.P[sa].se3) AddSub(blk, 0, 3, Mu, sign);
@@ -950,25 +918,25 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
           }
           if (sa == 1 && sb == 1) { /* k T^-1 - c (Rrel^T Omega_a)~ */
             AddSub(blk, 3, 3, Ti, e->k);
-            MV(RT, S.P[0].v + 3, t);
-            Skew(t, X);
+            lgnMat3Apply(RT, S.P[0].v + 3, t);
+            lgnSO3_Tilde(t, X);
             AddSub(blk, 3, 3, X, -e->c);
           } else if (sa == 1 && sb == 0) { /* -k T^-1 Rrel^T + c Rrel^T Omega_a~ */
             MM(Ti, RT, Z);
             AddSub(blk, 3, 3, Z, -e->k);
-            Skew(S.P[0].v + 3, X);
+            lgnSO3_Tilde(S.P[0].v + 3, X);
             MM(RT, X, Y);
             AddSub(blk, 3, 3, Y, e->c);
           } else if (sa == 0 && sb == 1) { /* -k T^-1 + c Rrel Omega_b~ */
             AddSub(blk, 3, 3, Ti, -e->k);
-            Skew(S.P[1].v + 3, X);
+            lgnSO3_Tilde(S.P[1].v + 3, X);
             MM(S.Rrel, X, Y);
             AddSub(blk, 3, 3, Y, e->c);
           } else { /* k T^-1 Rrel^T - c (Rrel Omega_b)~ */
             MM(Ti, RT, Z);
             AddSub(blk, 3, 3, Z, e->k);
-            MV(S.Rrel, S.P[1].v + 3, t);
-            Skew(t, X);
+            lgnMat3Apply(S.Rrel, S.P[1].v + 3, t);
+            lgnSO3_Tilde(t, X);
             AddSub(blk, 3, 3, X, -e->c);
           }
         }

@@ -36,6 +36,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
+#include "groups/lgn_so3.h"
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
 
@@ -114,32 +115,9 @@ static int NullJoints(const char *func)
 }
 
 /* ---------------------------------------------------------------------------
- * Small 3-vector kernels (R row-major, as LGNQuaternionToRotation writes it)
+ * Column-major 3x3 kernels (the row-major 3-vector ones, for R as
+ * LGNQuaternionToRotation writes it, are in groups/lgn_so3.h)
  * ------------------------------------------------------------------------ */
-
-static void Cross(const sunrealtype *x, const sunrealtype *y, sunrealtype *z)
-{
-  z[0] = x[1] * y[2] - x[2] * y[1];
-  z[1] = x[2] * y[0] - x[0] * y[2];
-  z[2] = x[0] * y[1] - x[1] * y[0];
-}
-
-static void RotApply(const sunrealtype *R, const sunrealtype *x, sunrealtype *y)
-{
-  int i;
-  for (i = 0; i < 3; i++) y[i] = R[3 * i] * x[0] + R[3 * i + 1] * x[1] + R[3 * i + 2] * x[2];
-}
-
-static void RotApplyT(const sunrealtype *R, const sunrealtype *x, sunrealtype *y)
-{
-  int i;
-  for (i = 0; i < 3; i++) y[i] = R[i] * x[0] + R[3 + i] * x[1] + R[6 + i] * x[2];
-}
-
-static sunrealtype Dot(const sunrealtype *x, const sunrealtype *y)
-{
-  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
-}
 
 /* x~ as a column-major 3x3 (X[i + 3 j]). */
 static void Skew(const sunrealtype *x, sunrealtype *X)
@@ -396,7 +374,7 @@ int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
 static int Normalised(const struct LGNJointsRec *J, const sunrealtype *x,
                       sunrealtype *y, const char *name, const char *func)
 {
-  sunrealtype n = sqrt(Dot(x, x));
+  sunrealtype n = sqrt(lgnVec3Dot(x, x));
   if (!(n > SUN_RCONST(0.0)) || !isfinite(n)) {
     JErr(J, LGN_ILL_INPUT, func, "%s is zero or not finite.", name);
     return LGN_ILL_INPUT;
@@ -435,9 +413,9 @@ int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
   /* e1, e2: an orthonormal pair perpendicular to axis_a */
   t[0] = t[1] = t[2] = SUN_RCONST(0.0);
   t[fabs(n[0]) < SUN_RCONST(0.6) ? 0 : (fabs(n[1]) < SUN_RCONST(0.6) ? 1 : 2)] = SUN_RCONST(1.0);
-  Cross(n, t, e1);
+  lgnVec3Cross(n, t, e1);
   Normalised(J, e1, e1, "e1", __func__); /* |n x t| >= 0.8: cannot fail */
-  Cross(n, e1, e2);
+  lgnVec3Cross(n, e1, e2);
   first = J->nprim;
   flag = AddPrimitive(J, PRIM_POINT, a, sa, b, sb, __func__);
   if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
@@ -469,12 +447,12 @@ static void PerpPair(const sunrealtype *n, sunrealtype *e1, sunrealtype *e2)
 {
   sunrealtype t[3] = {0, 0, 0}, l;
   t[fabs(n[0]) < SUN_RCONST(0.6) ? 0 : (fabs(n[1]) < SUN_RCONST(0.6) ? 1 : 2)] = SUN_RCONST(1.0);
-  Cross(n, t, e1);
-  l = sqrt(Dot(e1, e1)); /* |n x t| >= 0.8 */
+  lgnVec3Cross(n, t, e1);
+  l = sqrt(lgnVec3Dot(e1, e1)); /* |n x t| >= 0.8 */
   e1[0] /= l;
   e1[1] /= l;
   e1[2] /= l;
-  Cross(n, e1, e2);
+  lgnVec3Cross(n, e1, e2);
 }
 
 /* Append a LINE primitive: (R_a e) . (p_b - p_a). */
@@ -500,8 +478,8 @@ int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
   /* R0: the smallest rotation taking c to n (row-major); the locked
    * relative rotation is R_a^T R_b = R0 */
   PerpPair(c, d1, d2);
-  cs = Dot(c, n);
-  Cross(c, n, k);
+  cs = lgnVec3Dot(c, n);
+  lgnVec3Cross(c, n, k);
   if (cs > SUN_RCONST(-1.0) + SUN_RCONST(1e-8)) {
     sunrealtype K[9], K2[9];
     K[0] = 0;     K[1] = -k[2]; K[2] = k[1];
@@ -519,8 +497,8 @@ int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
       for (j = 0; j < 3; j++)
         R0[3 * i + j] = SUN_RCONST(2.0) * d1[i] * d1[j] - (i == j ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
   }
-  RotApply(R0, d1, e1);
-  RotApply(R0, d2, e2);
+  lgnMat3Apply(R0, d1, e1);
+  lgnMat3Apply(R0, d2, e2);
   /* rotation locked: (R_a R0 d1).(R_b c), (R_a R0 d2).(R_b c), (R_a R0 d1).(R_b d2);
    * sb on the line through sa along axis_a: e1, e2 perpendicular to it */
   first = J->nprim;
@@ -609,21 +587,21 @@ static void LineGeometry(const Pose *A, const Pose *B, const Primitive *p, LineG
 {
   sunrealtype ya[3], yb[3], t[3];
   int i;
-  RotApply(A->R, p->e, L->r);
-  RotApply(A->R, p->u, ya);
-  RotApply(B->R, p->w, yb);
+  lgnMat3Apply(A->R, p->e, L->r);
+  lgnMat3Apply(A->R, p->u, ya);
+  lgnMat3Apply(B->R, p->w, yb);
   for (i = 0; i < 3; i++) {
     L->d[i] = B->x[i] + yb[i] - A->x[i] - ya[i];
     t[i]    = B->x[i] + yb[i] - A->x[i];
   }
-  RotApplyT(A->R, t, L->rho);
-  RotApplyT(B->R, L->r, L->y);
+  lgnMat3ApplyT(A->R, t, L->rho);
+  lgnMat3ApplyT(B->R, L->r, L->y);
   for (i = 0; i < 3; i++) {
     L->ga[i] = -(A->se3 ? p->e[i] : L->r[i]);
     L->gb[i] = B->se3 ? L->y[i] : L->r[i];
   }
-  Cross(p->e, L->rho, L->ga + 3);
-  Cross(p->w, L->y, L->gb + 3);
+  lgnVec3Cross(p->e, L->rho, L->ga + 3);
+  lgnVec3Cross(p->w, L->y, L->gb + 3);
 }
 
 int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
@@ -643,16 +621,16 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
     const Primitive *p = J->prim + k;
     GetPose(J, p->a, qd, NULL, &A);
     GetPose(J, p->b, qd, NULL, &B);
-    RotApply(A.R, p->u, ya);
-    RotApply(B.R, p->w, yb);
+    lgnMat3Apply(A.R, p->u, ya);
+    lgnMat3Apply(B.R, p->w, yb);
     if (p->kind == PRIM_POINT)
       for (i = 0; i < 3; i++) f[p->row + i] = A.x[i] + ya[i] - B.x[i] - yb[i];
     else if (p->kind == PRIM_LINE) {
       LineGeom L;
       LineGeometry(&A, &B, p, &L);
-      f[p->row] = Dot(L.r, L.d);
+      f[p->row] = lgnVec3Dot(L.r, L.d);
     } else
-      f[p->row] = Dot(ya, yb);
+      f[p->row] = lgnVec3Dot(ya, yb);
   }
   return LGN_SUCCESS;
 }
@@ -729,12 +707,12 @@ static void PerpRows(const Pose *A, const Pose *B, const sunrealtype *e,
                      const sunrealtype *c, sunrealtype g[2][3])
 {
   sunrealtype t1[3], t2[3];
-  RotApply(B->R, c, t1);
-  RotApplyT(A->R, t1, t2);
-  Cross(e, t2, g[0]);
-  RotApply(A->R, e, t1);
-  RotApplyT(B->R, t1, t2);
-  Cross(c, t2, g[1]);
+  lgnMat3Apply(B->R, c, t1);
+  lgnMat3ApplyT(A->R, t1, t2);
+  lgnVec3Cross(e, t2, g[0]);
+  lgnMat3Apply(A->R, e, t1);
+  lgnMat3ApplyT(B->R, t1, t2);
+  lgnVec3Cross(c, t2, g[1]);
 }
 
 /* The entries of B (rotations from FillRotations) in generation order:
@@ -947,8 +925,8 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
         for (i = 0; i < 3; i++) fb[3 + i] += l[0] * g[side][i];
         continue;
       }
-      RotApplyT(P[side].R, l, mu);
-      Cross(side == 0 ? p->u : p->w, mu, t);
+      lgnMat3ApplyT(P[side].R, l, mu);
+      lgnVec3Cross(side == 0 ? p->u : p->w, mu, t);
       for (i = 0; i < 3; i++) {
         fb[i]     += sign * (P[side].se3 ? mu[i] : l[i]);
         fb[3 + i] += sign * t[i];
@@ -967,9 +945,9 @@ static void Accel(const Pose *P, const sunrealtype *y, sunrealtype *out)
     out[0] = out[1] = out[2] = SUN_RCONST(0.0);
     return;
   }
-  Cross(P->v + 3, y, t1);
-  Cross(P->v + 3, t1, t2);
-  RotApply(P->R, t2, out);
+  lgnVec3Cross(P->v + 3, y, t1);
+  lgnVec3Cross(P->v + 3, t1, t2);
+  lgnMat3Apply(P->R, t2, out);
 }
 
 /* Velocity and acceleration of the point x + R s along constant body
@@ -984,17 +962,17 @@ static void PointMotion(const Pose *P, const sunrealtype *s, sunrealtype *pd,
     for (i = 0; i < 3; i++) pd[i] = pdd[i] = SUN_RCONST(0.0);
     return;
   }
-  Cross(P->v + 3, s, t1);
-  RotApply(P->R, t1, pd);
+  lgnVec3Cross(P->v + 3, s, t1);
+  lgnMat3Apply(P->R, t1, pd);
   if (P->se3) {
-    RotApply(P->R, P->v, t2);
+    lgnMat3Apply(P->R, P->v, t2);
     for (i = 0; i < 3; i++) pd[i] += t2[i];
   } else
     for (i = 0; i < 3; i++) pd[i] += P->v[i];
   Accel(P, s, pdd);
   if (P->se3) {
-    Cross(P->v + 3, P->v, t1);
-    RotApply(P->R, t1, t2);
+    lgnVec3Cross(P->v + 3, P->v, t1);
+    lgnMat3Apply(P->R, t1, t2);
     for (i = 0; i < 3; i++) pdd[i] += t2[i];
   }
 }
@@ -1008,8 +986,8 @@ static sunrealtype LineCurvature(const Pose *A, const Pose *B, const Primitive *
   LineGeometry(A, B, p, &L);
   for (i = 0; i < 3; i++) rd[i] = rdd[i] = SUN_RCONST(0.0);
   if (!A->ground) { /* r = R_a e turns with a */
-    Cross(A->v + 3, p->e, t);
-    RotApply(A->R, t, rd);
+    lgnVec3Cross(A->v + 3, p->e, t);
+    lgnMat3Apply(A->R, t, rd);
     Accel(A, p->e, rdd);
   }
   PointMotion(A, p->u, pa, paa);
@@ -1018,7 +996,7 @@ static sunrealtype LineCurvature(const Pose *A, const Pose *B, const Primitive *
     dd[i]  = pb[i] - pa[i];
     ddd[i] = pbb[i] - paa[i];
   }
-  return Dot(rdd, L.d) + SUN_RCONST(2.0) * Dot(rd, dd) + Dot(L.r, ddd);
+  return lgnVec3Dot(rdd, L.d) + SUN_RCONST(2.0) * lgnVec3Dot(rd, dd) + lgnVec3Dot(L.r, ddd);
 }
 
 int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
@@ -1049,30 +1027,30 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
     if (p->kind == PRIM_POINT) {
       /* SE(3): xdot = R U, so x'' = R (Omega x U) at constant (U, Omega) */
       if (A.se3) {
-        Cross(A.v + 3, A.v, t1);
-        RotApply(A.R, t1, t2);
+        lgnVec3Cross(A.v + 3, A.v, t1);
+        lgnMat3Apply(A.R, t1, t2);
         for (i = 0; i < 3; i++) aa[i] += t2[i];
       }
       if (B.se3) {
-        Cross(B.v + 3, B.v, t1);
-        RotApply(B.R, t1, t2);
+        lgnVec3Cross(B.v + 3, B.v, t1);
+        lgnMat3Apply(B.R, t1, t2);
         for (i = 0; i < 3; i++) ab[i] += t2[i];
       }
       for (i = 0; i < 3; i++) zd[p->row + i] = aa[i] - ab[i];
     } else {
       /* (ra . rb)'' = ra'' . rb + 2 ra' . rb' + ra . rb'' */
-      RotApply(A.R, p->u, ra);
-      RotApply(B.R, p->w, rb);
+      lgnMat3Apply(A.R, p->u, ra);
+      lgnMat3Apply(B.R, p->w, rb);
       da[0] = da[1] = da[2] = db[0] = db[1] = db[2] = SUN_RCONST(0.0);
       if (!A.ground) {
-        Cross(A.v + 3, p->u, t1);
-        RotApply(A.R, t1, da);
+        lgnVec3Cross(A.v + 3, p->u, t1);
+        lgnMat3Apply(A.R, t1, da);
       }
       if (!B.ground) {
-        Cross(B.v + 3, p->w, t1);
-        RotApply(B.R, t1, db);
+        lgnVec3Cross(B.v + 3, p->w, t1);
+        lgnMat3Apply(B.R, t1, db);
       }
-      zd[p->row] = Dot(aa, rb) + SUN_RCONST(2.0) * Dot(da, db) + Dot(ra, ab);
+      zd[p->row] = lgnVec3Dot(aa, rb) + SUN_RCONST(2.0) * lgnVec3Dot(da, db) + lgnVec3Dot(ra, ab);
     }
   }
   return LGN_SUCCESS;
@@ -1260,7 +1238,7 @@ static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
       sunrealtype *blk;
       if (body == LGN_GROUND) continue;
       blk = Block(J, body, body);
-      RotApplyT(P[side].R, l, mu);
+      lgnMat3ApplyT(P[side].R, l, mu);
       Skew(side == 0 ? p->u : p->w, X);
       Skew(mu, Y);
       Mul3(X, Y, Z);
@@ -1275,8 +1253,8 @@ static void PrimitiveStiffness(struct LGNJointsRec *J, const Primitive *p,
     const Pose *Pm = &P[side], *Po = &P[1 - side];
     if (me == LGN_GROUND) continue;
     /* w = R_me^T R_other c */
-    RotApply(Po->R, c, t);
-    RotApplyT(Pm->R, t, mu);
+    lgnMat3Apply(Po->R, c, t);
+    lgnMat3ApplyT(Pm->R, t, mu);
     Skew(e, X);
     Skew(mu, Y);
     Mul3(X, Y, Z);

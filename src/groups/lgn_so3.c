@@ -25,23 +25,9 @@
  * Small helpers
  * ===========================================================================*/
 
-/* r = u x v (r may alias neither argument) */
-static void Cross(const sunrealtype u[3], const sunrealtype v[3],
-                  sunrealtype r[3])
-{
-  r[0] = u[1] * v[2] - u[2] * v[1];
-  r[1] = u[2] * v[0] - u[0] * v[2];
-  r[2] = u[0] * v[1] - u[1] * v[0];
-}
-
-static sunrealtype Dot(const sunrealtype u[3], const sunrealtype v[3])
-{
-  return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-}
-
 sunrealtype lgnSO3_Norm(const sunrealtype x[3])
 {
-  return sqrt(Dot(x, x));
+  return sqrt(lgnVec3Dot(x, x));
 }
 
 void lgnSO3_Tilde(const sunrealtype x[3], sunrealtype M[9])
@@ -136,8 +122,8 @@ void lgnSO3_TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
   /* T v = v + a x~v + b x~x~v  (spec §4.1) */
   sunrealtype xv[3], xxv[3];
   int i;
-  Cross(x, v, xv);
-  Cross(x, xv, xxv);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
   for (i = 0; i < 3; i++) y[i] = v[i] + c->a * xv[i] + c->b * xxv[i];
 }
 
@@ -155,8 +141,8 @@ void lgnSO3_TInvApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
   /* T^{-1} v = v + x~v/2 + d x~x~v  (spec §4.1) */
   sunrealtype xv[3], xxv[3];
   int i;
-  Cross(x, v, xv);
-  Cross(x, xv, xxv);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
   for (i = 0; i < 3; i++) y[i] = v[i] + HALF * xv[i] + c->d * xxv[i];
 }
 
@@ -174,13 +160,13 @@ void lgnSO3_TDotApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
 {
   /* Tdot v = a xd~v + b(xd~x~v + x~xd~v) + (x.xd)(c1 x~v + c2 x~x~v) (§4.1) */
   sunrealtype xv[3], xxv[3], dv[3], dxv[3], xdv[3];
-  const sunrealtype s = Dot(x, xd);
+  const sunrealtype s = lgnVec3Dot(x, xd);
   int i;
-  Cross(x, v, xv);
-  Cross(x, xv, xxv);
-  Cross(xd, v, dv);
-  Cross(xd, xv, dxv);
-  Cross(x, dv, xdv);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
+  lgnVec3Cross(xd, v, dv);
+  lgnVec3Cross(xd, xv, dxv);
+  lgnVec3Cross(x, dv, xdv);
   for (i = 0; i < 3; i++)
     y[i] = c->a * dv[i] + c->b * (dxv[i] + xdv[i])
          + s * (c->c1 * xv[i] + c->c2 * xxv[i]);
@@ -205,20 +191,20 @@ void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
    * + c2 ((x.U)(W~x~ + x~W~)v + (x.W)(U~x~ + x~U~)v) + b (U~W~ + W~U~)v  */
   sunrealtype xv[3], xxv[3], Wv[3], Uv[3], Wxv[3], xWv[3], Uxv[3], xUv[3];
   sunrealtype UWv[3], WUv[3];
-  const sunrealtype ou = Dot(x, U), ow = Dot(x, W), wu = Dot(W, U);
+  const sunrealtype ou = lgnVec3Dot(x, U), ow = lgnVec3Dot(x, W), wu = lgnVec3Dot(W, U);
   const sunrealtype k1 = c->c3 * ow * ou + c->c1 * wu;
   const sunrealtype k2 = c->c4 * ow * ou + c->c2 * wu;
   int i;
-  Cross(x, v, xv);
-  Cross(x, xv, xxv);
-  Cross(W, v, Wv);
-  Cross(U, v, Uv);
-  Cross(W, xv, Wxv);
-  Cross(x, Wv, xWv);
-  Cross(U, xv, Uxv);
-  Cross(x, Uv, xUv);
-  Cross(U, Wv, UWv);
-  Cross(W, Uv, WUv);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
+  lgnVec3Cross(W, v, Wv);
+  lgnVec3Cross(U, v, Uv);
+  lgnVec3Cross(W, xv, Wxv);
+  lgnVec3Cross(x, Wv, xWv);
+  lgnVec3Cross(U, xv, Uxv);
+  lgnVec3Cross(x, Uv, xUv);
+  lgnVec3Cross(U, Wv, UWv);
+  lgnVec3Cross(W, Uv, WUv);
   for (i = 0; i < 3; i++)
     y[i] = k1 * xv[i] + c->c1 * (ou * Wv[i] + ow * Uv[i]) + k2 * xxv[i]
          + c->c2 * (ou * (Wxv[i] + xWv[i]) + ow * (Uxv[i] + xUv[i]))
@@ -234,7 +220,7 @@ void lgnSO3_TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
 {
   /* T = I + a x~ + b x~^2 with x~^2 = x x^T - |x|^2 I */
   sunrealtype X[9];
-  const sunrealtype p2 = Dot(x, x);
+  const sunrealtype p2 = lgnVec3Dot(x, x);
   int i, j;
   lgnSO3_Tilde(x, X);
   for (j = 0; j < 3; j++)
@@ -258,7 +244,7 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
    *      + (x.xd)(c1 x~ + c2 (x x^T - |x|^2 I)),
    * using xd~x~ + x~xd~ = x xd^T + xd x^T - 2 (x.xd) I. */
   sunrealtype X[9], D[9];
-  const sunrealtype s = Dot(x, xd), p2 = Dot(x, x);
+  const sunrealtype s = lgnVec3Dot(x, xd), p2 = lgnVec3Dot(x, x);
   int i, j;
   lgnSO3_Tilde(x, X);
   lgnSO3_Tilde(xd, D);
@@ -281,7 +267,7 @@ static inline void ExpQuat(const sunrealtype x[3], sunrealtype p[4])
    * sinc(h)/2 (the sin(phi)/phi row of the §4.1 table) and cos(h) to h^8,
    * whose first omitted term, h^10/10!, is below 3e-20 there. The step
    * increments and Newton corrections of a time integration are this small. */
-  const sunrealtype h2 = Dot(x, x) / 4;
+  const sunrealtype h2 = lgnVec3Dot(x, x) / 4;
   sunrealtype k, c;
   if (h2 < LGN_SO3_THR_SINC * LGN_SO3_THR_SINC) {
     k = HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 * (ONE / 5040))));
@@ -342,8 +328,8 @@ void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],
   sunrealtype t[3], qt[3];
   const sunrealtype *q = p + 1;
   int i;
-  Cross(q, v, t);
+  lgnVec3Cross(q, v, t);
   for (i = 0; i < 3; i++) t[i] *= TWO;
-  Cross(q, t, qt);
+  lgnVec3Cross(q, t, qt);
   for (i = 0; i < 3; i++) y[i] = v[i] + p[0] * t[i] + qt[i];
 }

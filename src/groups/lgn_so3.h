@@ -99,6 +99,39 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
                         const sunrealtype xd[3], sunrealtype *M,
                         sunindextype ld);
 
+/* Small 3-vector kernels, shared by the groups and the joint and body sets
+ * (3x3 matrices row-major, as LGNQuaternionToRotation writes them). */
+
+/* z = x . y */
+static inline sunrealtype lgnVec3Dot(const sunrealtype x[3], const sunrealtype y[3])
+{
+  return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+
+/* z = x cross y (z may alias neither argument) */
+static inline void lgnVec3Cross(const sunrealtype x[3], const sunrealtype y[3],
+                                sunrealtype z[3])
+{
+  z[0] = x[1] * y[2] - x[2] * y[1];
+  z[1] = x[2] * y[0] - x[0] * y[2];
+  z[2] = x[0] * y[1] - x[1] * y[0];
+}
+
+/* y = A x and y = A^T x (y may not alias x) */
+static inline void lgnMat3Apply(const sunrealtype A[9], const sunrealtype x[3],
+                                sunrealtype y[3])
+{
+  int i;
+  for (i = 0; i < 3; i++) y[i] = A[3 * i] * x[0] + A[3 * i + 1] * x[1] + A[3 * i + 2] * x[2];
+}
+
+static inline void lgnMat3ApplyT(const sunrealtype A[9], const sunrealtype x[3],
+                                 sunrealtype y[3])
+{
+  int i;
+  for (i = 0; i < 3; i++) y[i] = A[i] * x[0] + A[3 + i] * x[1] + A[6 + i] * x[2];
+}
+
 /* r = p1 (x) p2, the Hamilton product (r may alias p1 or p2: all inputs are
  * read first): inline, since
  * the composition p (x) expq(w) runs for every body at every iterate;
