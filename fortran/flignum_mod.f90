@@ -193,6 +193,13 @@ module flignum_mod
       type(c_ptr), value :: q, v, z, user_data
     end function LGNCurvatureFn
 
+    !> Explicit time derivative of the constraints phit = dPhi/dt(q, t), length m.
+    integer(c_int) function LGNConstrTimeFn(t, q, phit, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, phit, user_data
+    end function LGNConstrTimeFn
+
     !> Constraint forces f = B(q)^T lambda (length nv), without forming B.
     integer(c_int) function LGNConstrForceFn(t, q, lambda, f, user_data) bind(c)
       import :: c_int, c_double, c_ptr
@@ -358,6 +365,14 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       type(c_funptr), value :: Z
     end function LGNSetCurvatureFn
+
+    !> Rheonomic constraints: their time derivative Phi_t (LGNConstrTimeFn);
+    !> c_null_funptr (default): Phi does not depend on t explicitly.
+    integer(c_int) function LGNSetConstraintTimeFn(lgn_mem, phit) bind(c, name="LGNSetConstraintTimeFn")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: phit
+    end function LGNSetConstraintTimeFn
 
     !> Constraint forces f = B(q)^T lambda (LGNConstrForceFn); c_null_funptr:
     !! from B.

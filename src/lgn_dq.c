@@ -7,8 +7,8 @@
  *
  *   K_t = d/dq (M vdot + g + B^T lambda) . (q w~)   (stiffness)
  *   C_t = d/dv g                                   (damping)
- *   D_q(B v) . (q w~)                               (index 2)
- *   Z(q)(v, v) = D_q(B(q) v) . (q v~)               (curvature, initial values)
+ *   D_q(B v + Phi_t) . (q w~)                       (index 2)
+ *   z = D_q(B v + Phi_t) . (q v~) + d/dt(B v + Phi_t)  (curvature, initial values)
  *
  * lgnEvalTangents is the one entry point for K_t and C_t: the callback if
  * the model gives one, else quotients column by column (dense matrices) or
@@ -104,10 +104,11 @@ static int DampingDQ(LGNMem mem, sunrealtype t)
   return LGN_SUCCESS;
 }
 
-/* z = B(q o exp(w)) v (length m), using dq_q and Bdq: one constraint
- * Jacobian evaluation at a point displaced along the group. */
+/* z = B(q', t) v + Phi_t(q', t) at q' = q o exp(w) (length m), using dq_q
+ * and Bdq: one constraint Jacobian evaluation at a point displaced along
+ * the group. */
 static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
-                            const sunrealtype *w, N_Vector v, sunrealtype *z)
+                                const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
@@ -117,8 +118,7 @@ static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
                           mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data),
                           mem->Bdq, "LGNSolve");
   if (ret != LGN_SUCCESS) return ret;
-  lgnMatvec(mem->Bdq, lgnData(v), z, SUNFALSE);
-  return LGN_SUCCESS;
+  return lgnConstraintVelocity(mem, t, mem->dq_q, mem->Bdq, lgnData(v), z);
 }
 
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
@@ -130,22 +130,27 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   const sunrealtype *vd = lgnData(v);
   int flag;
 
-  if (vmax == SUN_RCONST(0.0)) {
+  if (vmax == SUN_RCONST(0.0) && mem->constr_time == NULL) {
     N_VConst(SUN_RCONST(0.0), z);
     return LGN_SUCCESS;
   }
-  /* central difference: step of size cbrt(uround) in the group */
+  /* central difference along the motion (q exp(s v), t + s) of the
+   * velocity constraint: step of size cbrt(uround) in the group, scaled by
+   * max(|v|, 1/|t|) when the constraints depend on t */
+  if (mem->constr_time != NULL)
+    vmax = SUNMAX(vmax, SUN_RCONST(1.0) / SUNMAX(SUN_RCONST(1.0), fabs(t)));
   eps = cbrt(SUN_UNIT_ROUNDOFF) / vmax;
   for (i = 0; i < nv; i++) w[i] = eps * vd[i];
-  flag = ConstraintVelocityAt(mem, t, q, w, v, zd);
+  flag = ConstraintVelocityAt(mem, mem->constr_time != NULL ? t + eps : t, q, w, v, zd);
   for (i = 0; i < nv; i++) w[i] = -eps * vd[i];
-  if (flag == LGN_SUCCESS) flag = ConstraintVelocityAt(mem, t, q, w, v, zm);
+  if (flag == LGN_SUCCESS)
+    flag = ConstraintVelocityAt(mem, mem->constr_time != NULL ? t - eps : t, q, w, v, zm);
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < m; i++) zd[i] = (zd[i] - zm[i]) / (SUN_RCONST(2.0) * eps);
   return LGN_SUCCESS;
 }
 
-/* Bvq = D_q(B(q) v1).(q w~) at q1 by forward differences, m x nv
+/* Bvq = D_q(B(q) v1 + Phi_t(q)).(q w~) at q1 by forward differences, m x nv
  * column-major: the change of the index-2 constraint B(q) v with the
  * configuration, which the iteration matrix needs next to B dv. */
 int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
@@ -155,7 +160,8 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
   sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq_z), eps;
   int flag;
 
-  lgnMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  flag = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), z0);
+  if (flag != LGN_SUCCESS) return flag;
   for (j = 0; j < nv; j++) {
     sunrealtype *col = mem->Bvq + j * m;
     eps = srur * SUNMAX(SUN_RCONST(1.0), fabs(mem->sigma[j]));
@@ -302,7 +308,8 @@ static int DampingDQColored(LGNMem mem, sunrealtype t)
   return LGN_SUCCESS;
 }
 
-/* D_q(B(q) v1) at q1 on the pattern of B (the CSC view sp->B). */
+/* D_q(B(q) v1 + Phi_t(q)) at q1 on the pattern of B (the CSC view sp->B;
+ * Phi_t depends on the coordinates Phi does). */
 int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
@@ -320,7 +327,8 @@ int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t)
     sp->Bvq     = p;
     sp->Bvq_cap = nnzB;
   }
-  lgnMatvec(mem->Bmat, lgnData(mem->v1), z0, SUNFALSE);
+  flag = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), z0);
+  if (flag != LGN_SUCCESS) return flag;
   for (c = 0; c < sp->Kcol.ncolors; c++) {
     ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
     flag = ConstraintVelocityAt(mem, t, mem->q1, mem->work_nv, mem->v1, z);

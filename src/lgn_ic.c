@@ -7,14 +7,14 @@
  * Accelerations and multipliers, the index-1 form of the DAE at (q0, v0):
  *
  *   [ M   B^T ] [ vdot_0   ]   [ -g(q0, v0, t0)    ]
- *   [ B   0   ] [ lambda_0 ] = [ -Z(q0)(v0, v0)    ]
+ *   [ B   0   ] [ lambda_0 ] = [ -z(q0, v0, t0)    ]
  *
  * then a_0 = vdot_0 unless the user gave a_0 (lgnComputeIC).
  *
  * The check at the first LGNSolve (lgnInitialConditions), of the constraint
  * the step enforces, within 100 times the tolerance scale:
  *   index 3: |Phi_i(q0)| <= 100 (atol + rtol max(1, |q0|_inf)),
- *   index 2: |(B(q0) v0)_i| <= 100 (atol + rtol |v0|_inf)
+ *   index 2: |(B(q0) v0 + Phi_t)_i| <= 100 (atol + rtol |v0|_inf)
  * (not when the user gave vdot_0, lambda_0: LGNSetInitialAcceleration),
  * else LGN_INCONSISTENT_IC with the size of the violation.
  *
@@ -24,7 +24,7 @@
  *        [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
  *      until |Phi|_inf is at roundoff level (or stalls at a hundredth of
  *      the check's tolerance); LGN_IC_FAIL after LGN_IC_MAXIT iterations;
- *   v: [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v), v <- v + dv (linear:
+ *   v: [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v - Phi_t), v <- v + dv (linear:
  *      one solve, repeated while roundoff leaves more than 100 eps |v|).
  *
  * The perturbed start (Arnold-Brüls-Cardona; lgnPerturbedStart), at the
@@ -172,15 +172,14 @@ static int EvalPhi(LGNMem mem, N_Vector q)
   return LGN_SUCCESS;
 }
 
-/* B(q) v into mem->work_m (B evaluated into Bmat at t = tn). */
+/* B(q) v + Phi_t(q) into mem->work_m (B evaluated into Bmat at t = tn). */
 static int EvalBv(LGNMem mem, N_Vector q, N_Vector v)
 {
   int ret;
   lgnMatClear(mem->Bmat);
   ret = mem->constr_jac(mem->tn, q, mem->Bmat, mem->user_data);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-  lgnMatvec(mem->Bmat, lgnData(v), mem->work_m, SUNFALSE);
-  return LGN_SUCCESS;
+  return lgnConstraintVelocity(mem, mem->tn, q, mem->Bmat, lgnData(v), mem->work_m);
 }
 
 static sunrealtype QScale(LGNMem mem)
@@ -238,10 +237,12 @@ static int CheckConsistency(LGNMem mem)
   tol  = TolBv(mem);
   if (!(viol <= tol)) {
     LGN_ERROR(mem, LGN_INCONSISTENT_IC,
-              MSG_TIME "inconsistent initial velocity: |B(q0) v0|_inf = %g "
+              MSG_TIME "inconsistent initial velocity: |B(q0) v0%s|_inf = %g "
               "(constraint %lld) exceeds the tolerance %g = 100 (atol + rtol "
-              "|v0|_inf); call LGNCalcIC to project v0 onto B(q0) v = 0.",
-              (double)mem->tn, (double)viol, (long long)i, (double)tol);
+              "|v0|_inf); call LGNCalcIC to project v0 onto B(q0) v%s = 0.",
+              (double)mem->tn, mem->constr_time != NULL ? " + Phi_t" : "",
+              (double)viol, (long long)i, (double)tol,
+              mem->constr_time != NULL ? " + Phi_t" : "");
     return LGN_INCONSISTENT_IC;
   }
   return LGN_SUCCESS;
@@ -305,7 +306,7 @@ static int ProjectQ(LGNMem mem)
   }
 }
 
-/* v onto B(q) v = 0, the M-orthogonal projection. */
+/* v onto B(q) v + Phi_t = 0, the M-orthogonal projection. */
 static int ProjectV(LGNMem mem)
 {
   const sunindextype nv = mem->nv, m = mem->m;

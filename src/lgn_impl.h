@@ -47,6 +47,7 @@ typedef enum {
   LGN_CB_DAMPING,
   LGN_CB_CURVATURE,
   LGN_CB_CONSTR_FORCE,
+  LGN_CB_CONSTR_TIME,
   LGN_CB_GROUP,
   LGN_CB_COUNT
 } LGNCallbackId;
@@ -81,6 +82,7 @@ typedef struct LGNMemRec {
   LGNStiffnessFn stiffness; /* NULL: difference quotients                 */
   LGNDampingFn damping;     /* NULL: difference quotients                 */
   LGNCurvatureFn curvature; /* NULL: difference quotients                 */
+  LGNConstrTimeFn constr_time; /* Phi_t; NULL: Phi(q) scleronomic          */
   LGNConstrForceFn constr_force; /* NULL: B^T lambda from B                */
   sunbooleantype mass_constant;  /* LGNSetMassConstant                     */
   sunbooleantype mass_current;   /* Mmat holds the constant M              */
@@ -132,6 +134,7 @@ typedef struct LGNMemRec {
   N_Vector g;               /* forces g(q1, v1, t)                         */
   N_Vector rdyn;            /* unscaled dynamic residual M vdot + g + B^T l*/
   N_Vector phi;             /* Phi(q1) or B v (NULL when m = 0)            */
+  N_Vector phit;            /* Phi_t(q, t) (NULL when m = 0)               */
   N_Vector rhs;             /* Newton right-hand side, length nv + m       */
   N_Vector sol;             /* Newton correction, length nv + m            */
 
@@ -336,6 +339,8 @@ sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
 int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    SUNMatrix M, N_Vector g, SUNMatrix B, sunbooleantype with_B);
 int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B);
+int lgnConstraintVelocity(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B,
+                          const sunrealtype *v, sunrealtype *out);
 int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
                        N_Vector g, SUNMatrix B, N_Vector r);
 int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,

@@ -152,6 +152,15 @@ int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z)
   return LGN_SUCCESS;
 }
 
+int LGNSetConstraintTimeFn(void *lgn_mem, LGNConstrTimeFn phit)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  mem->constr_time = phit;
+  lgnInvalidate(mem, LGN_CHANGE_MODEL);
+  return LGN_SUCCESS;
+}
+
 int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F)
 {
   LGNMem mem;

@@ -145,7 +145,8 @@ static const char *CallbackName(LGNCallbackId cb)
 {
   static const char *names[LGN_CB_COUNT] = {
     "mass matrix", "force", "constraint", "constraint Jacobian",
-    "stiffness", "damping", "curvature", "constraint force", "Lie group"};
+    "stiffness", "damping", "curvature", "constraint force",
+    "constraint time derivative", "Lie group"};
   return names[cb];
 }
 
@@ -154,7 +155,8 @@ static int UnrecoverableFlag(LGNCallbackId cb)
   switch (cb) {
   case LGN_CB_MASS:       return LGN_MASS_FAIL;
   case LGN_CB_FORCE:      return LGN_FORCE_FAIL;
-  case LGN_CB_CONSTR:     return LGN_CONSTR_FAIL;
+  case LGN_CB_CONSTR:
+  case LGN_CB_CONSTR_TIME: return LGN_CONSTR_FAIL;
   case LGN_CB_CONSTR_JAC:
   case LGN_CB_CONSTR_FORCE: return LGN_CONSTR_JAC_FAIL;
   case LGN_CB_GROUP:      return LGN_GROUP_FAIL;
@@ -384,6 +386,7 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->dq_g);
   DestroyVector(&mem->dq_r);
   DestroyVector(&mem->dq_z);
+  DestroyVector(&mem->phit);
   free(mem->sigma);
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
@@ -531,8 +534,9 @@ int lgnAllocWork(LGNMem mem)
     mem->lambda1 = N_VNew_Serial(m, ctx);
     mem->phi     = N_VNew_Serial(m, ctx);
     mem->dq_z    = N_VNew_Serial(m, ctx);
+    mem->phit    = N_VNew_Serial(m, ctx);
     fail = (mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
-            mem->dq_z == NULL);
+            mem->dq_z == NULL || mem->phit == NULL);
   }
   if (!fail) {
     /* sigma, sigma_dot and sigma_ddot of the exact variant

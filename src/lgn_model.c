@@ -6,7 +6,7 @@
  * mass matrix, forces, constraint Jacobian, and the scaled Newton residual
  *
  *   r = [ beta h^2 (M vdot + g + B^T lambda) ;  Phi(q)          ]   (index 3)
- *       [                                    ;  B(q) v / gamma' ]   (index 2)
+ *       [                                    ;  (B(q) v + Phi_t) / gamma' ]  (index 2)
  *
  * (spec numerics.md §2 "Scaling"), plus the matrix-vector kernels.
  * ---------------------------------------------------------------------------*/
@@ -83,6 +83,27 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   return LGN_SUCCESS;
 }
 
+/* out = B v + Phi_t(q, t) (length m), the velocity constraint, from the B
+ * already evaluated at (q, t); Phi_t only for rheonomic constraints
+ * (LGNSetConstraintTimeFn). out may not alias v. */
+int lgnConstraintVelocity(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B,
+                          const sunrealtype *v, sunrealtype *out)
+{
+  sunindextype i;
+  const sunrealtype *pt;
+  int ret;
+  lgnMatvec(B, v, out, SUNFALSE);
+  if (mem->constr_time == NULL) return LGN_SUCCESS;
+  N_VConst(SUN_RCONST(0.0), mem->phit);
+  ret = lgnCallbackVector(mem, LGN_CB_CONSTR_TIME,
+                          mem->constr_time(t, q, mem->phit, mem->user_data),
+                          mem->phit, "LGNSolve");
+  if (ret != LGN_SUCCESS) return ret;
+  pt = lgnData(mem->phit);
+  for (i = 0; i < mem->m; i++) out[i] += pt[i];
+  return LGN_SUCCESS;
+}
+
 /* M(q1), g(q1, v1, t) and (with_B) B(q1): one "residual evaluation". */
 int lgnEvalModel(LGNMem mem, sunrealtype t, sunbooleantype with_B)
 {
@@ -149,7 +170,8 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
                               mem->phi, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
     } else {
-      lgnMatvec(mem->Bmat, lgnData(mem->v1), phi, SUNFALSE);
+      ret = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), phi);
+      if (ret != LGN_SUCCESS) return ret;
       for (i = 0; i < m; i++) phi[i] /= cv;
     }
     for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];

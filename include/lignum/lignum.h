@@ -180,9 +180,19 @@ typedef int (*LGNDampingFn)(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C,
 typedef int (*LGNConstrForceFn)(sunrealtype t, N_Vector q, N_Vector lambda,
                                 N_Vector f, void *user_data);
 
-/** Constraint curvature z = Z(q)(v, v), with d/dt(B v) = B vdot + Z(q)(v, v). */
+/** Constraint curvature: z = d/dt(B(q, t) v + Phi_t(q, t)) - B vdot, the
+ *  second time derivative of Phi along the motion without the acceleration
+ *  term. For constraints without explicit time dependence z = Z(q)(v, v),
+ *  with d/dt(B v) = B vdot + Z(q)(v, v); a driving constraint adds
+ *  2 (dB/dt) v + D_q(Phi_t).(q v~) + Phi_tt. */
 typedef int (*LGNCurvatureFn)(sunrealtype t, N_Vector q, N_Vector v,
                               N_Vector z, void *user_data);
+
+/** Explicit time derivative of the constraints, phit = dPhi/dt(q, t) at
+ *  fixed q (length m): the velocity constraint is B(q, t) v + Phi_t = 0.
+ *  Needed only by rheonomic (driving) constraints (LGNSetConstraintTimeFn). */
+typedef int (*LGNConstrTimeFn)(sunrealtype t, N_Vector q, N_Vector phit,
+                               void *user_data);
 
 /** Error handler (replaceable); the default prints to stderr. */
 typedef void (*LGNErrHandlerFn)(int error_code, const char *module,
@@ -263,9 +273,26 @@ LGN_EXPORT int LGNSetStiffnessFn(void *lgn_mem, LGNStiffnessFn K);
 /** Set the tangent damping callback. NULL (default): difference quotients. */
 LGN_EXPORT int LGNSetDampingFn(void *lgn_mem, LGNDampingFn C);
 
-/** Set the constraint curvature callback Z(q)(v,v). NULL (default):
- *  difference quotients of B(q exp(eps v)) v. */
+/** Set the constraint curvature callback (LGNCurvatureFn). NULL
+ *  (default): central difference quotients of B(q, t) v + Phi_t(q, t)
+ *  along (q exp(eps v), t + eps). */
 LGN_EXPORT int LGNSetCurvatureFn(void *lgn_mem, LGNCurvatureFn Z);
+
+/**
+ * Declare the constraints rheonomic, Phi = Phi(q, t) (driving constraints,
+ * prescribed motion), and give their explicit time derivative Phi_t
+ * (LGNConstrTimeFn). Lignum then uses the velocity constraint
+ * B v + Phi_t = 0 wherever it uses B v = 0: the index-2 residual and its
+ * iteration matrix (D_q Phi_t by difference quotients), the check of the
+ * initial values at index 2, the velocity projection of LGNCalcIC, and the
+ * consistent accelerations (with the time terms of the curvature).
+ * Index 3 needs Phi(q, t) only. NULL (default): Phi does not depend on t
+ * explicitly. The joint helpers' drivers give it with LGNJoints_TimeDerivative.
+ * @param lgn_mem the integrator memory
+ * @param phit    the callback, or NULL
+ * @return LGN_SUCCESS, LGN_MEM_NULL
+ */
+LGN_EXPORT int LGNSetConstraintTimeFn(void *lgn_mem, LGNConstrTimeFn phit);
 
 /** Set a callback for the constraint forces f = B(q)^T lambda. With it, the
  *  Newton residual at index 3 needs no B: the constraint Jacobian is then
@@ -560,7 +587,7 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
 #define LGN_IC_PROJECT_Q  141
-/** icopt of LGNCalcIC: project v0 onto B(q0) v = 0 only. */
+/** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
 #define LGN_IC_PROJECT_V  142
 /** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
 #define LGN_IC_PROJECT_QV 143
