@@ -86,14 +86,12 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Pendulum *)ud)->joints, q, phi);
+  return LGNJoints_Residual(((Pendulum *)ud)->joints, t, q, phi);
 }
 
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Pendulum *)ud)->joints, q, B);
+  return LGNJoints_Jacobian(((Pendulum *)ud)->joints, t, q, B);
 }
 
 /* The event: the centre of mass reaches the plane of the stop, x = 0. */

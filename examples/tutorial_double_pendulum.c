@@ -83,20 +83,17 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *user_d
 /* ---- Step 5: the constraints, by the joint helpers ------------------------*/
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *user_data)
 {
-  (void)t;
-  return LGNJoints_Residual(((Model *)user_data)->joints, q, phi);
+  return LGNJoints_Residual(((Model *)user_data)->joints, t, q, phi);
 }
 
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *user_data)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Model *)user_data)->joints, q, B);
+  return LGNJoints_Jacobian(((Model *)user_data)->joints, t, q, B);
 }
 
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *user_data)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Model *)user_data)->joints, q, v, z);
+  return LGNJoints_Curvature(((Model *)user_data)->joints, t, q, v, z);
 }
 
 /* ---- Step 10: outputs ------------------------------------------------------
@@ -119,7 +116,7 @@ static double Energy(const Model *md, N_Vector q, N_Vector v)
 
 static double PhiNorm(const Model *md, N_Vector q, N_Vector phi)
 {
-  LGNJoints_Residual(md->joints, q, phi);
+  LGNJoints_Residual(md->joints, 0.0, q, phi);
   return N_VMaxNorm(phi);
 }
 

@@ -4,7 +4,7 @@
 ! -----------------------------------------------------------------------------
 ! flignum_joints_mod: hand-written ISO_C_BINDING interface to the joint
 ! helpers of include/lignum/lignum_joints.h (spherical, revolute, universal,
-! prismatic and cylindrical joints between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
+! prismatic and cylindrical joints, rotation and translation drivers, between rigid bodies on R^3 x SO(3) or SE(3) leaves of the
 ! configuration group: Phi, B, the constraint forces B^T lambda, the
 ! curvature Z(q)(v, v) and the geometric stiffness d/dq (B^T lambda), ready
 ! to call from the constraint callbacks).
@@ -31,6 +31,17 @@ module flignum_joints_mod
 
   !> Body index of the fixed inertial frame.
   integer(c_int), parameter :: LGN_GROUND = -1
+
+  abstract interface
+    !> Time law of a driver: f(1) = f(t), f(2) = f'(t), f(3) = f''(t);
+    !! return 0 on success.
+    integer(c_int) function LGNDriveFn(t, f, drive_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      real(c_double), intent(out) :: f(3)
+      type(c_ptr), value :: drive_data
+    end function LGNDriveFn
+  end interface
 
   interface
     ! =========================================================================
@@ -135,6 +146,45 @@ module flignum_joints_mod
       real(c_double), intent(in) :: sa(3), axis_a(3), sb(3), axis_b(3)
     end function LGNJoints_AddCylindrical
 
+    !> Prismatic joint (5 rows) locked where the frames [axis_a, ref_a,
+    !! axis_a x ref_a] of a and [axis_b, ref_b, axis_b x ref_b] of b align.
+    integer(c_int) function LGNJoints_AddPrismaticFrames(J, a, sa, axis_a, ref_a, b, sb, &
+        axis_b, ref_b) bind(c, name="LGNJoints_AddPrismaticFrames")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), ref_a(3), sb(3), axis_b(3), ref_b(3)
+    end function LGNJoints_AddPrismaticFrames
+
+    !> Rotation driver (1 row): the angle of ref_b (body b) about axis_a,
+    !! from ref_a (body a), is f(t) (time law f: LGNDriveFn, c_funloc).
+    integer(c_int) function LGNJoints_AddRotationDriver(J, a, axis_a, ref_a, b, ref_b, f, &
+        drive_data) bind(c, name="LGNJoints_AddRotationDriver")
+      import :: c_int, c_double, c_ptr, c_funptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: axis_a(3), ref_a(3), ref_b(3)
+      type(c_funptr), value :: f
+      type(c_ptr), value :: drive_data
+    end function LGNJoints_AddRotationDriver
+
+    !> Translation driver (1 row): (R_a axis_a).(p_b - p_a) = f(t).
+    integer(c_int) function LGNJoints_AddTranslationDriver(J, a, sa, axis_a, b, sb, f, &
+        drive_data) bind(c, name="LGNJoints_AddTranslationDriver")
+      import :: c_int, c_double, c_ptr, c_funptr
+      type(c_ptr), value :: J
+      integer(c_int), value :: a, b
+      real(c_double), intent(in) :: sa(3), axis_a(3), sb(3)
+      type(c_funptr), value :: f
+      type(c_ptr), value :: drive_data
+    end function LGNJoints_AddTranslationDriver
+
+    !> Number of drivers in the set.
+    integer(c_int) function LGNJoints_NumDrivers(J) bind(c, name="LGNJoints_NumDrivers")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: J
+    end function LGNJoints_NumDrivers
+
     ! =========================================================================
     ! Sizes
     ! =========================================================================
@@ -176,47 +226,67 @@ module flignum_joints_mod
     ! Evaluation, for the callbacks (vectors: serial N_Vectors)
     ! =========================================================================
 
-    !> phi = Phi(q), length m (for an LGNConstrFn).
-    integer(c_int) function LGNJoints_Residual(J, q, phi) bind(c, name="LGNJoints_Residual")
-      import :: c_int, c_ptr
-      type(c_ptr), value :: J, q, phi
+    !> phi = Phi(q, t), length m (for an LGNConstrFn; t is read by drivers only).
+    integer(c_int) function LGNJoints_Residual(J, t, q, phi) bind(c, name="LGNJoints_Residual")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, phi
     end function LGNJoints_Residual
 
     !> B = B(q), m x nv (for an LGNConstrJacFn). A dense B is written entry
     !! by entry (zero it first; Lignum does before the callback); a sparse B
     !! (CSC or CSR) gets the whole structure, reallocated if it has fewer
     !! than LGNJoints_JacobianNnz(J) entries.
-    integer(c_int) function LGNJoints_Jacobian(J, q, B) bind(c, name="LGNJoints_Jacobian")
-      import :: c_int, c_ptr
-      type(c_ptr), value :: J, q, B
+    integer(c_int) function LGNJoints_Jacobian(J, t, q, B) bind(c, name="LGNJoints_Jacobian")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, B
     end function LGNJoints_Jacobian
 
     !> f = B(q)^T lambda, length nv: the joints' constraint forces, without
     !! forming B (for an LGNConstrForceFn). f is overwritten entirely: the
     !! entries of bodies in no joint become 0. Equals B(q)^T lambda of
     !! LGNJoints_Jacobian to round-off; with no joints (m = 0), f = 0.
-    integer(c_int) function LGNJoints_ConstraintForce(J, q, lambda, f) &
+    integer(c_int) function LGNJoints_ConstraintForce(J, t, q, lambda, f) &
         bind(c, name="LGNJoints_ConstraintForce")
-      import :: c_int, c_ptr
-      type(c_ptr), value :: J, q, lambda, f
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, lambda, f
     end function LGNJoints_ConstraintForce
 
-    !> z = Z(q)(v, v), length m: the curvature term of the consistent
-    !! initial accelerations (for an LGNCurvatureFn).
-    integer(c_int) function LGNJoints_Curvature(J, q, v, z) &
+    !> z = d/dt(B v + Phi_t) - B vdot, length m (Z(q)(v, v) without drivers):
+    !! the curvature term of the consistent initial accelerations (for an
+    !! LGNCurvatureFn).
+    integer(c_int) function LGNJoints_Curvature(J, t, q, v, z) &
         bind(c, name="LGNJoints_Curvature")
-      import :: c_int, c_ptr
-      type(c_ptr), value :: J, q, v, z
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, z
     end function LGNJoints_Curvature
+
+    !> phit = dPhi/dt(q, t), length m: the drivers' rows (for an LGNConstrTimeFn).
+    integer(c_int) function LGNJoints_TimeDerivative(J, t, q, phit) &
+        bind(c, name="LGNJoints_TimeDerivative")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, phit
+    end function LGNJoints_TimeDerivative
 
     !> K = d/dq (B(q)^T lambda), nv x nv: the joints' part of K_t (for an
     !! LGNStiffnessFn). Added to a dense K; a sparse K is overwritten with
     !! its pattern (blocks of the bodies and of the pairs coupled by a
     !! revolute, universal, prismatic or cylindrical joint).
-    integer(c_int) function LGNJoints_Stiffness(J, q, lambda, K) &
+    integer(c_int) function LGNJoints_Stiffness(J, t, q, lambda, K) &
         bind(c, name="LGNJoints_Stiffness")
-      import :: c_int, c_ptr
-      type(c_ptr), value :: J, q, lambda, K
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J
+      real(c_double), value :: t
+      type(c_ptr), value :: q, lambda, K
     end function LGNJoints_Stiffness
   end interface
 

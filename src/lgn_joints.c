@@ -55,6 +55,13 @@ typedef struct {
   sunindextype row;     /* first row in Phi                                */
   int joint;            /* the joint it belongs to (0, 1, ... in order)    */
   const char *jkind;    /* ... and its kind: "spherical", "revolute", ...  */
+  /* a driver (drive != NULL): PERP with e = e(t) = cos f d0 + sin f d1 in
+   * u (rotation driver), or LINE minus f(t) (translation driver) */
+  LGNDriveFn drive;
+  void *drive_data;
+  sunrealtype d0[3], d1[3];
+  sunrealtype f[3];     /* f, f', f'' at the last evaluation               */
+  sunrealtype ud[3], udd[3]; /* rotation driver: e'(t), e''(t)            */
 } Primitive;
 
 struct LGNJointsRec {
@@ -71,6 +78,7 @@ struct LGNJointsRec {
   Primitive *prim;
   int nprim, cap;
   int njoints;                /* joints added                              */
+  int ndrivers;               /* of them drivers                           */
   sunindextype m;
   sunindextype nnzB;          /* entries of B (explicit zeros included)    */
   /* pattern of the sparse B in format bfmt (NO_PATTERN: none yet), and the
@@ -183,6 +191,47 @@ static void GetPose(const struct LGNJointsRec *J, int k, const sunrealtype *q,
   P->v    = v != NULL ? v + J->voff[k] : NULL;
   P->se3  = J->se3[k];
   P->voff = J->voff[k];
+}
+
+/* ---------------------------------------------------------------------------
+ * Drivers: the time laws at t, before every evaluation
+ * ------------------------------------------------------------------------ */
+
+/* f, f', f'' of every driver at t and, for a rotation driver,
+ * e(t) = cos f d0 + sin f d1 (into u), e' = f' (-sin f d0 + cos f d1) and
+ * e'' = f'' (-sin f d0 + cos f d1) - f'^2 e. */
+static int EvalDrivers(struct LGNJointsRec *J, sunrealtype t, const char *func)
+{
+  int k, i, ret;
+  if (J->ndrivers == 0) return LGN_SUCCESS;
+  if (!isfinite(t)) {
+    JErr(J, LGN_ILL_INPUT, func, "t = %g illegal: the drivers need a finite time.", (double)t);
+    return LGN_ILL_INPUT;
+  }
+  for (k = 0; k < J->nprim; k++) {
+    Primitive *p = J->prim + k;
+    sunrealtype c, s, e1[3];
+    if (p->drive == NULL) continue;
+    p->f[0] = p->f[1] = p->f[2] = SUN_RCONST(0.0);
+    ret = p->drive(t, p->f, p->drive_data);
+    if (ret != 0 || !isfinite(p->f[0]) || !isfinite(p->f[1]) || !isfinite(p->f[2])) {
+      JErr(J, LGN_CONSTR_FAIL, func,
+           "the time law of driver (joint %d) failed at t = %g: it returned %d, "
+           "f = (%g, %g, %g).", p->joint, (double)t, ret, (double)p->f[0],
+           (double)p->f[1], (double)p->f[2]);
+      return LGN_CONSTR_FAIL;
+    }
+    if (p->kind != PRIM_PERP) continue;
+    c = cos(p->f[0]);
+    s = sin(p->f[0]);
+    for (i = 0; i < 3; i++) {
+      p->u[i]   = c * p->d0[i] + s * p->d1[i];
+      e1[i]     = -s * p->d0[i] + c * p->d1[i];
+      p->ud[i]  = p->f[1] * e1[i];
+      p->udd[i] = p->f[2] * e1[i] - p->f[1] * p->f[1] * p->u[i];
+    }
+  }
+  return LGN_SUCCESS;
 }
 
 /* ---------------------------------------------------------------------------
@@ -332,6 +381,7 @@ static int AddPrimitive(struct LGNJointsRec *J, PrimKind kind, int a,
     J->cap  = cap;
   }
   p       = J->prim + J->nprim++;
+  memset(p, 0, sizeof *p);
   p->kind = kind;
   p->a    = a;
   p->b    = b;
@@ -464,19 +514,57 @@ static int AddLine(struct LGNJointsRec *J, int a, const sunrealtype *sa,
   return flag;
 }
 
+/* The part of ref perpendicular to the unit vector n, normalised (named
+ * name for the public function func). */
+static int PerpendicularPart(const struct LGNJointsRec *J, const sunrealtype *n,
+                             const sunrealtype *ref, sunrealtype *r,
+                             const char *name, const char *func)
+{
+  const sunrealtype along = lgnVec3Dot(ref, n), len = sqrt(lgnVec3Dot(ref, ref));
+  int i;
+  for (i = 0; i < 3; i++) r[i] = ref[i] - along * n[i];
+  if (!(sqrt(lgnVec3Dot(r, r)) > SUN_RCONST(1e-6) * len)) {
+    JErr(J, LGN_ILL_INPUT, func, "%s is zero or parallel to the axis.", name);
+    return LGN_ILL_INPUT;
+  }
+  return Normalised(J, r, r, name, func);
+}
+
+/* The five rows of a prismatic joint locked at R_a^T R_b = R0 (row-major),
+ * with c = axis_b and d1, d2 an orthonormal pair perpendicular to it (body
+ * b): (R_a R0 d1).(R_b c), (R_a R0 d2).(R_b c), (R_a R0 d1).(R_b d2), and sb
+ * on the line through sa along R0 c: (R_a R0 d_i).(p_b - p_a), i = 1, 2. */
+static int AddPrismaticRows(struct LGNJointsRec *J, int a, const sunrealtype *sa,
+                            int b, const sunrealtype *sb, const sunrealtype *c,
+                            const sunrealtype *d1, const sunrealtype *d2,
+                            const sunrealtype *R0, const char *func)
+{
+  sunrealtype e1[3], e2[3];
+  int flag, first = J->nprim;
+  lgnMat3Apply(R0, d1, e1);
+  lgnMat3Apply(R0, d2, e2);
+  flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, func);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, func);
+  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, d2, func);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e1, b, sb, func);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e2, b, sb, func);
+  if (flag == LGN_SUCCESS) EndJoint(J, first, "prismatic");
+  return flag;
+}
+
 int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
                            const sunrealtype axis_a[3], int b,
                            const sunrealtype sb[3], const sunrealtype axis_b[3])
 {
-  sunrealtype n[3], c[3], d1[3], d2[3], e1[3], e2[3], k[3], R0[9], cs;
-  int flag, first, i, j;
+  sunrealtype n[3], c[3], d1[3], d2[3], k[3], R0[9], cs;
+  int flag, i, j;
   if (J == NULL) return NullJoints(__func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  /* R0: the smallest rotation taking c to n (row-major); the locked
-   * relative rotation is R_a^T R_b = R0 */
+  /* R0: the smallest rotation taking c to n (row-major), Rodrigues with
+   * k = c x n: R0 = I + k~ + k~^2 / (1 + c.n) */
   PerpPair(c, d1, d2);
   cs = lgnVec3Dot(c, n);
   lgnVec3Cross(c, n, k);
@@ -497,18 +585,34 @@ int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
       for (j = 0; j < 3; j++)
         R0[3 * i + j] = SUN_RCONST(2.0) * d1[i] * d1[j] - (i == j ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
   }
-  lgnMat3Apply(R0, d1, e1);
-  lgnMat3Apply(R0, d2, e2);
-  /* rotation locked: (R_a R0 d1).(R_b c), (R_a R0 d2).(R_b c), (R_a R0 d1).(R_b d2);
-   * sb on the line through sa along axis_a: e1, e2 perpendicular to it */
-  first = J->nprim;
-  flag = AddPrimitive(J, PRIM_PERP, a, e1, b, c, __func__);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e2, b, c, __func__);
-  if (flag == LGN_SUCCESS) flag = AddPrimitive(J, PRIM_PERP, a, e1, b, d2, __func__);
-  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e1, b, sb, __func__);
-  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, e2, b, sb, __func__);
-  if (flag == LGN_SUCCESS) EndJoint(J, first, "prismatic");
-  return flag;
+  return AddPrismaticRows(J, a, sa, b, sb, c, d1, d2, R0, __func__);
+}
+
+int LGNJoints_AddPrismaticFrames(LGNJoints J, int a, const sunrealtype sa[3],
+                                 const sunrealtype axis_a[3],
+                                 const sunrealtype ref_a[3], int b,
+                                 const sunrealtype sb[3],
+                                 const sunrealtype axis_b[3],
+                                 const sunrealtype ref_b[3])
+{
+  sunrealtype n[3], ra[3], na[3], c[3], rb[3], nb[3], R0[9];
+  int flag, i, j;
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_a, "ref_a", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_b, "ref_b", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
+  if (flag == LGN_SUCCESS) flag = PerpendicularPart(J, n, ref_a, ra, "ref_a", __func__);
+  if (flag == LGN_SUCCESS) flag = PerpendicularPart(J, c, ref_b, rb, "ref_b", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  /* R0 = F_a F_b^T with the frames F = [axis, ref, axis x ref] (columns):
+   * R0 c = n and R0 rb = ra */
+  lgnVec3Cross(n, ra, na);
+  lgnVec3Cross(c, rb, nb);
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++) R0[3 * i + j] = n[i] * c[j] + ra[i] * rb[j] + na[i] * nb[j];
+  return AddPrismaticRows(J, a, sa, b, sb, c, rb, nb, R0, __func__);
 }
 
 int LGNJoints_AddCylindrical(LGNJoints J, int a, const sunrealtype sa[3],
@@ -531,6 +635,71 @@ int LGNJoints_AddCylindrical(LGNJoints J, int a, const sunrealtype sa[3],
   if (flag == LGN_SUCCESS) EndJoint(J, first, "cylindrical");
   return flag;
 }
+
+int LGNJoints_AddRotationDriver(LGNJoints J, int a, const sunrealtype axis_a[3],
+                                const sunrealtype ref_a[3], int b,
+                                const sunrealtype ref_b[3], LGNDriveFn f,
+                                void *drive_data)
+{
+  sunrealtype n[3], r[3], c[3], nr[3];
+  int flag, i;
+  Primitive *p;
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckBodies(J, a, b, __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, axis_a, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_a, "ref_a", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_b, "ref_b", __func__);
+  if (flag == LGN_SUCCESS && f == NULL) {
+    JErr(J, LGN_ILL_INPUT, __func__, "f = NULL illegal: the driver needs a time law.");
+    flag = LGN_ILL_INPUT;
+  }
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = PerpendicularPart(J, n, ref_a, r, "ref_a", __func__);
+  if (flag == LGN_SUCCESS) flag = Normalised(J, ref_b, c, "ref_b", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  /* Phi = (R_a e(t)) . (R_b c) with e(t) = cos f (n x r) - sin f r: with
+   * R_b c = R_a (cos theta r + sin theta n x r), Phi = sin(theta - f) */
+  lgnVec3Cross(n, r, nr);
+  flag = AddPrimitive(J, PRIM_PERP, a, nr, b, c, __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  p = J->prim + J->nprim - 1;
+  for (i = 0; i < 3; i++) {
+    p->d0[i] = nr[i];
+    p->d1[i] = -r[i];
+  }
+  p->drive      = f;
+  p->drive_data = drive_data;
+  EndJoint(J, J->nprim - 1, "rotation driver");
+  J->ndrivers++;
+  return LGN_SUCCESS;
+}
+
+int LGNJoints_AddTranslationDriver(LGNJoints J, int a, const sunrealtype sa[3],
+                                   const sunrealtype axis_a[3], int b,
+                                   const sunrealtype sb[3], LGNDriveFn f,
+                                   void *drive_data)
+{
+  sunrealtype n[3];
+  int flag;
+  Primitive *p;
+  if (J == NULL) return NullJoints(__func__);
+  flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_a, __func__);
+  if (flag == LGN_SUCCESS && f == NULL) {
+    JErr(J, LGN_ILL_INPUT, __func__, "f = NULL illegal: the driver needs a time law.");
+    flag = LGN_ILL_INPUT;
+  }
+  if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
+  if (flag == LGN_SUCCESS) flag = AddLine(J, a, sa, n, b, sb, __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  p             = J->prim + J->nprim - 1;
+  p->drive      = f;
+  p->drive_data = drive_data;
+  EndJoint(J, J->nprim - 1, "translation driver");
+  J->ndrivers++;
+  return LGN_SUCCESS;
+}
+
+int LGNJoints_NumDrivers(LGNJoints J) { return J != NULL ? J->ndrivers : 0; }
 
 int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
                                  size_t len)
@@ -564,8 +733,12 @@ int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
     else snprintf(ba, sizeof ba, "body %d", p->a);
     if (p->b == LGN_GROUND) snprintf(bb, sizeof bb, "the ground");
     else snprintf(bb, sizeof bb, "body %d", p->b);
-    snprintf(buf, len, "%s joint %d (%s - %s), its constraint %lld of %lld",
-             p->jkind, joint, ba, bb, (long long)(row - r0 + 1), (long long)(r1 - r0));
+    if (p->drive != NULL)
+      snprintf(buf, len, "%s (joint %d: %s - %s), its constraint 1 of 1", p->jkind, joint,
+               ba, bb);
+    else
+      snprintf(buf, len, "%s joint %d (%s - %s), its constraint %lld of %lld", p->jkind,
+               joint, ba, bb, (long long)(row - r0 + 1), (long long)(r1 - r0));
   }
   return LGN_SUCCESS;
 }
@@ -604,7 +777,7 @@ static void LineGeometry(const Pose *A, const Pose *B, const Primitive *p, LineG
   lgnVec3Cross(p->w, L->y, L->gb + 3);
 }
 
-int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
+int LGNJoints_Residual(LGNJoints J, sunrealtype t, N_Vector q, N_Vector phi)
 {
   const sunrealtype *qd;
   sunrealtype *f, ya[3], yb[3];
@@ -613,6 +786,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
   if (J == NULL) return NullJoints(__func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phi, J->m, "phi", __func__);
+  if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   f  = N_VGetArrayPointer(phi);
@@ -628,7 +802,7 @@ int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi)
     else if (p->kind == PRIM_LINE) {
       LineGeom L;
       LineGeometry(&A, &B, p, &L);
-      f[p->row] = lgnVec3Dot(L.r, L.d);
+      f[p->row] = lgnVec3Dot(L.r, L.d) - p->f[0]; /* f = 0 unless driven */
     } else
       f[p->row] = lgnVec3Dot(ya, yb);
   }
@@ -844,7 +1018,7 @@ static int SparseJacobian(struct LGNJointsRec *J, const sunrealtype *qd, SUNMatr
 
 sunindextype LGNJoints_JacobianNnz(LGNJoints J) { return J != NULL ? J->nnzB : 0; }
 
-int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
+int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
 {
   const sunindextype nv = J != NULL ? J->G->nv : 0;
   const sunrealtype *qd;
@@ -862,6 +1036,8 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
          (long long)J->m, (long long)nv);
     return LGN_ILL_INPUT;
   }
+  flag = EvalDrivers(J, t, __func__);
+  if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   FillRotations(J, qd);
   if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
@@ -882,10 +1058,11 @@ int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B)
  *   PERP:   rotation    += l g (g of PerpRows).
  * ------------------------------------------------------------------------ */
 
-int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector f)
+int LGNJoints_ConstraintForce(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
+                              N_Vector f)
 {
   const sunrealtype *qd, *ld;
-  sunrealtype *fd, mu[3], t[3], g[2][3];
+  sunrealtype *fd, mu[3], sxmu[3], g[2][3];
   Pose P[2];
   int k, i, side, flag;
   if (J == NULL) return NullJoints(__func__);
@@ -893,6 +1070,7 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
   /* no joints: lambda has no entries (and may have no data) */
   if (flag == LGN_SUCCESS && J->m > 0) flag = lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, f, J->G->nv, "f", __func__);
+  if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
   fd = N_VGetArrayPointer(f);
   memset(fd, 0, (size_t)J->G->nv * sizeof(sunrealtype)); /* the data checked above */
@@ -926,10 +1104,10 @@ int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q, N_Vector lambda, N_Vector
         continue;
       }
       lgnMat3ApplyT(P[side].R, l, mu);
-      lgnVec3Cross(side == 0 ? p->u : p->w, mu, t);
+      lgnVec3Cross(side == 0 ? p->u : p->w, mu, sxmu);
       for (i = 0; i < 3; i++) {
         fb[i]     += sign * (P[side].se3 ? mu[i] : l[i]);
-        fb[3 + i] += sign * t[i];
+        fb[3 + i] += sign * sxmu[i];
       }
     }
   }
@@ -999,7 +1177,7 @@ static sunrealtype LineCurvature(const Pose *A, const Pose *B, const Primitive *
   return lgnVec3Dot(rdd, L.d) + SUN_RCONST(2.0) * lgnVec3Dot(rd, dd) + lgnVec3Dot(L.r, ddd);
 }
 
-int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
+int LGNJoints_Curvature(LGNJoints J, sunrealtype t, N_Vector q, N_Vector v, N_Vector z)
 {
   const sunrealtype *qd, *vd;
   sunrealtype *zd, aa[3], ab[3], t1[3], t2[3], ra[3], rb[3], da[3], db[3];
@@ -1009,6 +1187,7 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, v, J->G->nv, "v", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, z, J->m, "z", __func__);
+  if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   vd = N_VGetArrayPointer(v);
@@ -1019,7 +1198,7 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
     GetPose(J, p->a, qd, vd, &A);
     GetPose(J, p->b, qd, vd, &B);
     if (p->kind == PRIM_LINE) {
-      zd[p->row] = LineCurvature(&A, &B, p);
+      zd[p->row] = LineCurvature(&A, &B, p) - p->f[2]; /* f'' = 0 unless driven */
       continue;
     }
     Accel(&A, p->u, aa);
@@ -1050,8 +1229,55 @@ int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v, N_Vector z)
         lgnVec3Cross(B.v + 3, p->w, t1);
         lgnMat3Apply(B.R, t1, db);
       }
+      if (p->drive != NULL) {
+        /* e = e(t) turns in a's frame: ra' += R_a e',
+         * ra'' += 2 R_a (Omega_a x e') + R_a e'' */
+        lgnMat3Apply(A.R, p->ud, t2);
+        for (i = 0; i < 3; i++) da[i] += t2[i];
+        lgnMat3Apply(A.R, p->udd, t2);
+        for (i = 0; i < 3; i++) aa[i] += t2[i];
+        if (!A.ground) {
+          lgnVec3Cross(A.v + 3, p->ud, t1);
+          lgnMat3Apply(A.R, t1, t2);
+          for (i = 0; i < 3; i++) aa[i] += SUN_RCONST(2.0) * t2[i];
+        }
+      }
       zd[p->row] = lgnVec3Dot(aa, rb) + SUN_RCONST(2.0) * lgnVec3Dot(da, db) + lgnVec3Dot(ra, ab);
     }
+  }
+  return LGN_SUCCESS;
+}
+
+/* Phi_t: -f' for a translation driver, (R_a e'(t)) . (R_b c) for a
+ * rotation driver, 0 elsewhere. */
+int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q, N_Vector phit)
+{
+  const sunrealtype *qd;
+  sunrealtype *pd, ra[3], rb[3];
+  Pose A, B;
+  int k, flag;
+  if (J == NULL) return NullJoints(__func__);
+  flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phit, J->m, "phit", __func__);
+  if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  pd = N_VGetArrayPointer(phit);
+  if (J->m > 0) memset(pd, 0, (size_t)J->m * sizeof(sunrealtype));
+  if (J->ndrivers == 0) return LGN_SUCCESS;
+  qd = N_VGetArrayPointer(q);
+  FillRotations(J, qd);
+  for (k = 0; k < J->nprim; k++) {
+    const Primitive *p = J->prim + k;
+    if (p->drive == NULL) continue;
+    if (p->kind == PRIM_LINE) {
+      pd[p->row] = -p->f[1];
+      continue;
+    }
+    GetPose(J, p->a, qd, NULL, &A);
+    GetPose(J, p->b, qd, NULL, &B);
+    lgnMat3Apply(A.R, p->ud, ra);
+    lgnMat3Apply(B.R, p->w, rb);
+    pd[p->row] = lgnVec3Dot(ra, rb);
   }
   return LGN_SUCCESS;
 }
@@ -1304,11 +1530,12 @@ sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
   }
 }
 
-int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
+int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
+                        SUNMatrix K)
 {
   const sunrealtype *qd, *ld;
   sunindextype nv, nnz, pos = 0;
-  int k, b, i, r, c;
+  int k, b, i, r, c, flag;
   if (J == NULL) return NullJoints(__func__);
   nv = J->G->nv;
   if (lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
@@ -1328,6 +1555,8 @@ int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda, SUNMatrix K)
     return LGN_MEM_FAIL;
   }
   if (J->m == 0) return LGN_SUCCESS;
+  flag = EvalDrivers(J, t, __func__);
+  if (flag != LGN_SUCCESS) return flag;
   qd = N_VGetArrayPointer(q);
   ld = N_VGetArrayPointer(lambda);
   FillRotations(J, qd);

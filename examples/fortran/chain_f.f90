@@ -122,7 +122,7 @@ program chain_f
   energy0 = chain_energy(sys, FN_VGetArray(sys%q0), FN_VGetArray(sys%v0))
   energy = energy0
   max_drift = 0.0_c_double
-  call check(LGNJoints_Residual(sys%joints, sys%q0, phiv), "LGNJoints_Residual")
+  call check(LGNJoints_Residual(sys%joints, 0.0_c_double, sys%q0, phiv), "LGNJoints_Residual")
   max_phi = maxval(abs(phi))
   cpu = 0.0_c_double
   t = 0.0_c_double
@@ -136,7 +136,7 @@ program chain_f
     if (flag /= LGN_SUCCESS) exit
     energy = chain_energy(sys, q, v)
     max_drift = max(max_drift, abs(energy - energy0))
-    call check(LGNJoints_Residual(sys%joints, qv, phiv), "LGNJoints_Residual")
+    call check(LGNJoints_Residual(sys%joints, t, qv, phiv), "LGNJoints_Residual")
     max_phi = max(max_phi, maxval(abs(phi)))
   end do
   call check(LGNGetNumSteps(mem, nsteps), "LGNGetNumSteps")

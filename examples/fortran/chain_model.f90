@@ -398,7 +398,7 @@ contains
     type(chain_data), pointer :: sys
 
     call c_f_pointer(user_data, sys)
-    ierr = merge(0_c_int, -1_c_int, LGNJoints_Stiffness(sys%joints, q, lambda, K) == 0)
+    ierr = merge(0_c_int, -1_c_int, LGNJoints_Stiffness(sys%joints, t, q, lambda, K) == 0)
   end function chain_stiffness
 
   !> LGNConstrFn: phi = Phi(q) of the joints.
@@ -408,7 +408,7 @@ contains
     type(chain_data), pointer :: sys
 
     call c_f_pointer(user_data, sys)
-    ierr = merge(0_c_int, -1_c_int, LGNJoints_Residual(sys%joints, q, phi) == 0)
+    ierr = merge(0_c_int, -1_c_int, LGNJoints_Residual(sys%joints, t, q, phi) == 0)
   end function chain_constr
 
   !> LGNConstrJacFn: B = B(q) of the joints (sparse, the whole pattern).
@@ -418,7 +418,7 @@ contains
     type(chain_data), pointer :: sys
 
     call c_f_pointer(user_data, sys)
-    ierr = merge(0_c_int, -1_c_int, LGNJoints_Jacobian(sys%joints, q, B) == 0)
+    ierr = merge(0_c_int, -1_c_int, LGNJoints_Jacobian(sys%joints, t, q, B) == 0)
   end function chain_constr_jac
 
   !> LGNCurvatureFn: z = Z(q)(v, v) of the joints.
@@ -428,7 +428,7 @@ contains
     type(chain_data), pointer :: sys
 
     call c_f_pointer(user_data, sys)
-    ierr = merge(0_c_int, -1_c_int, LGNJoints_Curvature(sys%joints, q, v, z) == 0)
+    ierr = merge(0_c_int, -1_c_int, LGNJoints_Curvature(sys%joints, t, q, v, z) == 0)
   end function chain_curvature
 
 end module chain_model

@@ -323,10 +323,9 @@ static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
 {
   RigidSystem *sys = (RigidSystem *)ud;
   int flag, k;
-  (void)t;
   (void)v;
   (void)vdot;
-  flag = LGNJoints_Stiffness(sys->joints, q, lambda, K);
+  flag = LGNJoints_Stiffness(sys->joints, t, q, lambda, K);
   if (flag != 0) return -1;
   if (sys->formulation == RB_SE3) {
     /* d(-R^T f)/dtheta = -(R^T f)~, in the body's diagonal block */
@@ -347,26 +346,22 @@ static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((RigidSystem *)ud)->joints, q, phi) == 0 ? 0 : -1;
+  return LGNJoints_Residual(((RigidSystem *)ud)->joints, t, q, phi) == 0 ? 0 : -1;
 }
 
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((RigidSystem *)ud)->joints, q, B) == 0 ? 0 : -1;
+  return LGNJoints_Jacobian(((RigidSystem *)ud)->joints, t, q, B) == 0 ? 0 : -1;
 }
 
 static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
 {
-  (void)t;
-  return LGNJoints_ConstraintForce(((RigidSystem *)ud)->joints, q, lambda, f) == 0 ? 0 : -1;
+  return LGNJoints_ConstraintForce(((RigidSystem *)ud)->joints, t, q, lambda, f) == 0 ? 0 : -1;
 }
 
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((RigidSystem *)ud)->joints, q, v, z) == 0 ? 0 : -1;
+  return LGNJoints_Curvature(((RigidSystem *)ud)->joints, t, q, v, z) == 0 ? 0 : -1;
 }
 
 void rigid_get_callbacks(RigidCallbacks *cb)
@@ -549,7 +544,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
 
   res->energy0 = rigid_energy(sys, sys->q0, sys->v0);
   res->energy  = res->energy0;
-  LGNJoints_Residual(sys->joints, sys->q0, phi);
+  LGNJoints_Residual(sys->joints, t, sys->q0, phi);
   res->max_phi = N_VMaxNorm(phi);
   if (opt->csv != NULL) fprintf(opt->csv, "t,energy,max_phi\n0,%.17g,%.3e\n", res->energy0, res->max_phi);
   if (flag == 0 && opt->adaptive && opt->step_log != NULL) {
@@ -569,7 +564,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     if (flag == 0) {
       res->energy    = rigid_energy(sys, q, v);
       res->max_drift = fabs(res->energy - res->energy0);
-      LGNJoints_Residual(sys->joints, q, phi);
+      LGNJoints_Residual(sys->joints, t, q, phi);
       res->max_phi = fmax(res->max_phi, N_VMaxNorm(phi));
     }
   }
@@ -586,13 +581,13 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     if (flag != 0) break;
     res->energy    = rigid_energy(sys, q, v);
     res->max_drift = fmax(res->max_drift, fabs(res->energy - res->energy0));
-    LGNJoints_Residual(sys->joints, q, phi);
+    LGNJoints_Residual(sys->joints, t, q, phi);
     res->max_phi = fmax(res->max_phi, N_VMaxNorm(phi));
     if (opt->csv != NULL) fprintf(opt->csv, "%.10g,%.17g,%.3e\n", t, res->energy, N_VMaxNorm(phi));
   }
   res->flag = flag;
   res->t    = t;
-  LGNJoints_Residual(sys->joints, q, phi);
+  LGNJoints_Residual(sys->joints, t, q, phi);
   res->phi_end = N_VMaxNorm(phi);
   LGNGetNumSteps(mem, &res->nsteps);
   LGNGetNumNewtonIters(mem, &res->nni);

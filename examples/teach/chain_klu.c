@@ -59,36 +59,32 @@ static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Model *)ud)->joints, q, phi) ? -1 : 0;
+  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
 }
 
 /* sparse B, overwritten with the pattern of LGNJoints_JacobianNnz */
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Model *)ud)->joints, q, B) ? -1 : 0;
+  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
 }
 
 /* B^T lambda without forming B: the residual needs no Jacobian */
 static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
 {
-  (void)t;
-  return LGNJoints_ConstraintForce(((Model *)ud)->joints, q, lambda, f) ? -1 : 0;
+  return LGNJoints_ConstraintForce(((Model *)ud)->joints, t, q, lambda, f) ? -1 : 0;
 }
 
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Model *)ud)->joints, q, v, z) ? -1 : 0;
+  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
 }
 
 /* sparse K_t = d/dq (B^T lambda) (the bodies add nothing here, see above) */
 static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                      N_Vector lambda, SUNMatrix K, void *ud)
 {
-  (void)t; (void)v; (void)vdot;
-  return LGNJoints_Stiffness(((Model *)ud)->joints, q, lambda, K) ? -1 : 0;
+  (void)v; (void)vdot;
+  return LGNJoints_Stiffness(((Model *)ud)->joints, t, q, lambda, K) ? -1 : 0;
 }
 
 static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
@@ -99,7 +95,7 @@ static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi
   LGNQuaternionToRotation(x + 3, R);
   for (i = 0; i < 3; i++) end[i] = x[i] + 0.5 * R[3 * i]; /* x + R (L/2, 0, 0) */
   LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, q, phi);
+  LGNJoints_Residual(md->joints, t, q, phi);
   printf("%5.2f %12.6f %12.6f %12.6f %14.8f %10.1e\n", t, end[0], end[1], end[2], kin + pot,
          sqrt(N_VDotProd(phi, phi)));
 }

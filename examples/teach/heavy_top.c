@@ -50,20 +50,17 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Model *)ud)->joints, q, phi) ? -1 : 0;
+  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
 }
 
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Model *)ud)->joints, q, B) ? -1 : 0;
+  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
 }
 
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Model *)ud)->joints, q, v, z) ? -1 : 0;
+  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
 }
 
 /* K_t = d/dq (M vdot + g + B^T lambda): both parts added to the dense K. */
@@ -71,8 +68,8 @@ static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                      N_Vector lambda, SUNMatrix K, void *ud)
 {
   Model *md = (Model *)ud;
-  (void)t; (void)vdot;
-  if (LGNJoints_Stiffness(md->joints, q, lambda, K)) return -1;
+  (void)vdot;
+  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1;
   return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
 }
 
@@ -85,7 +82,7 @@ static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi
 {
   sunrealtype kin, pot;
   LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, q, phi);
+  LGNJoints_Residual(md->joints, t, q, phi);
   printf("%5.2f %12.6f %12.6f %12.6f %14.6f %10.1e\n", t, NV_Ith_S(q, 0), NV_Ith_S(q, 1),
          NV_Ith_S(q, 2), kin + pot, sqrt(N_VDotProd(phi, phi)));
 }

@@ -56,24 +56,21 @@ static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                      N_Vector lambda, SUNMatrix K, void *ud)
 {
   Model *md = (Model *)ud;
-  (void)t; (void)vdot;
-  if (LGNJoints_Stiffness(md->joints, q, lambda, K)) return -1;
+  (void)vdot;
+  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1;
   return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
 }
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Model *)ud)->joints, q, phi) ? -1 : 0;
+  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
 }
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Model *)ud)->joints, q, B) ? -1 : 0;
+  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
 }
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Model *)ud)->joints, q, v, z) ? -1 : 0;
+  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
 }
 
 /* Body k at centre c, turned by angle a about z. */
@@ -90,7 +87,7 @@ static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi
   sunrealtype R[9], kin, pot;
   LGNQuaternionToRotation(qd + 3, R);
   LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, q, phi);
+  LGNJoints_Residual(md->joints, t, q, phi);
   printf("%5.2f %10.6f %10.6f %10.6f %11.6f %14.8f %10.1e\n", t,
          qd[0] + 0.5 * R[0], qd[1] + 0.5 * R[3], /* crank tip x + R (1/2, 0, 0) */
          qd[14], NV_Ith_S(v, 12), kin + pot, sqrt(N_VDotProd(phi, phi)));

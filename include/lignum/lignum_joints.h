@@ -26,6 +26,15 @@
  *               axis_a)                                               (5 rows)
  *   cylindrical: axes parallel as in the revolute joint (2 rows) and sb on
  *               the line as in the prismatic joint (2 rows)           (4 rows)
+ *   rotation driver: the angle theta of body b about axis_a of body a is
+ *               f(t): (R_a e(t)) . (R_b c) = sin(theta - f(t))        (1 row)
+ *   translation driver: (R_a n) . (p_b - p_a) - f(t), n = axis_a    (1 row)
+ *
+ * Drivers (prescribed motion) make Phi depend on t: every evaluation takes
+ * the time t of the callback it is called from, and a model with drivers
+ * gives Lignum Phi_t with LGNJoints_TimeDerivative (LGNSetConstraintTimeFn);
+ * LGNJoints_Curvature includes their time terms. Without drivers t is not
+ * used.
  *
  * A joint set keeps workspace for its evaluations (the bodies' rotations, the
  * pattern of the sparse B): evaluate one set from one thread at a time.
@@ -53,6 +62,12 @@ extern "C" {
 
 /** A set of joints between the bodies of one configuration group. */
 typedef struct LGNJointsRec *LGNJoints;
+
+/** Time law of a driver: f[0] = f(t), f[1] = f'(t), f[2] = f''(t) (radians
+ *  or lengths and their rates). Return 0 on success, nonzero on failure
+ *  (the evaluation then fails with LGN_CONSTR_FAIL); the values must be
+ *  finite. */
+typedef int (*LGNDriveFn)(sunrealtype t, sunrealtype f[3], void *drive_data);
 
 /**
  * Create an empty joint set for the bodies of G. The set reports bad input
@@ -157,6 +172,76 @@ LGN_EXPORT int LGNJoints_AddCylindrical(LGNJoints J, int a,
                                         const sunrealtype axis_b[3]);
 
 /**
+ * Prismatic joint with the locked relative rotation given by two joint
+ * frames: the frame [axis_a, ref_a, axis_a x ref_a] of body a and the frame
+ * [axis_b, ref_b, axis_b x ref_b] of body b stay aligned (R_a^T R_b = R0
+ * with R0 axis_b = axis_a and R0 ref_b = ref_a), and point sb of body b stays
+ * on the line through sa along axis_a. The same five rows as
+ * LGNJoints_AddPrismatic, which picks R0 itself (the smallest rotation
+ * taking axis_b to axis_a).
+ * @param J     the joint set
+ * @param a, b  the bodies (0-based leaves of G, or LGN_GROUND), a != b
+ * @param sa, sb points in the body frames (inertial for LGN_GROUND)
+ * @param axis_a, axis_b the sliding axis in each body, nonzero
+ * @param ref_a, ref_b a direction in each body not parallel to its axis
+ *              (its part perpendicular to the axis is used)
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
+LGN_EXPORT int LGNJoints_AddPrismaticFrames(LGNJoints J, int a,
+                                            const sunrealtype sa[3],
+                                            const sunrealtype axis_a[3],
+                                            const sunrealtype ref_a[3], int b,
+                                            const sunrealtype sb[3],
+                                            const sunrealtype axis_b[3],
+                                            const sunrealtype ref_b[3]);
+
+/**
+ * Rotation driver: the angle theta of body b relative to body a about
+ * axis_a is prescribed, theta = f(t). theta is measured in a's frame from
+ * ref_a to the direction ref_b of body b, positive about axis_a. One row,
+ *   Phi = (R_a e(t)) . (R_b c),  e(t) = cos f (n x r) - sin f r,
+ * with n = axis_a, r = ref_a (its part perpendicular to n) and c = ref_b,
+ * all normalised: Phi = sin(theta - f(t)) when c is perpendicular to the
+ * axis. Use it with a revolute joint about the same axis (a motor).
+ * @param J      the joint set
+ * @param a, b   the bodies (0-based leaves of G, or LGN_GROUND), a != b
+ * @param axis_a the axis in body a, nonzero
+ * @param ref_a  the zero-angle direction in body a, not parallel to axis_a
+ * @param ref_b  the direction of body b whose angle is prescribed
+ * @param f      the time law (LGNDriveFn), not NULL
+ * @param drive_data passed to f
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
+LGN_EXPORT int LGNJoints_AddRotationDriver(LGNJoints J, int a,
+                                           const sunrealtype axis_a[3],
+                                           const sunrealtype ref_a[3], int b,
+                                           const sunrealtype ref_b[3],
+                                           LGNDriveFn f, void *drive_data);
+
+/**
+ * Translation driver: the distance of point sb of body b from point sa of
+ * body a along axis_a is prescribed: (R_a n) . (p_b - p_a) = f(t), with
+ * n = axis_a / |axis_a| and p = x + R s. One row. Use it with a prismatic
+ * or cylindrical joint along the same axis (an actuator).
+ * @param J      the joint set
+ * @param a, b   the bodies (0-based leaves of G, or LGN_GROUND), a != b
+ * @param sa, sb points in the body frames (inertial for LGN_GROUND)
+ * @param axis_a the axis in body a, nonzero
+ * @param f      the time law (LGNDriveFn), not NULL
+ * @param drive_data passed to f
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
+LGN_EXPORT int LGNJoints_AddTranslationDriver(LGNJoints J, int a,
+                                              const sunrealtype sa[3],
+                                              const sunrealtype axis_a[3], int b,
+                                              const sunrealtype sb[3],
+                                              LGNDriveFn f, void *drive_data);
+
+/** Number of drivers in the set (0 for J = NULL). With drivers, give Lignum
+ *  Phi_t (LGNSetConstraintTimeFn with LGNJoints_TimeDerivative). */
+LGN_EXPORT int LGNJoints_NumDrivers(LGNJoints J);
+
+/**
  * Describe constraint row `row` (0-based, as in Phi and B and in
  * LGNGetRedundantConstraints): its joint, kind and bodies, e.g.
  * "revolute joint 2 (body 1 - body 2), its constraint 4 of 5".
@@ -182,11 +267,14 @@ LGN_EXPORT sunindextype LGNJoints_JacobianNnz(LGNJoints J);
 /** Number of stored entries of the sparse K written by LGNJoints_Stiffness. */
 LGN_EXPORT sunindextype LGNJoints_StiffnessNnz(LGNJoints J);
 
-/** phi = Phi(q), length m. For use in an LGNConstrFn. */
-LGN_EXPORT int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
+/** phi = Phi(q, t), length m. For use in an LGNConstrFn (t is used by
+ *  drivers only). Returns LGN_SUCCESS, LGN_ILL_INPUT, or LGN_CONSTR_FAIL
+ *  when a driver's time law fails. */
+LGN_EXPORT int LGNJoints_Residual(LGNJoints J, sunrealtype t, N_Vector q,
+                                  N_Vector phi);
 
 /**
- * B = B(q), m x nv. A dense B is overwritten entry by entry (entries outside
+ * B = B(q, t), m x nv (t is used by rotation drivers only). A dense B is overwritten entry by entry (entries outside
  * the joints' columns are left alone, so zero it first: Lignum does before
  * calling an LGNConstrJacFn). A sparse B (CSC or CSR) is overwritten with
  * the whole pattern, reallocated if it has fewer than
@@ -195,7 +283,8 @@ LGN_EXPORT int LGNJoints_Residual(LGNJoints J, N_Vector q, N_Vector phi);
  * differs from the last one); every call copies it into B and writes the
  * values in place.
  */
-LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
+LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q,
+                                  SUNMatrix B);
 
 /**
  * f = B(q)^T lambda, length nv: the joints' constraint forces, without
@@ -204,14 +293,22 @@ LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, N_Vector q, SUNMatrix B);
  * LGNJoints_Jacobian to round-off. With no joints (m = 0), lambda is not
  * read and f = 0.
  */
-LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, N_Vector q,
-                                         N_Vector lambda, N_Vector f);
+LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, sunrealtype t,
+                                         N_Vector q, N_Vector lambda,
+                                         N_Vector f);
 
-/** z = Z(q)(v, v) = D_q(B(q) v).(q v~), i.e. d/dt(B v) = B vdot + Z(q)(v, v)
- *  (doc/theory.md), length m: the
- *  curvature term of the consistent initial accelerations (LGNCurvatureFn). */
-LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
-                                   N_Vector z);
+/** z = d/dt(B v + Phi_t) - B vdot, length m: without drivers
+ *  Z(q)(v, v) = D_q(B(q) v).(q v~), i.e. d/dt(B v) = B vdot + Z(q)(v, v)
+ *  (doc/theory.md); a driver adds its time terms. The curvature term of the
+ *  consistent initial accelerations (LGNCurvatureFn). */
+LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, sunrealtype t, N_Vector q,
+                                   N_Vector v, N_Vector z);
+
+/** phit = dPhi/dt(q, t) at fixed q, length m: -f'(t) in a translation
+ *  driver's row, (R_a e'(t)) . (R_b c) in a rotation driver's, 0 in the
+ *  joints' rows. For an LGNConstrTimeFn (LGNSetConstraintTimeFn). */
+LGN_EXPORT int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q,
+                                        N_Vector phit);
 
 /**
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
@@ -225,8 +322,8 @@ LGN_EXPORT int LGNJoints_Curvature(LGNJoints J, N_Vector q, N_Vector v,
  * (6 x 6: the point-on-line rows depend on the translations).
  * Combine it with other terms with SUNMatScaleAdd.
  */
-LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, N_Vector q, N_Vector lambda,
-                                   SUNMatrix K);
+LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q,
+                                   N_Vector lambda, SUNMatrix K);
 
 #ifdef __cplusplus
 }

@@ -79,26 +79,24 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 static int Phi(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
   const Model *md = (const Model *)ud;
-  (void)t;
   if (md->twice) {
     /* the pin Phi = x - 0, twice */
     int i;
     for (i = 0; i < 6; i++) N_VGetArrayPointer(phi)[i] = N_VGetArrayPointer(q)[i % 3];
     return 0;
   }
-  return LGNJoints_Residual(md->J, q, phi);
+  return LGNJoints_Residual(md->J, t, q, phi);
 }
 
 static int Jac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
   const Model *md = (const Model *)ud;
-  (void)t;
   if (md->twice) {
     int i;
     for (i = 0; i < 6; i++) SM_ELEMENT_D(B, i, i % 3) = 1.0;
     return 0;
   }
-  return LGNJoints_Jacobian(md->J, q, B);
+  return LGNJoints_Jacobian(md->J, t, q, B);
 }
 
 static int Run(Model *md, LGNGroup G, N_Vector q0, int sparse, sunindextype m,

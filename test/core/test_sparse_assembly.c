@@ -223,23 +223,20 @@ static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                      N_Vector lambda, SUNMatrix K, void *ud)
 {
   Model *md = (Model *)ud;
-  (void)t;
   (void)v;
   (void)vdot;
   Forget(md);
-  return LGNJoints_Stiffness(md->sys->joints, q, lambda, K) == 0 ? 0 : -1;
+  return LGNJoints_Stiffness(md->sys->joints, t, q, lambda, K) == 0 ? 0 : -1;
 }
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Model *)ud)->sys->joints, q, phi) == 0 ? 0 : -1;
+  return LGNJoints_Residual(((Model *)ud)->sys->joints, t, q, phi) == 0 ? 0 : -1;
 }
 
 static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Model *)ud)->sys->joints, q, B) == 0 ? 0 : -1;
+  return LGNJoints_Jacobian(((Model *)ud)->sys->joints, t, q, B) == 0 ? 0 : -1;
 }
 
 /* ---------------------------------------------------------------------------

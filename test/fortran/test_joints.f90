@@ -103,12 +103,12 @@ contains
                [-0.5_c_double, 0.4_c_double, 0.7_c_double])
     R = rotation(q(8:14))
     q(8:10) = joint - matmul(R, top)        ! top of rod 1 at the bottom of rod 0
-    call expect_flag(LGNJoints_Residual(J, qv, phiv), LGN_SUCCESS, "LGN_SUCCESS", &
+    call expect_flag(LGNJoints_Residual(J, 0.0_c_double, qv, phiv), LGN_SUCCESS, "LGN_SUCCESS", &
                      "LGNJoints_Residual")
     call expect_near(maxval(abs(phi)), 0.0_c_double, 1.0e-15_c_double, &
                      "max |Phi| at a closed configuration")
     q(10) = q(10) + 1.0e-3_c_double          ! lift rod 1: only the second joint opens
-    call expect(LGNJoints_Residual(J, qv, phiv) == LGN_SUCCESS, "LGNJoints_Residual, moved")
+    call expect(LGNJoints_Residual(J, 0.0_c_double, qv, phiv) == LGN_SUCCESS, "LGNJoints_Residual, moved")
     call expect_near(maxval(abs(phi(1:3))), 0.0_c_double, 1.0e-15_c_double, &
                      "first joint still closed")
     call expect_near(phi(6), -1.0e-3_c_double, 1.0e-15_c_double, &
@@ -117,7 +117,7 @@ contains
     ! B dense, as a Fortran array B(1:6, 1:12): translation columns +I, -I
     B = SUNDenseMatrix(6_c_int64_t, 12_c_int64_t, ctx)
     call expect(SUNMatZero(B) == 0, "SUNMatZero")
-    call expect_flag(LGNJoints_Jacobian(J, qv, B), LGN_SUCCESS, "LGN_SUCCESS", &
+    call expect_flag(LGNJoints_Jacobian(J, 0.0_c_double, qv, B), LGN_SUCCESS, "LGN_SUCCESS", &
                      "LGNJoints_Jacobian (dense)")
     Bm => FSUNDenseMatrix_Array(B)
     eye = 0
@@ -221,17 +221,17 @@ contains
 
     ! B w = d/de Phi(q o exp(e w))
     Ba = 0
-    call expect(LGNJoints_Jacobian(J, qv, B) == LGN_SUCCESS, "Jacobian at q")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qv, B) == LGN_SUCCESS, "Jacobian at q")
     call expect(LGNGroup_ComposeExp(G, q, eps * w, qp) == 0, "q o exp(eps w)")
     call expect(LGNGroup_ComposeExp(G, q, -eps * w, qm) == 0, "q o exp(-eps w)")
-    call expect(LGNJoints_Residual(J, qpv, phipv) == LGN_SUCCESS, "Residual at q+")
-    call expect(LGNJoints_Residual(J, qmv, phimv) == LGN_SUCCESS, "Residual at q-")
+    call expect(LGNJoints_Residual(J, 0.0_c_double, qpv, phipv) == LGN_SUCCESS, "Residual at q+")
+    call expect(LGNJoints_Residual(J, 0.0_c_double, qmv, phimv) == LGN_SUCCESS, "Residual at q-")
     call expect_near(maxval(abs(matmul(Ba, w) - (phip - phim) / (2 * eps))), &
                      0.0_c_double, 1.0e-8_c_double, "max |B w - central difference of Phi|")
 
     ! f = B^T lambda without B (f is overwritten entirely: garble it first)
     f = huge(1.0_c_double)
-    call expect_flag(LGNJoints_ConstraintForce(J, qv, lv, fv), LGN_SUCCESS, "LGN_SUCCESS", &
+    call expect_flag(LGNJoints_ConstraintForce(J, 0.0_c_double, qv, lv, fv), LGN_SUCCESS, "LGN_SUCCESS", &
                      "ConstraintForce at q")
     scale = maxval(abs(matmul(lam, Ba)))
     call expect(scale > 1, "B^T lambda is not small")
@@ -242,9 +242,9 @@ contains
     Ka = 0
     Bpa = 0
     Bma = 0
-    call expect(LGNJoints_Stiffness(J, qv, lv, K) == LGN_SUCCESS, "Stiffness at q")
-    call expect(LGNJoints_Jacobian(J, qpv, Bp) == LGN_SUCCESS, "Jacobian at q+")
-    call expect(LGNJoints_Jacobian(J, qmv, Bm) == LGN_SUCCESS, "Jacobian at q-")
+    call expect(LGNJoints_Stiffness(J, 0.0_c_double, qv, lv, K) == LGN_SUCCESS, "Stiffness at q")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qpv, Bp) == LGN_SUCCESS, "Jacobian at q+")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qmv, Bm) == LGN_SUCCESS, "Jacobian at q-")
     scale = maxval(abs(matmul(lam, Bpa)))
     call expect(scale > 1, "B^T lambda is not small")
     call expect_near(maxval(abs(matmul(Ka, w) - matmul(lam, Bpa - Bma) / (2 * eps))) / scale, &
@@ -256,9 +256,9 @@ contains
     call expect(LGNGroup_ComposeExp(G, q, -eps * v, qm) == 0, "q o exp(-eps v)")
     Bpa = 0
     Bma = 0
-    call expect(LGNJoints_Jacobian(J, qpv, Bp) == LGN_SUCCESS, "Jacobian at q + eps v")
-    call expect(LGNJoints_Jacobian(J, qmv, Bm) == LGN_SUCCESS, "Jacobian at q - eps v")
-    call expect(LGNJoints_Curvature(J, qv, vv, zv) == LGN_SUCCESS, "Curvature")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qpv, Bp) == LGN_SUCCESS, "Jacobian at q + eps v")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qmv, Bm) == LGN_SUCCESS, "Jacobian at q - eps v")
+    call expect(LGNJoints_Curvature(J, 0.0_c_double, qv, vv, zv) == LGN_SUCCESS, "Curvature")
     scale = maxval(abs(v))**2
     call expect(maxval(abs(z)) > 1.0e-2_c_double * scale, "Z(v, v) is not small")
     call expect_near(maxval(abs(z - matmul(Bpa - Bma, v) / (2 * eps))) / scale, &
@@ -343,7 +343,7 @@ contains
     phiv = N_VNew_Serial(4_c_int64_t, ctx)
     call N_VConst(0.0_c_double, qv)
     nerr = rec%count
-    call expect_flag(LGNJoints_Residual(J, qv, phiv), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+    call expect_flag(LGNJoints_Residual(J, 0.0_c_double, qv, phiv), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "Residual into phi of length 4 /= m = 3")
     call expect(rec%count == nerr + 1 .and. index(rec%msg, "phi") > 0, &
                 "the message names phi: "//rec%msg)
@@ -351,16 +351,16 @@ contains
       call expect(rec%function_name == "LGNJoints_Residual", &
                   "reported under LGNJoints_Residual: "//rec%function_name)
     B = SUNDenseMatrix(3_c_int64_t, 6_c_int64_t, ctx)
-    call expect_flag(LGNJoints_Jacobian(J, qv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+    call expect_flag(LGNJoints_Jacobian(J, 0.0_c_double, qv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "Jacobian into a 3 x 6 matrix (nv = 12)")
-    call expect_flag(LGNJoints_Stiffness(J, qv, phiv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+    call expect_flag(LGNJoints_Stiffness(J, 0.0_c_double, qv, phiv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "Stiffness with lambda of length 4 /= m = 3")
     call expect_flag(LGNJoints_Residual(c_null_ptr, qv, phiv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "Residual of c_null_ptr")
     lv = N_VNew_Serial(3_c_int64_t, ctx)
-    call expect_flag(LGNJoints_ConstraintForce(J, qv, phiv, qv), LGN_ILL_INPUT, &
+    call expect_flag(LGNJoints_ConstraintForce(J, 0.0_c_double, qv, phiv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce with lambda of length 4 /= m = 3")
-    call expect_flag(LGNJoints_ConstraintForce(J, qv, lv, qv), LGN_ILL_INPUT, &
+    call expect_flag(LGNJoints_ConstraintForce(J, 0.0_c_double, qv, lv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce into f of length 14 /= nv = 12")
     call expect_flag(LGNJoints_ConstraintForce(c_null_ptr, qv, lv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce of c_null_ptr")

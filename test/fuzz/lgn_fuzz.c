@@ -298,10 +298,9 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 static int Phi(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
   Obj *o = ud;
-  (void)t;
   if (!LenOk(q, o->nq) || !LenOk(phi, o->m)) return -1;
   if (o->model == MOD_JOINTS) {
-    if (LGNJoints_Residual(o->J, q, phi) != 0) return -1;
+    if (LGNJoints_Residual(o->J, t, q, phi) != 0) return -1;
   } else if (o->model == MOD_BODY3) {
     const double *x = N_VGetArrayPointer(q);
     double R[9], *f = N_VGetArrayPointer(phi);
@@ -318,10 +317,9 @@ static int Phi(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 static int Jac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
   Obj *o = ud;
-  (void)t;
   if (!LenOk(q, o->nq)) return -1;
   if (o->model == MOD_JOINTS) {
-    if (LGNJoints_Jacobian(o->J, q, B) != 0) return -1;
+    if (LGNJoints_Jacobian(o->J, t, q, B) != 0) return -1;
   } else if (o->model == MOD_BODY3) {
     const double S[9] = {0.0, -XP[2], XP[1], XP[2], 0.0, -XP[0], -XP[1], XP[0], 0.0};
     double R[9], D[18] = {0};
@@ -401,10 +399,9 @@ static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
   Obj *o = ud;
-  (void)t;
   if (!LenOk(q, o->nq) || !LenOk(v, o->nv) || !LenOk(z, o->m)) return -1;
   if (o->model == MOD_JOINTS) {
-    if (LGNJoints_Curvature(o->J, q, v, z) != 0) return -1;
+    if (LGNJoints_Curvature(o->J, t, q, v, z) != 0) return -1;
   } else if (o->model == MOD_BODY3) {
     const double *W = N_VGetArrayPointer(v) + 3;
     double R[9], a[3], b[3], *zz = N_VGetArrayPointer(z);
@@ -427,10 +424,9 @@ static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud
 static int ConstraintForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
 {
   Obj *o = ud;
-  (void)t;
   if (!LenOk(q, o->nq) || !LenOk(lambda, o->m) || !LenOk(f, o->nv)) return -1;
   if (o->model == MOD_JOINTS) {
-    if (LGNJoints_ConstraintForce(o->J, q, lambda, f) != 0) return -1;
+    if (LGNJoints_ConstraintForce(o->J, t, q, lambda, f) != 0) return -1;
   } else if (o->model == MOD_BODY3) {
     const double *l = N_VGetArrayPointer(lambda);
     double R[9], rl[3], *ff = N_VGetArrayPointer(f);

@@ -88,20 +88,17 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 
 static int Phi(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Run *)ud)->J, q, phi) == 0 ? 0 : -1;
+  return LGNJoints_Residual(((Run *)ud)->J, t, q, phi) == 0 ? 0 : -1;
 }
 
 static int Jac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Run *)ud)->J, q, B) == 0 ? 0 : -1;
+  return LGNJoints_Jacobian(((Run *)ud)->J, t, q, B) == 0 ? 0 : -1;
 }
 
 static int Curv(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Run *)ud)->J, q, v, z) == 0 ? 0 : -1;
+  return LGNJoints_Curvature(((Run *)ud)->J, t, q, v, z) == 0 ? 0 : -1;
 }
 
 #define FAIL(r, ...)                                                           \

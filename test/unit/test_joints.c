@@ -61,9 +61,9 @@ static double SparseJacobianError(LGNJoints J, N_Vector q, SUNMatrix S, SUNMatri
 {
   const sunindextype nnz = LGNJoints_JacobianNnz(J);
   SUNMatZero(D);
-  if (LGNJoints_Jacobian(J, q, D) != LGN_SUCCESS) return -1;
+  if (LGNJoints_Jacobian(J, 0.0, q, D) != LGN_SUCCESS) return -1;
   Garble(S);
-  if (LGNJoints_Jacobian(J, q, S) != LGN_SUCCESS ||
+  if (LGNJoints_Jacobian(J, 0.0, q, S) != LGN_SUCCESS ||
       SUNSparseMatrix_IndexPointers(S)[SUNSparseMatrix_NP(S)] != nnz ||
       SUNSparseMatrix_NNZ(S) < nnz)
     return -1;
@@ -148,22 +148,22 @@ int main(void)
     for (i = 0; i < m; i++) N_VGetArrayPointer(lam)[i] = 10 * Rand();
 
     SUNMatZero(B);
-    LGNJoints_Jacobian(J, q, B);
+    LGNJoints_Jacobian(J, 0.0, q, B);
     /* B w vs Phi */
     for (i = 0; i < nv; i++) fd[i] = eps * w[i];
     G->ops.compose_exp(G, qd, fd, N_VGetArrayPointer(qp));
     for (i = 0; i < nv; i++) fd[i] = -eps * w[i];
     G->ops.compose_exp(G, qd, fd, N_VGetArrayPointer(qm));
-    LGNJoints_Residual(J, qp, phi_p);
-    LGNJoints_Residual(J, qm, phi_m);
+    LGNJoints_Residual(J, 0.0, qp, phi_p);
+    LGNJoints_Residual(J, 0.0, qm, phi_m);
     DenseApply(B, w, Bw, 0);
     for (i = 0; i < m; i++)
       errB = fmax(errB, fabs(Bw[i] - (N_VGetArrayPointer(phi_p)[i] - N_VGetArrayPointer(phi_m)[i]) / (2 * eps)));
     /* K w vs B^T lambda */
     SUNMatZero(Bp); SUNMatZero(Bm); SUNMatZero(K);
-    LGNJoints_Jacobian(J, qp, Bp);
-    LGNJoints_Jacobian(J, qm, Bm);
-    LGNJoints_Stiffness(J, q, lam, K);
+    LGNJoints_Jacobian(J, 0.0, qp, Bp);
+    LGNJoints_Jacobian(J, 0.0, qm, Bm);
+    LGNJoints_Stiffness(J, 0.0, q, lam, K);
     DenseApply(K, w, Bw, 0);
     {
       double rp[24], rm[24];
@@ -179,9 +179,9 @@ int main(void)
     for (i = 0; i < nv; i++) fd[i] = -eps * N_VGetArrayPointer(v)[i];
     G->ops.compose_exp(G, qd, fd, N_VGetArrayPointer(qm));
     SUNMatZero(Bp); SUNMatZero(Bm);
-    LGNJoints_Jacobian(J, qp, Bp);
-    LGNJoints_Jacobian(J, qm, Bm);
-    LGNJoints_Curvature(J, q, v, z);
+    LGNJoints_Jacobian(J, 0.0, qp, Bp);
+    LGNJoints_Jacobian(J, 0.0, qm, Bm);
+    LGNJoints_Curvature(J, 0.0, q, v, z);
     {
       double zp[32], zm[32];
       DenseApply(Bp, N_VGetArrayPointer(v), zp, 0);
@@ -197,7 +197,7 @@ int main(void)
   for (type = 0; type < 2; type++) {
     const int st = type == 0 ? CSC_MAT : CSR_MAT;
     S = SUNSparseMatrix(m, nv, 4, st, ctx); /* too small: must grow */
-    LGNJoints_Jacobian(J, q, S);
+    LGNJoints_Jacobian(J, 0.0, q, S);
     Check(type == 0 ? "sparse CSC B = dense B" : "sparse CSR B = dense B",
           SparseVsDense(S, B), 0.0);
     if (SUNSparseMatrix_IndexPointers(S)[type == 0 ? nv : m] != LGNJoints_JacobianNnz(J)) {
@@ -206,7 +206,7 @@ int main(void)
     }
     SUNMatDestroy(S);
     S = SUNSparseMatrix(nv, nv, 4, st, ctx);
-    LGNJoints_Stiffness(J, q, lam, S);
+    LGNJoints_Stiffness(J, 0.0, q, lam, S);
     Check(type == 0 ? "sparse CSC K = dense K" : "sparse CSR K = dense K",
           SparseVsDense(S, K), 0.0);
     SUNMatDestroy(S);
@@ -287,10 +287,10 @@ int main(void)
       RandomConfiguration(4, N_VGetArrayPointer(q));
       for (i = 0; i < m; i++) N_VGetArrayPointer(lam)[i] = 10 * Rand();
       SUNMatZero(B);
-      bad += LGNJoints_Jacobian(J, q, B) != LGN_SUCCESS;
+      bad += LGNJoints_Jacobian(J, 0.0, q, B) != LGN_SUCCESS;
       DenseApply(B, N_VGetArrayPointer(lam), btl, 1);
       N_VConst(NAN, f);
-      bad += LGNJoints_ConstraintForce(J, q, lam, f) != LGN_SUCCESS;
+      bad += LGNJoints_ConstraintForce(J, 0.0, q, lam, f) != LGN_SUCCESS;
       scale = 0;
       for (i = 0; i < nv; i++) scale = fmax(scale, fabs(btl[i]));
       for (i = 0; i < nv; i++) {
@@ -306,10 +306,10 @@ int main(void)
     B3   = SUNDenseMatrix(LGNJoints_NumConstraints(J3), nv, ctx);
     for (i = 0; i < LGNJoints_NumConstraints(J3); i++) N_VGetArrayPointer(lam3)[i] = 10 * Rand();
     SUNMatZero(B3);
-    LGNJoints_Jacobian(J3, q, B3);
+    LGNJoints_Jacobian(J3, 0.0, q, B3);
     DenseApply(B3, N_VGetArrayPointer(lam3), btl, 1);
     N_VConst(NAN, f);
-    bad = LGNJoints_ConstraintForce(J3, q, lam3, f) != LGN_SUCCESS;
+    bad = LGNJoints_ConstraintForce(J3, 0.0, q, lam3, f) != LGN_SUCCESS;
     scale = 0;
     for (i = 0; i < nv; i++) scale = fmax(scale, fabs(btl[i]));
     for (i = 0; i < nv; i++) {
@@ -322,20 +322,20 @@ int main(void)
     Check("f = B^T lambda, bodies 1, 3 only (rel.)", bad ? HUGE_VAL : errF3, 1e-14);
     Check("f = 0 at bodies 0, 2 (in no joint)", bad ? HUGE_VAL : free0, 0.0);
     N_VConst(NAN, f);
-    bad = LGNJoints_ConstraintForce(J4, q, lam0, f) != LGN_SUCCESS;
+    bad = LGNJoints_ConstraintForce(J4, 0.0, q, lam0, f) != LGN_SUCCESS;
     e   = 0;
     for (i = 0; i < nv; i++) e = fmax(e, isnan(N_VGetArrayPointer(f)[i]) ? HUGE_VAL : fabs(N_VGetArrayPointer(f)[i]));
     Check("f = 0 without joints (m = 0)", bad ? HUGE_VAL : e, 0.0);
 
     /* bad input: no joint set, q, lambda or f of the wrong length or NULL */
-    if (LGNJoints_ConstraintForce(NULL, q, lam, f) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, lam, lam, f) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, q, v, f) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, q, lam3, f) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, q, lam, lam) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, q, NULL, f) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, q, lam, NULL) != LGN_ILL_INPUT ||
-        LGNJoints_ConstraintForce(J, NULL, lam, f) != LGN_ILL_INPUT) {
+    if (LGNJoints_ConstraintForce(NULL, 0.0, q, lam, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, lam, lam, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, q, v, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, q, lam3, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, q, lam, lam) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, q, NULL, f) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, q, lam, NULL) != LGN_ILL_INPUT ||
+        LGNJoints_ConstraintForce(J, 0.0, NULL, lam, f) != LGN_ILL_INPUT) {
       printf("bad ConstraintForce input accepted\n");
       failures++;
     }
@@ -355,15 +355,15 @@ int main(void)
     double *qd = N_VGetArrayPointer(q), err = 0;
     int c;
     RandomConfiguration(4, qd);
-    LGNJoints_Residual(J, q, phi_p);
+    LGNJoints_Residual(J, 0.0, q, phi_p);
     for (k = 0; k < 4; k++)
       for (c = 0; c < 4; c++) {
         double *p = qd + 7 * k + 3; /* both body types: (x, p), nq = 7 */
         p[c] = -p[c];
         Jf = LGNJoints_Create(G);
         AddTestJoints(Jf);
-        LGNJoints_Residual(J, q, phi_p);
-        LGNJoints_Residual(Jf, q, phi_m);
+        LGNJoints_Residual(J, 0.0, q, phi_p);
+        LGNJoints_Residual(Jf, 0.0, q, phi_m);
         for (i = 0; i < m; i++)
           err = fmax(err, fabs(N_VGetArrayPointer(phi_p)[i] - N_VGetArrayPointer(phi_m)[i]));
         LGNJoints_Destroy(&Jf);

@@ -186,32 +186,32 @@ static void CheckEveryFunction(SUNContext ctx, LGNGroup G)
                  &rec, n++, "LGNJoints_AddUniversal", "a = -3");
   ExpectReported("AddUniversal zero axis_b", LGNJoints_AddUniversal(J, 0, s, axis, 1, s, zero),
                  &rec, n++, "LGNJoints_AddUniversal", "axis_b is zero");
-  ExpectReported("Residual phi of the wrong length", LGNJoints_Residual(J, q, bad), &rec, n++,
+  ExpectReported("Residual phi of the wrong length", LGNJoints_Residual(J, 0.0, q, bad), &rec, n++,
                  "LGNJoints_Residual", "phi is NULL or does not have length 5");
-  ExpectReported("Residual q = NULL", LGNJoints_Residual(J, NULL, phi), &rec, n++,
+  ExpectReported("Residual q = NULL", LGNJoints_Residual(J, 0.0, NULL, phi), &rec, n++,
                  "LGNJoints_Residual", "q is NULL");
-  ExpectReported("Jacobian B of the wrong size", LGNJoints_Jacobian(J, q, wrong), &rec, n++,
+  ExpectReported("Jacobian B of the wrong size", LGNJoints_Jacobian(J, 0.0, q, wrong), &rec, n++,
                  "LGNJoints_Jacobian", "B must be");
   ExpectReported("ConstraintForce lambda of the wrong length",
-                 LGNJoints_ConstraintForce(J, q, bad, f), &rec, n++,
+                 LGNJoints_ConstraintForce(J, 0.0, q, bad, f), &rec, n++,
                  "LGNJoints_ConstraintForce", "lambda");
-  ExpectReported("ConstraintForce f = NULL", LGNJoints_ConstraintForce(J, q, lam, NULL), &rec,
+  ExpectReported("ConstraintForce f = NULL", LGNJoints_ConstraintForce(J, 0.0, q, lam, NULL), &rec,
                  n++, "LGNJoints_ConstraintForce", "f is NULL");
-  ExpectReported("Curvature v of the wrong length", LGNJoints_Curvature(J, q, bad, phi), &rec,
+  ExpectReported("Curvature v of the wrong length", LGNJoints_Curvature(J, 0.0, q, bad, phi), &rec,
                  n++, "LGNJoints_Curvature", "v is NULL");
-  ExpectReported("Curvature z of the wrong length", LGNJoints_Curvature(J, q, v, bad), &rec,
+  ExpectReported("Curvature z of the wrong length", LGNJoints_Curvature(J, 0.0, q, v, bad), &rec,
                  n++, "LGNJoints_Curvature", "z is NULL");
-  ExpectReported("Stiffness K of the wrong size", LGNJoints_Stiffness(J, q, lam, wrong), &rec,
+  ExpectReported("Stiffness K of the wrong size", LGNJoints_Stiffness(J, 0.0, q, lam, wrong), &rec,
                  n++, "LGNJoints_Stiffness", "K must be");
-  ExpectReported("Stiffness lambda of the wrong length", LGNJoints_Stiffness(J, q, bad, K),
+  ExpectReported("Stiffness lambda of the wrong length", LGNJoints_Stiffness(J, 0.0, q, bad, K),
                  &rec, n++, "LGNJoints_Stiffness", "lambda");
   /* good calls report nothing */
   SUNMatZero(B);
-  Expect(LGNJoints_Residual(J, q, phi) == LGN_SUCCESS &&
-             LGNJoints_Jacobian(J, q, B) == LGN_SUCCESS &&
-             LGNJoints_ConstraintForce(J, q, lam, f) == LGN_SUCCESS &&
-             LGNJoints_Curvature(J, q, v, phi) == LGN_SUCCESS &&
-             LGNJoints_Stiffness(J, q, lam, K) == LGN_SUCCESS && rec.count == n,
+  Expect(LGNJoints_Residual(J, 0.0, q, phi) == LGN_SUCCESS &&
+             LGNJoints_Jacobian(J, 0.0, q, B) == LGN_SUCCESS &&
+             LGNJoints_ConstraintForce(J, 0.0, q, lam, f) == LGN_SUCCESS &&
+             LGNJoints_Curvature(J, 0.0, q, v, phi) == LGN_SUCCESS &&
+             LGNJoints_Stiffness(J, 0.0, q, lam, K) == LGN_SUCCESS && rec.count == n,
          "good calls: LGN_SUCCESS, no report");
 
   N_VDestroy(q);
@@ -305,13 +305,13 @@ static void CheckNoJointSet(SUNContext ctx, LGNGroup G)
 
   f1 = LGNJoints_SetErrHandlerFn(NULL, RecordError, &rec);
   f2 = LGNJoints_SetErrFile(NULL, stdout);
-  f3 = LGNJoints_Residual(NULL, q, q);
+  f3 = LGNJoints_Residual(NULL, 0.0, q, q);
   JN = LGNJoints_Create(NULL);
   JR = LGNJoints_Create(Rn);
   if (captured) StderrEnd(&cap, buf, sizeof buf);
   Expect(f1 == LGN_ILL_INPUT && f2 == LGN_ILL_INPUT && rec.count == 0,
          "setters with J = NULL: LGN_ILL_INPUT, no handler called");
-  Expect(f3 == LGN_ILL_INPUT, "LGNJoints_Residual(NULL, ...): LGN_ILL_INPUT");
+  Expect(f3 == LGN_ILL_INPUT, "LGNJoints_Residual(NULL, 0.0, ...): LGN_ILL_INPUT");
   Expect(JN == NULL && JR == NULL, "LGNJoints_Create(NULL), on R^3: NULL");
   if (captured) {
     Expect(strstr(buf, "[LGN ERROR]  LGNJoints_SetErrHandlerFn\n  J = NULL illegal.") != NULL &&

@@ -123,7 +123,7 @@ int main(void)
       LGNJoints_AddPrismatic(Jp, 0, sa, axy, 1, sb, ax);
       LGNJoints_AddPrismatic(Jp, 2, sa, ax, 3, sb, ax);
       ph = N_VNew_Serial(LGNJoints_NumConstraints(Jp), ctx);
-      LGNJoints_Residual(Jp, q, ph);
+      LGNJoints_Residual(Jp, 0.0, q, ph);
       err = fmax(err, N_VMaxNorm(ph));
       N_VDestroy(ph);
       Place(qd, ay, axy, 0.7 * Rand(), 3 * Rand(), qd + 7);  /* cylindrical */
@@ -131,7 +131,7 @@ int main(void)
       LGNJoints_AddCylindrical(Jc, 0, sa, ay, 1, sb, axy);
       LGNJoints_AddCylindrical(Jc, 2, sa, ax, 3, sb, ax);
       ph = N_VNew_Serial(LGNJoints_NumConstraints(Jc), ctx);
-      LGNJoints_Residual(Jc, q, ph);
+      LGNJoints_Residual(Jc, 0.0, q, ph);
       err = fmax(err, N_VMaxNorm(ph));
       N_VDestroy(ph);
       if (LGNJoints_NumConstraints(Jp) != 10 || LGNJoints_NumConstraints(Jc) != 8) failures++;
@@ -140,7 +140,7 @@ int main(void)
         LGNJoints_Destroy(&Jc);
         Place(qd, axy, ax, 0.3, 0.2, qd + 7);
         ph = N_VNew_Serial(10, ctx);
-        LGNJoints_Residual(Jp, q, ph);
+        LGNJoints_Residual(Jp, 0.0, q, ph);
         printf("prismatic turned by 0.2 about its axis: |Phi| = %.3e\n", N_VMaxNorm(ph));
         if (!(N_VMaxNorm(ph) > 0.05)) failures++;
         N_VDestroy(ph);
@@ -184,17 +184,17 @@ int main(void)
       for (i = 0; i < nv; i++) N_VGetArrayPointer(v)[i] = 2 * Rand();
       for (i = 0; i < m; i++) N_VGetArrayPointer(lam)[i] = 10 * Rand();
       SUNMatZero(B);
-      LGNJoints_Jacobian(J, q, B);
+      LGNJoints_Jacobian(J, 0.0, q, B);
       SUNMatZero(K);
-      LGNJoints_Stiffness(J, q, lam, K);
-      LGNJoints_Curvature(J, q, v, z);
+      LGNJoints_Stiffness(J, 0.0, q, lam, K);
+      LGNJoints_Curvature(J, 0.0, q, v, z);
       for (j = 0; j < nv; j++) {
         for (i = 0; i < nv; i++) w[i] = (i == j) ? eps : 0.0;
         LGNGroup_ComposeExp(G, qd, w, N_VGetArrayPointer(qp));
         for (i = 0; i < nv; i++) w[i] = -w[i];
         LGNGroup_ComposeExp(G, qd, w, N_VGetArrayPointer(qm));
-        LGNJoints_Residual(J, qp, phi_p);
-        LGNJoints_Residual(J, qm, phi_m);
+        LGNJoints_Residual(J, 0.0, qp, phi_p);
+        LGNJoints_Residual(J, 0.0, qm, phi_m);
         for (i = 0; i < m; i++) {
           const double dq = (N_VGetArrayPointer(phi_p)[i] - N_VGetArrayPointer(phi_m)[i]) / (2 * eps);
           errB = fmax(errB, fabs(dq - SM_ELEMENT_D(B, i, j)));
@@ -202,8 +202,8 @@ int main(void)
         }
         SUNMatZero(Bp);
         SUNMatZero(Bm);
-        LGNJoints_Jacobian(J, qp, Bp);
-        LGNJoints_Jacobian(J, qm, Bm);
+        LGNJoints_Jacobian(J, 0.0, qp, Bp);
+        LGNJoints_Jacobian(J, 0.0, qm, Bm);
         DenseApply(Bp, N_VGetArrayPointer(lam), yp, 1);
         DenseApply(Bm, N_VGetArrayPointer(lam), ym, 1);
         for (i = 0; i < nv; i++) {
@@ -219,8 +219,8 @@ int main(void)
       LGNGroup_ComposeExp(G, qd, w, N_VGetArrayPointer(qm));
       SUNMatZero(Bp);
       SUNMatZero(Bm);
-      LGNJoints_Jacobian(J, qp, Bp);
-      LGNJoints_Jacobian(J, qm, Bm);
+      LGNJoints_Jacobian(J, 0.0, qp, Bp);
+      LGNJoints_Jacobian(J, 0.0, qm, Bm);
       DenseApply(Bp, N_VGetArrayPointer(v), yp, 0);
       DenseApply(Bm, N_VGetArrayPointer(v), ym, 0);
       for (i = 0; i < m; i++) {
@@ -230,7 +230,7 @@ int main(void)
       /* f = B^T lambda */
       DenseApply(B, N_VGetArrayPointer(lam), btl, 1);
       N_VConst(NAN, fvec);
-      LGNJoints_ConstraintForce(J, q, lam, fvec);
+      LGNJoints_ConstraintForce(J, 0.0, q, lam, fvec);
       for (i = 0; i < nv; i++) errF = fmax(errF, fabs(N_VGetArrayPointer(fvec)[i] - btl[i]));
       /* sparse B and K, CSC and CSR, from too small matrices */
       {
@@ -238,12 +238,12 @@ int main(void)
         for (fmt = 0; fmt < 2; fmt++) {
           const int type = fmt == 0 ? CSC_MAT : CSR_MAT;
           S = SUNSparseMatrix(m, nv, 1, type, ctx);
-          LGNJoints_Jacobian(J, q, S);
+          LGNJoints_Jacobian(J, 0.0, q, S);
           errS = fmax(errS, SparseVsDense(S, B));
           if (SUNSparseMatrix_IndexPointers(S)[SUNSparseMatrix_NP(S)] != LGNJoints_JacobianNnz(J)) failures++;
           SUNMatDestroy(S);
           S = SUNSparseMatrix(nv, nv, 1, type, ctx);
-          LGNJoints_Stiffness(J, q, lam, S);
+          LGNJoints_Stiffness(J, 0.0, q, lam, S);
           errS = fmax(errS, SparseVsDense(S, K));
           if (SUNSparseMatrix_IndexPointers(S)[SUNSparseMatrix_NP(S)] != LGNJoints_StiffnessNnz(J)) failures++;
           SUNMatDestroy(S);
@@ -310,21 +310,18 @@ static int SForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 }
 static int SConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
-  (void)t;
-  return LGNJoints_Residual(((Slider *)ud)->joints, q, phi) == 0 ? 0 : -1;
+  return LGNJoints_Residual(((Slider *)ud)->joints, t, q, phi) == 0 ? 0 : -1;
 }
 static int SJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
-  (void)t;
-  return LGNJoints_Jacobian(((Slider *)ud)->joints, q, B) == 0 ? 0 : -1;
+  return LGNJoints_Jacobian(((Slider *)ud)->joints, t, q, B) == 0 ? 0 : -1;
 }
 static int SStiff(sunrealtype t, N_Vector q, N_Vector v, N_Vector vd, N_Vector lam,
                   SUNMatrix K, void *ud)
 {
   Slider *s = (Slider *)ud;
-  (void)t;
   (void)vd;
-  if (LGNJoints_Stiffness(s->joints, q, lam, K) != 0) return -1;
+  if (LGNJoints_Stiffness(s->joints, t, q, lam, K) != 0) return -1;
   return LGNBodies_Stiffness(s->bodies, q, v, K) == 0 ? 0 : -1;
 }
 static int SDamp(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
@@ -333,8 +330,7 @@ static int SDamp(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
 }
 static int SCurv(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
-  (void)t;
-  return LGNJoints_Curvature(((Slider *)ud)->joints, q, v, z) == 0 ? 0 : -1;
+  return LGNJoints_Curvature(((Slider *)ud)->joints, t, q, v, z) == 0 ? 0 : -1;
 }
 
 /* One SE(3) body (the harder case: gravity in body axes) sliding along the

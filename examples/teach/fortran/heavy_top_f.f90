@@ -50,7 +50,7 @@ contains
     type(model_t), pointer :: md
 
     call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Residual(md%joints, q, phi) /= 0)
+    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Residual(md%joints, t, q, phi) /= 0)
   end function constr_fn
 
   integer(c_int) function constr_jac_fn(t, q, B, ud) result(ierr) bind(c)
@@ -59,7 +59,7 @@ contains
     type(model_t), pointer :: md
 
     call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Jacobian(md%joints, q, B) /= 0)
+    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Jacobian(md%joints, t, q, B) /= 0)
   end function constr_jac_fn
 
   integer(c_int) function curvature_fn(t, q, v, z, ud) result(ierr) bind(c)
@@ -68,7 +68,7 @@ contains
     type(model_t), pointer :: md
 
     call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Curvature(md%joints, q, v, z) /= 0)
+    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Curvature(md%joints, t, q, v, z) /= 0)
   end function curvature_fn
 
   !> K_t: the joints' and the bodies' parts, both added to the dense K
@@ -79,7 +79,7 @@ contains
 
     call c_f_pointer(ud, md)
     ierr = 0
-    if (LGNJoints_Stiffness(md%joints, q, lambda, K) /= 0) then
+    if (LGNJoints_Stiffness(md%joints, t, q, lambda, K) /= 0) then
       ierr = -1
     else if (LGNBodies_Stiffness(md%bodies, q, v, K) /= 0) then
       ierr = -1
@@ -213,7 +213,7 @@ contains
     real(c_double), pointer :: ph(:)
 
     if (LGNBodies_Energy(md%bodies, q, v, kin, pot) /= 0) error stop 1
-    if (LGNJoints_Residual(md%joints, q, phi) /= 0) error stop 1
+    if (LGNJoints_Residual(md%joints, t, q, phi) /= 0) error stop 1
     ph => FN_VGetArray(phi)
     write (*, "(f5.2, 3(1x, f12.6), 1x, f14.6, 1x, es10.1)") t, qq(1:3), kin + pot, norm2(ph)
   end subroutine print_row
