@@ -403,6 +403,16 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem, LS, A
     end function LGNSetLinearSolver
 
+    !> Lignum's dense LU linear solver for the dense N x N matrix A (y a
+    !! template vector of length N), in SUNLinSol_Dense's place; free it
+    !! with SUNLinSolFree. c_null_ptr (with a message naming the argument)
+    !! for a NULL argument, a matrix that is not square dense, or a y of
+    !! another length.
+    type(c_ptr) function LGNLinSol_Dense(y, A, sunctx) bind(c, name="LGNLinSol_Dense")
+      import :: c_ptr
+      type(c_ptr), value :: y, A, sunctx
+    end function LGNLinSol_Dense
+
     !> With SUNLinSol_KLU: solve with Lignum's own triangular solves on a
     !! copy of KLU's factors (own = 1) or with SUNLinSolSolve (own = 0,
     !! default). own: 0 or 1 (sunbooleantype). own = 1 gives LGN_ILL_INPUT

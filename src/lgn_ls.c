@@ -11,6 +11,8 @@
  * KLU and SUNDIALS do not publish, so only the versions of
  * lgnKluCopySupported are accepted), the solves use a copy of KLU's
  * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
+ * Lignum's own dense LU (LGNLinSol_Dense, lgn_dense_lu.c) is checked
+ * against the problem size as SUNLinSol_Dense is.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -20,6 +22,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include "lgn_dense_lu.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
@@ -256,6 +259,15 @@ int lgnLsCheck(LGNMem mem)
               "for this A.",
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N,
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N, (long long)n, (long long)n);
+    return LGN_LS_MISMATCH;
+  }
+  if (lgnDenseLUSize(mem->LS) >= 0 && lgnDenseLUSize(mem->LS) != n) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The dense linear solver was created for %lld x %lld matrices, "
+              "but A is %lld x %lld: create it with LGNLinSol_Dense(y, A, ctx) "
+              "for this A.",
+              (long long)lgnDenseLUSize(mem->LS),
+              (long long)lgnDenseLUSize(mem->LS), (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
   if (!mem->ls_initialized) {

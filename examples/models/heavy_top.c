@@ -865,7 +865,9 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   o->lambda = N_VNew_Serial(m, o->ctx);
   o->A = SUNDenseMatrix(nv + m, nv + m, o->ctx);
   o->tmpl = N_VNew_Serial(nv + m, o->ctx); /* template of the linear solver */
-  o->LS = (o->A && o->tmpl) ? SUNLinSol_Dense(o->tmpl, o->A, o->ctx) : NULL;
+  o->LS = (o->A && o->tmpl) ? (opt->make_ls != NULL ? opt->make_ls : SUNLinSol_Dense)(
+                                  o->tmpl, o->A, o->ctx)
+                            : NULL;
   o->mem = LGNCreate(o->ctx);
   if (!o->G || !o->q || !o->v || !o->vdot || !o->a || !o->lambda || !o->LS || !o->mem)
     return LGN_MEM_FAIL;

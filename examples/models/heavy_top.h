@@ -49,6 +49,9 @@ typedef struct {
                               rtol, atol as the error test's tolerances;
                               h is then the output interval and the run
                               stops at t_end exactly (LGNSetStopTime)    */
+  SUNLinearSolver (*make_ls)(N_Vector y, SUNMatrix A, SUNContext ctx);
+                           /* the dense linear solver's constructor
+                              (NULL: SUNLinSol_Dense)                    */
 } HeavyTopOptions;
 
 /* Result of a run: state at the time reached, in the R^3 x SO(3) variables

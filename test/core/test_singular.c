@@ -10,6 +10,8 @@
  *      LGNJoints_DescribeConstraint; dense and KLU;
  *  (c) a body without mass in one direction: the zero pivot is named
  *      (body and direction) and no constraint is called redundant.
+ * The dense cases run with SUNLinSol_Dense and again with Lignum's dense
+ * LU (LGNLinSol_Dense), whose last flag names the zero pivot the same way.
  * The messages are printed, as a user would read them.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
@@ -99,6 +101,9 @@ static int Jac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
   return LGNJoints_Jacobian(md->J, t, q, B);
 }
 
+/* the dense solver of Run: SUNLinSol_Dense, or LGNLinSol_Dense when set */
+static int use_lgn_lu = 0;
+
 static int Run(Model *md, LGNGroup G, N_Vector q0, int sparse, sunindextype m,
                sunindextype *nred, sunindextype *rows, sunindextype *pivot)
 {
@@ -118,7 +123,7 @@ static int Run(Model *md, LGNGroup G, N_Vector q0, int sparse, sunindextype m,
   N_VConst(0.0, v0);
   if (!sparse) {
     A  = SUNDenseMatrix(n, n, ctx);
-    LS = SUNLinSol_Dense(tmp, A, ctx);
+    LS = use_lgn_lu ? LGNLinSol_Dense(tmp, A, ctx) : SUNLinSol_Dense(tmp, A, ctx);
   } else {
 #if defined(LGN_HAVE_KLU)
     A  = SUNSparseMatrix(n, n, n * n, CSC_MAT, ctx);
@@ -287,6 +292,11 @@ int main(void)
 #if defined(LGN_HAVE_KLU)
   FourBar(1);
 #endif
+  MasslessDirection();
+  printf("The dense cases again with LGNLinSol_Dense:\n");
+  use_lgn_lu = 1;
+  PinnedTwice();
+  FourBar(0);
   MasslessDirection();
   return test_summary("test_singular");
 }

@@ -610,7 +610,12 @@ contains
     dky = N_VNew_Serial(1_c_int64_t, ctx)
     A1 = SUNDenseMatrix(1_c_int64_t, 1_c_int64_t, ctx)
     tmpl = N_VNew_Serial(1_c_int64_t, ctx)
-    LS = SUNLinSol_Dense(tmpl, A1, ctx)
+    ! Lignum's dense LU in SUNLinSol_Dense's place (the oscillator above
+    ! uses SUNDIALS'); a NULL argument gives a null pointer
+    call expect(.not. c_associated(LGNLinSol_Dense(c_null_ptr, A1, ctx)), &
+                "LGNLinSol_Dense(y = NULL) gives NULL")
+    LS = LGNLinSol_Dense(tmpl, A1, ctx)
+    call expect(c_associated(LS), "LGNLinSol_Dense")
     qq => FN_VGetArray(q)
     vv => FN_VGetArray(v)
     qq(1) = 1.0_c_double
