@@ -104,13 +104,16 @@ module flignum_bodies_mod
     end function LGNBodies_AddSpringDamper
 
     !> Rotational spring-damper between bodies a and b: torque
-    !! -kr theta - cr omega_rel on b, theta = log(R_a^T R_b).
-    integer(c_int) function LGNBodies_AddRotationalSpringDamper(B, a, bb, kr, cr) &
+    !! -kr theta - cr omega_rel on b, theta = log(R0^T R_a^T R_b), with R0
+    !! the rest relative rotation given by the unit quaternion rest:
+    !! c_loc(p0) of a real(c_double), target :: p0(4), or c_null_ptr for R0 = I.
+    integer(c_int) function LGNBodies_AddRotationalSpringDamper(B, a, bb, kr, cr, rest) &
         bind(c, name="LGNBodies_AddRotationalSpringDamper")
       import :: c_int, c_double, c_ptr
       type(c_ptr), value :: B
       integer(c_int), value :: a, bb
       real(c_double), value :: kr, cr
+      type(c_ptr), value :: rest
     end function LGNBodies_AddRotationalSpringDamper
 
     !> Stored entries of a sparse M (12 per body).

@@ -22,7 +22,11 @@
  * Rotational spring-damper: theta = log(R_a^T R_b); along R_b exp(w_b),
  * dtheta = T(theta)^-1 w_b, along R_a exp(w_a), dtheta = -T^-1 Rrel^T w_a
  * (Rrel = R_a^T R_b; Rrel theta = theta), and g_b = k theta + c (Omega_b -
- * Rrel^T Omega_a), g_a = -k theta - c (Rrel Omega_b - Omega_a).
+ * Rrel^T Omega_a), g_a = -k theta - c (Rrel Omega_b - Omega_a). A rest
+ * rotation R0 (theta = log(R0^T R_a^T R_b)) is the same element on the
+ * frame a' = R_a R0 of body a: R_a exp(w_a) R0 = R_a R0 exp((R0^T w_a)~), so
+ * Omega_a' = R0^T Omega_a, and a's rows of g, K_t, C_t are R0 times those
+ * of a' (its columns times R0^T).
  *
  * A pure helper layer like the joints: no integrator memory, its own sink.
  * ---------------------------------------------------------------------------*/
@@ -53,6 +57,8 @@ typedef struct {
   int a, b;
   sunrealtype sa[3], sb[3];
   sunrealtype k, c, L0;
+  sunbooleantype rest;  /* rotational: a rest rotation R0 (else identity) */
+  sunrealtype p0[4], R0[9];
 } Element;
 
 struct LGNBodiesRec {
@@ -359,13 +365,24 @@ int LGNBodies_AddSpringDamper(LGNBodies B, int a, const sunrealtype sa[3], int b
 }
 
 int LGNBodies_AddRotationalSpringDamper(LGNBodies B, int a, int b, sunrealtype kr,
-                                        sunrealtype cr)
+                                        sunrealtype cr, const sunrealtype rest[4])
 {
   Element *e;
+  sunrealtype nrm = SUN_RCONST(0.0);
+  int i;
   if (B == NULL) return NullBodies(__func__);
   if (CheckPair(B, a, b, __func__) != LGN_SUCCESS || CheckCoef(B, kr, "kr", __func__) != LGN_SUCCESS ||
       CheckCoef(B, cr, "cr", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
+  if (rest != NULL) {
+    for (i = 0; i < 4; i++) nrm += rest[i] * rest[i];
+    if (!(fabs(nrm - SUN_RCONST(1.0)) <= SUN_RCONST(1e-10))) {
+      BErr(B, LGN_ILL_INPUT, __func__,
+           "rest = (%g, %g, %g, %g) illegal: not a unit quaternion (|rest|^2 = %g).",
+           (double)rest[0], (double)rest[1], (double)rest[2], (double)rest[3], (double)nrm);
+      return LGN_ILL_INPUT;
+    }
+  }
   e = NewElement(B, __func__);
   if (e == NULL) return LGN_MEM_FAIL;
   e->kind = ELEM_ROTSPRING;
@@ -373,6 +390,11 @@ int LGNBodies_AddRotationalSpringDamper(LGNBodies B, int a, int b, sunrealtype k
   e->b = b;
   e->k = kr;
   e->c = cr;
+  e->rest = rest != NULL;
+  if (e->rest) {
+    for (i = 0; i < 4; i++) e->p0[i] = rest[i] / sqrt(nrm);
+    LGNQuaternionToRotation(e->p0, e->R0);
+  }
   return LGN_SUCCESS;
 }
 
@@ -447,6 +469,29 @@ static void AddSub(sunrealtype *blk, int ro, int co, const sunrealtype *X, sunre
   int i, j;
   for (i = 0; i < 3; i++)
     for (j = 0; j < 3; j++) blk[6 * (ro + i) + co + j] += f * X[3 * i + j];
+}
+
+/* AddSub of a rotational spring's 3x3 term X at the rotation block of row
+ * side sa and column side sb (0: body a, 1: body b), with its rest rotation:
+ * a's rows R0 X, a's columns X R0^T (the file's header). */
+static void AddRot(sunrealtype *blk, const Element *e, int sa, int sb, const sunrealtype *X,
+                   sunrealtype f)
+{
+  sunrealtype Y[9], Z[9];
+  int i;
+  if (!e->rest) {
+    AddSub(blk, 3, 3, X, f);
+    return;
+  }
+  if (sa == 0) MM(e->R0, X, Y);
+  else memcpy(Y, X, sizeof Y);
+  if (sb == 0) { /* Z = Y R0^T */
+    sunrealtype R0T[9];
+    for (i = 0; i < 9; i++) R0T[i] = e->R0[3 * (i % 3) + i / 3];
+    MM(Y, R0T, Z);
+  } else
+    memcpy(Z, Y, sizeof Z);
+  AddSub(blk, 3, 3, Z, f);
 }
 
 sunindextype LGNBodies_MassNnz(LGNBodies B) { return B != NULL ? 12 * (sunindextype)B->nb : 0; }
@@ -579,6 +624,16 @@ static void RotEval(const struct LGNBodiesRec *B, const Element *e, const sunrea
   sunrealtype pc[4], pr[4];
   GetPose(B, e->a, q, v, &S->P[0]);
   GetPose(B, e->b, q, v, &S->P[1]);
+  if (e->rest) { /* body a's frame a' = R_a R0, Omega_a' = R0^T Omega_a */
+    Pose *A = &S->P[0];
+    sunrealtype R[9], w[3];
+    MM(A->R, e->R0, R);
+    memcpy(A->R, R, sizeof R);
+    LGNQuaternionMultiply(A->p, e->p0, pc);
+    memcpy(A->p, pc, sizeof pc);
+    lgnMat3ApplyT(e->R0, A->v + 3, w);
+    memcpy(A->v + 3, w, sizeof w);
+  }
   MTM(S->P[0].R, S->P[1].R, S->Rrel);
   pc[0] = S->P[0].p[0];
   pc[1] = -S->P[0].p[1];
@@ -720,9 +775,12 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
       sunrealtype t1[3], t2[3];
       RotEval(B, e, qd, vd, &S);
       if (e->a != LGN_GROUND) {
-        sunrealtype *ga = gd + B->voff[e->a] + 3;
+        sunrealtype *ga = gd + B->voff[e->a] + 3, tq[3];
         lgnMat3Apply(S.Rrel, S.P[1].v + 3, t1);
-        for (i = 0; i < 3; i++) ga[i] += -e->k * S.theta[i] - e->c * (t1[i] - S.P[0].v[3 + i]);
+        for (i = 0; i < 3; i++) tq[i] = -e->k * S.theta[i] - e->c * (t1[i] - S.P[0].v[3 + i]);
+        if (e->rest) lgnMat3Apply(e->R0, tq, t2); /* a's rows: R0 times a''s */
+        else memcpy(t2, tq, sizeof tq);
+        for (i = 0; i < 3; i++) ga[i] += t2[i];
       }
       if (e->b != LGN_GROUND) {
         sunrealtype *gb = gd + B->voff[e->b] + 3;
@@ -912,32 +970,32 @@ static int Tangent(struct LGNBodiesRec *B, const sunrealtype *qd, const sunrealt
             if (sa == sb) {
               for (i = 0; i < 3; i++) blk[6 * (3 + i) + 3 + i] += e->c;
             } else {
-              AddSub(blk, 3, 3, sa == 0 ? S.Rrel : RT, -e->c);
+              AddRot(blk, e, sa, sb, sa == 0 ? S.Rrel : RT, -e->c);
             }
             continue;
           }
           if (sa == 1 && sb == 1) { /* k T^-1 - c (Rrel^T Omega_a)~ */
-            AddSub(blk, 3, 3, Ti, e->k);
+            AddRot(blk, e, sa, sb, Ti, e->k);
             lgnMat3Apply(RT, S.P[0].v + 3, t);
             lgnSO3_Tilde(t, X);
-            AddSub(blk, 3, 3, X, -e->c);
+            AddRot(blk, e, sa, sb, X, -e->c);
           } else if (sa == 1 && sb == 0) { /* -k T^-1 Rrel^T + c Rrel^T Omega_a~ */
             MM(Ti, RT, Z);
-            AddSub(blk, 3, 3, Z, -e->k);
+            AddRot(blk, e, sa, sb, Z, -e->k);
             lgnSO3_Tilde(S.P[0].v + 3, X);
             MM(RT, X, Y);
-            AddSub(blk, 3, 3, Y, e->c);
+            AddRot(blk, e, sa, sb, Y, e->c);
           } else if (sa == 0 && sb == 1) { /* -k T^-1 + c Rrel Omega_b~ */
-            AddSub(blk, 3, 3, Ti, -e->k);
+            AddRot(blk, e, sa, sb, Ti, -e->k);
             lgnSO3_Tilde(S.P[1].v + 3, X);
             MM(S.Rrel, X, Y);
-            AddSub(blk, 3, 3, Y, e->c);
+            AddRot(blk, e, sa, sb, Y, e->c);
           } else { /* k T^-1 Rrel^T - c (Rrel Omega_b)~ */
             MM(Ti, RT, Z);
-            AddSub(blk, 3, 3, Z, e->k);
+            AddRot(blk, e, sa, sb, Z, e->k);
             lgnMat3Apply(S.Rrel, S.P[1].v + 3, t);
             lgnSO3_Tilde(t, X);
-            AddSub(blk, 3, 3, X, -e->c);
+            AddRot(blk, e, sa, sb, X, -e->c);
           }
         }
       }

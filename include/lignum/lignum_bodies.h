@@ -128,12 +128,24 @@ LGN_EXPORT int LGNBodies_AddSpringDamper(LGNBodies B, int a,
                                          const sunrealtype sb[3], sunrealtype k,
                                          sunrealtype c, sunrealtype L0);
 
-/** Rotational spring-damper between bodies a and b (one may be LGN_GROUND,
- *  a != b): torque -kr theta - cr omega_rel on b, theta = log(R_a^T R_b)
- *  (see the top of this header); kr, cr >= 0. */
+/**
+ * Rotational spring-damper between bodies a and b (one may be LGN_GROUND,
+ * a != b): torque -kr theta - cr omega_rel on b (and the reaction on a),
+ * theta = log(R0^T R_a^T R_b) the rotation vector of b relative to its rest
+ * orientation (see the top of this header).
+ * @param B      the body set
+ * @param a, b   the bodies (0-based leaves, or LGN_GROUND), a != b
+ * @param kr, cr rotational stiffness and damping, >= 0
+ * @param rest   the unit quaternion of the rest relative rotation
+ *               R0 = R_a^T R_b (scalar first; |rest| = 1 to 1e-10, it is
+ *               normalised), or NULL for R0 = I (rest when the body frames
+ *               are aligned)
+ * @return LGN_SUCCESS, LGN_ILL_INPUT or LGN_MEM_FAIL.
+ */
 LGN_EXPORT int LGNBodies_AddRotationalSpringDamper(LGNBodies B, int a, int b,
                                                    sunrealtype kr,
-                                                   sunrealtype cr);
+                                                   sunrealtype cr,
+                                                   const sunrealtype rest[4]);
 
 /** Number of stored entries of a sparse M: 12 per body (m on the
  *  translation diagonal, the full 3x3 inertia block). */

@@ -99,7 +99,7 @@ contains
                      10.0_c_double, 0.0_c_double, 0.5_c_double), LGN_SUCCESS, "LGN_SUCCESS", &
                      "AddSpringDamper")
     call expect_flag(LGNBodies_AddRotationalSpringDamper(B, 0_c_int, LGN_GROUND, &
-                     0.0_c_double, 0.0_c_double), LGN_SUCCESS, "LGN_SUCCESS", &
+                     0.0_c_double, 0.0_c_double, c_null_ptr), LGN_SUCCESS, "LGN_SUCCESS", &
                      "AddRotationalSpringDamper (zero: no effect)")
     L = sqrt(sum(q(1:3)**2))
     call expect(LGNBodies_Energy(B, qv, vv, Tkin, Vpot) == LGN_SUCCESS, "Energy with a spring")

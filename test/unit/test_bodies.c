@@ -159,10 +159,12 @@ static LGNBodies MakeSet(LGNGroup G, int set, double c)
     LGNBodies_AddSpringDamper(Bd, 1, s1, LGN_GROUND, s2, 25.0, c, 0.2);
   }
   if (set == 2 || set == 3) {
-    LGNBodies_AddRotationalSpringDamper(Bd, 0, 1, 50.0, 5 * c);
-    LGNBodies_AddRotationalSpringDamper(Bd, 3, 2, 70.0, 2.5 * c);
-    LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, 2, 30.0, 5 * c);
-    LGNBodies_AddRotationalSpringDamper(Bd, 3, LGN_GROUND, 40.0, 5 * c);
+    /* two with a rest rotation (a's rows and columns through R0) */
+    const double rest1[4] = {0.5, 0.5, -0.5, 0.5}, rest2[4] = {0.8, 0.0, 0.6, 0.0};
+    LGNBodies_AddRotationalSpringDamper(Bd, 0, 1, 50.0, 5 * c, rest1);
+    LGNBodies_AddRotationalSpringDamper(Bd, 3, 2, 70.0, 2.5 * c, NULL);
+    LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, 2, 30.0, 5 * c, NULL);
+    LGNBodies_AddRotationalSpringDamper(Bd, 3, LGN_GROUND, 40.0, 5 * c, rest2);
   }
   return Bd;
 }
@@ -359,8 +361,8 @@ static void Energies(SUNContext ctx)
         LGNBodies_SetGravity(Bd, grav);
         LGNBodies_AddSpringDamper(Bd, LGN_GROUND, top, 0, s1, 100.0, c, 0.5);
         LGNBodies_AddSpringDamper(Bd, 0, s2, 1, s3, 80.0, c, 0.6);
-        LGNBodies_AddRotationalSpringDamper(Bd, 0, 1, 2.0, c);
-        LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, 0, 1.0, c);
+        LGNBodies_AddRotationalSpringDamper(Bd, 0, 1, 2.0, c, NULL);
+        LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, 0, 1.0, c, NULL);
         LGNGroup_Identity(G, qd);
         qd[0] = 0.1; qd[1] = 0.0; qd[2] = 1.0;
         qd[7] = 0.3; qd[8] = 0.2; qd[9] = 0.2;
@@ -416,7 +418,11 @@ static void BadInput(SUNContext ctx)
   bad += LGNBodies_SetGravity(Bd, nan3) != LGN_ILL_INPUT;
   bad += LGNBodies_AddSpringDamper(Bd, 0, o, 0, o, 1, 0, 0) != LGN_ILL_INPUT;
   bad += LGNBodies_AddSpringDamper(Bd, 0, o, LGN_GROUND, o, -1, 0, 0) != LGN_ILL_INPUT;
-  bad += LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, LGN_GROUND, 1, 0) != LGN_ILL_INPUT;
+  bad += LGNBodies_AddRotationalSpringDamper(Bd, LGN_GROUND, LGN_GROUND, 1, 0, NULL) != LGN_ILL_INPUT;
+  {
+    const double notunit[4] = {1.0, 0.1, 0.0, 0.0};
+    bad += LGNBodies_AddRotationalSpringDamper(Bd, 0, LGN_GROUND, 1, 0, notunit) != LGN_ILL_INPUT;
+  }
   /* zero length: the spring's direction is undefined */
   bad += LGNBodies_AddSpringDamper(Bd, 0, o, LGN_GROUND, o, 1, 0, 0) != LGN_SUCCESS;
   LGNGroup_Identity(G, N_VGetArrayPointer(q));
@@ -429,12 +435,59 @@ static void BadInput(SUNContext ctx)
   printf("bad input: %d messages through the handler\n", nerr);
   Check("bad input refused (count of accepted)", bad, 0);
   /* all but LGNBodies_Create(Rn) and B = NULL, which go to stderr */
-  Check("messages through the set's handler (13 expected: |n - 13|)", abs(nerr - 13), 0);
+  Check("messages through the set's handler (14 expected: |n - 14|)", abs(nerr - 14), 0);
   N_VDestroy(q); N_VDestroy(v); N_VDestroy(g);
   LGNBodies_Destroy(&Bd);
   if (Bd != NULL) failures++;
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(Rn);
+}
+
+/* The rest rotation means what it says: at R_b = R_a R0 the rotational
+ * spring is relaxed (no torque, no energy), and turned by phi about an axis
+ * from there its energy is k phi^2 / 2 and the torque on b is -k phi n. */
+static void RestRotation(SUNContext ctx)
+{
+  const double rest[4] = {0.5, 0.5, -0.5, 0.5}, n[3] = {0.6, 0.0, 0.8}, k = 7.0;
+  const double Jp[3] = {1, 2, 3}, phi = 0.3;
+  LGNGroup body = LGNGroup_R3xSO3(), f2[2], G;
+  LGNBodies Bd;
+  N_Vector q, v, g;
+  double *qd, pb[4], turn[4], err = 0, V;
+  int i;
+  f2[0] = body;
+  f2[1] = body;
+  G  = LGNGroup_Product(2, f2);
+  Bd = LGNBodies_Create(G);
+  LGNBodies_SetPrincipalInertia(Bd, 0, 1.0, Jp);
+  LGNBodies_SetPrincipalInertia(Bd, 1, 1.0, Jp);
+  LGNBodies_AddRotationalSpringDamper(Bd, 0, 1, k, 0.0, rest);
+  q = N_VNew_Serial(G->nq, ctx);
+  v = N_VNew_Serial(G->nv, ctx);
+  g = N_VNew_Serial(G->nv, ctx);
+  qd = N_VGetArrayPointer(q);
+  N_VConst(0.0, v);
+  RandomConfiguration(2, qd);
+  LGNQuaternionMultiply(qd + 3, rest, qd + 10);
+  LGNBodies_Force(Bd, q, v, g);
+  LGNBodies_Energy(Bd, q, v, NULL, &V);
+  err = fmax(N_VMaxNorm(g), fabs(V));
+  /* turned by phi about n (b's axes) */
+  memcpy(pb, qd + 10, sizeof pb);
+  turn[0] = cos(phi / 2);
+  for (i = 0; i < 3; i++) turn[1 + i] = sin(phi / 2) * n[i];
+  LGNQuaternionMultiply(pb, turn, qd + 10);
+  LGNBodies_Force(Bd, q, v, g);
+  LGNBodies_Energy(Bd, q, v, NULL, &V);
+  err = fmax(err, fabs(V - 0.5 * k * phi * phi));
+  for (i = 0; i < 3; i++) err = fmax(err, fabs(NV_Ith_S(g, 9 + i) - k * phi * n[i]));
+  Check("rest rotation: relaxed at R_a R0, k phi^2/2 and k phi n when turned", err, 1e-14);
+  N_VDestroy(q);
+  N_VDestroy(v);
+  N_VDestroy(g);
+  LGNBodies_Destroy(&Bd);
+  LGNGroup_Destroy(G);
+  LGNGroup_Destroy(body);
 }
 
 int main(void)
@@ -446,6 +499,7 @@ int main(void)
   AgainstExample(ctx, RB_SE3);
   DifferenceQuotients(ctx);
   Energies(ctx);
+  RestRotation(ctx);
   BadInput(ctx);
   SUNContext_Free(&ctx);
   printf("%s\n", failures == 0 ? "PASSED" : "FAILED");
