@@ -1,0 +1,394 @@
+/* -----------------------------------------------------------------------------
+ * Lignum benchmarks: the N-body chain as a stabilised index-2 (GGL) DAE in
+ * Euler parameters for SUNDIALS IDA (equations in ida_chain.h).
+ *
+ * With R(p) = (p0^2 - pbar.pbar) I + 2 pbar pbar^T + 2 p0 pbar~
+ * (models/euler_parameters.h), the derivative of a body point R(p) s is
+ *   d(R s)/dp0   = 2 p0 s + 2 pbar x s,
+ *   d(R s)/dpbar = -2 s pbar^T + 2 (pbar.s) I + 2 pbar s^T - 2 p0 s~,
+ * checked against central differences of Phi by
+ * ida_chain_check_constraint_jacobian() (CTest bench_work_precision_quick).
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include "ida_chain.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <ida/ida.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "models/chain.h"
+#include "models/euler_parameters.h"
+
+#define MAXN IDACH_MAXN
+#define HALF_L 0.5 /* rods of 1 m (chain.c) */
+
+static const double TOP[3] = {0.0, 0.0, HALF_L}, BOTTOM[3] = {0.0, 0.0, -HALF_L};
+
+typedef struct {
+  int n;
+  double mass[MAXN], J[3 * MAXN], gravity[3];
+} Chain;
+
+/* offsets in y for n bodies */
+#define OQ(n) 0
+#define OV(n) (7 * (n))
+#define OL(n) (14 * (n))
+#define OM(n) (18 * (n))
+
+/* =============================================================================
+ * Model pieces
+ * ===========================================================================*/
+
+/* P = x + R(p) s and D = d(R(p) s)/dp (3 x 4 row-major) */
+static void BodyPoint(const double *q, const double s[3], double P[3], double D[12])
+{
+  const double *p = q + 3, *pb = q + 4;
+  const double ps = pb[0] * s[0] + pb[1] * s[1] + pb[2] * s[2];
+  double R[9], pxs[3];
+  int i, j;
+  ep_rotation(p, R);
+  for (i = 0; i < 3; i++) P[i] = q[i] + R[3 * i] * s[0] + R[3 * i + 1] * s[1] + R[3 * i + 2] * s[2];
+  if (D == NULL) return;
+  pxs[0] = pb[1] * s[2] - pb[2] * s[1];
+  pxs[1] = pb[2] * s[0] - pb[0] * s[2];
+  pxs[2] = pb[0] * s[1] - pb[1] * s[0];
+  for (i = 0; i < 3; i++) {
+    double st[3]; /* row i of s~ */
+    st[0] = i == 0 ? 0.0 : i == 1 ? s[2] : -s[1];
+    st[1] = i == 0 ? -s[2] : i == 1 ? 0.0 : s[0];
+    st[2] = i == 0 ? s[1] : i == 1 ? -s[0] : 0.0;
+    D[4 * i] = 2.0 * p[0] * s[i] + 2.0 * pxs[i];
+    for (j = 0; j < 3; j++)
+      D[4 * i + 1 + j] = -2.0 * s[i] * pb[j] + (i == j ? 2.0 * ps : 0.0) + 2.0 * pb[i] * s[j] -
+                         2.0 * p[0] * st[j];
+  }
+}
+
+/* Phi(q) (4 n) and, if B != NULL, B = dPhi/dq (4 n x 7 n row-major, dense) */
+static void Constraints(const Chain *c, const double *q, double *phi, double *B)
+{
+  const int n = c->n, nq = 7 * n;
+  double Pa[3], Pb[3], Da[12], Db[12];
+  int j, i, k;
+  if (B != NULL) memset(B, 0, (size_t)(4 * n * nq) * sizeof(double));
+  for (j = 0; j < n; j++) {
+    if (j == 0) Pa[0] = Pa[1] = Pa[2] = 0.0;
+    else BodyPoint(q + 7 * (j - 1), BOTTOM, Pa, B ? Da : NULL);
+    BodyPoint(q + 7 * j, TOP, Pb, B ? Db : NULL);
+    for (i = 0; i < 3; i++) {
+      phi[3 * j + i] = Pa[i] - Pb[i];
+      if (B == NULL) continue;
+      if (j > 0) {
+        double *row = B + (size_t)(3 * j + i) * nq + 7 * (j - 1);
+        row[i] = 1.0;
+        for (k = 0; k < 4; k++) row[3 + k] = Da[4 * i + k];
+      }
+      {
+        double *row = B + (size_t)(3 * j + i) * nq + 7 * j;
+        row[i] = -1.0;
+        for (k = 0; k < 4; k++) row[3 + k] = -Db[4 * i + k];
+      }
+    }
+  }
+  for (j = 0; j < n; j++) {
+    const double *p = q + 7 * j + 3;
+    phi[3 * n + j] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3] - 1.0;
+    if (B != NULL)
+      for (k = 0; k < 4; k++) B[(size_t)(3 * n + j) * nq + 7 * j + 3 + k] = 2.0 * p[k];
+  }
+}
+
+/* 4 G(p)^T J G(p) w + 8 G(pd)^T J G(p) pd (4) */
+static void RotDynamics(const double J[3], const double *p, const double *pd, const double *w,
+                        double out[4])
+{
+  double G[12], Gd[12], a[3], e[3];
+  int i, k;
+  ep_matrix_g(p, G);
+  ep_matrix_g(pd, Gd);
+  ep_g_vec(G, w, a);
+  ep_g_vec(G, pd, e);
+  for (k = 0; k < 3; k++) {
+    a[k] *= J[k];
+    e[k] *= J[k];
+  }
+  for (i = 0; i < 4; i++)
+    out[i] = 4.0 * (G[i] * a[0] + G[4 + i] * a[1] + G[8 + i] * a[2]) +
+             8.0 * (Gd[i] * e[0] + Gd[4 + i] * e[1] + Gd[8 + i] * e[2]);
+}
+
+/* F(t, y, y') (22 n); B is work space (4 n x 7 n) */
+static void Residual(const Chain *c, const double *y, const double *yp, double *F, double *B)
+{
+  const int n = c->n, nq = 7 * n, nl = 4 * n;
+  const double *q = y + OQ(n), *v = y + OV(n), *l = y + OL(n), *mu = y + OM(n);
+  const double *qd = yp + OQ(n), *vd = yp + OV(n);
+  int i, j, k;
+  Constraints(c, q, F + OL(n), B);
+  for (i = 0; i < nq; i++) {
+    double btm = 0.0, btl = 0.0;
+    for (j = 0; j < nl; j++) {
+      const double b = B[(size_t)j * nq + i];
+      btm += b * mu[j];
+      btl += b * l[j];
+    }
+    F[OQ(n) + i] = qd[i] - v[i] - btm;
+    F[OV(n) + i] = btl;
+  }
+  for (k = 0; k < n; k++) {
+    double rot[4];
+    for (i = 0; i < 3; i++)
+      F[OV(n) + 7 * k + i] += c->mass[k] * (vd[7 * k + i] - c->gravity[i]);
+    RotDynamics(c->J + 3 * k, q + 7 * k + 3, v + 7 * k + 3, vd + 7 * k + 3, rot);
+    for (i = 0; i < 4; i++) F[OV(n) + 7 * k + 3 + i] += rot[i];
+  }
+  for (j = 0; j < nl; j++) {
+    double s = 0.0;
+    for (i = 0; i < nq; i++) s += B[(size_t)j * nq + i] * v[i];
+    F[OM(n) + j] = s;
+  }
+}
+
+typedef struct {
+  Chain c;
+  double B[4 * MAXN * 7 * MAXN];
+} UserData;
+
+static int ResFn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *ud)
+{
+  UserData *u = ud;
+  (void)t;
+  Residual(&u->c, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), N_VGetArrayPointer(rr), u->B);
+  return 0;
+}
+
+/* =============================================================================
+ * Initial values: Lignum's chain_create() state; v0 = 0, so
+ * [M B^T; B 0] [v'0; lambda0] = [-g; 0] with g = -m gravity (no gyroscopic
+ * terms at rest); mu0 = 0, q'0 = v0 = 0.
+ * ===========================================================================*/
+
+static int SolveDense(int n, double *A, double *b)
+{
+  int i, j, k;
+  for (k = 0; k < n; k++) {
+    int piv = k;
+    for (i = k + 1; i < n; i++)
+      if (fabs(A[i * n + k]) > fabs(A[piv * n + k])) piv = i;
+    if (A[piv * n + k] == 0.0) return 1;
+    if (piv != k) {
+      double tmp;
+      for (j = 0; j < n; j++) {
+        tmp = A[k * n + j];
+        A[k * n + j] = A[piv * n + j];
+        A[piv * n + j] = tmp;
+      }
+      tmp = b[k];
+      b[k] = b[piv];
+      b[piv] = tmp;
+    }
+    for (i = k + 1; i < n; i++) {
+      const double f = A[i * n + k] / A[k * n + k];
+      for (j = k; j < n; j++) A[i * n + j] -= f * A[k * n + j];
+      b[i] -= f * b[k];
+    }
+  }
+  for (k = n - 1; k >= 0; k--) {
+    double s = b[k];
+    for (j = k + 1; j < n; j++) s -= A[k * n + j] * b[j];
+    b[k] = s / A[k * n + k];
+  }
+  return 0;
+}
+
+/* The model data and q0 from chain_create(); 0 on success. */
+static int ChainSetup(int n, Chain *c, double *q0)
+{
+  SUNContext ctx = NULL;
+  RigidSystem *sys;
+  int k;
+  if (n < 1 || n > MAXN || SUNContext_Create(NULL, &ctx) != 0) return 1;
+  sys = chain_create(n, RB_R3XSO3, ctx);
+  if (sys == NULL) {
+    SUNContext_Free(&ctx);
+    return 1;
+  }
+  c->n = n;
+  for (k = 0; k < n; k++) c->mass[k] = sys->mass[k];
+  for (k = 0; k < 3 * n; k++) c->J[k] = sys->inertia[k];
+  for (k = 0; k < 3; k++) c->gravity[k] = sys->gravity[k];
+  memcpy(q0, N_VGetArrayPointer(sys->q0), (size_t)(7 * n) * sizeof(double));
+  rigid_free(&sys);
+  SUNContext_Free(&ctx);
+  return 0;
+}
+
+static int Initial(int n, Chain *c, double *y0, double *yp0, double *res_norm)
+{
+  const int nq = 7 * n, nl = 4 * n, m = nq + nl, ny = 22 * n;
+  static double A[11 * MAXN * 11 * MAXN], B[4 * MAXN * 7 * MAXN];
+  double b[11 * MAXN], F[22 * MAXN];
+  int i, j, k;
+  memset(y0, 0, (size_t)ny * sizeof(double));
+  memset(yp0, 0, (size_t)ny * sizeof(double));
+  if (ChainSetup(n, c, y0 + OQ(n)) != 0) return 1;
+  Constraints(c, y0 + OQ(n), F, B);
+  memset(A, 0, (size_t)(m * m) * sizeof(double));
+  memset(b, 0, sizeof b);
+  for (k = 0; k < n; k++) {
+    double G[12], Mp[16];
+    for (i = 0; i < 3; i++) {
+      A[(7 * k + i) * m + 7 * k + i] = c->mass[k];
+      b[7 * k + i] = c->mass[k] * c->gravity[i];
+    }
+    memset(Mp, 0, sizeof Mp);
+    ep_matrix_g(y0 + 7 * k + 3, G);
+    ep_add_gt_j_g(G, c->J + 3 * k, G, 4.0, Mp);
+    for (i = 0; i < 4; i++)
+      for (j = 0; j < 4; j++) A[(7 * k + 3 + i) * m + 7 * k + 3 + j] = Mp[4 * i + j];
+  }
+  for (i = 0; i < nl; i++)
+    for (j = 0; j < nq; j++) A[(nq + i) * m + j] = A[j * m + nq + i] = B[i * nq + j];
+  if (SolveDense(m, A, b) != 0) return 1;
+  for (i = 0; i < nq; i++) yp0[OV(n) + i] = b[i];
+  for (i = 0; i < nl; i++) y0[OL(n) + i] = b[nq + i];
+  Residual(c, y0, yp0, F, B);
+  *res_norm = 0.0;
+  for (i = 0; i < ny; i++) *res_norm = fmax(*res_norm, fabs(F[i]));
+  return 0;
+}
+
+int ida_chain_initial(int n, double *y0, double *yp0, double *res_norm)
+{
+  Chain c;
+  return Initial(n, &c, y0, yp0, res_norm);
+}
+
+double ida_chain_check_constraint_jacobian(int n)
+{
+  static double B[4 * MAXN * 7 * MAXN], y[22 * MAXN], yp[22 * MAXN];
+  double q[7 * MAXN], dq[7 * MAXN], pp[4 * MAXN], pm[4 * MAXN], rn, scale = 0.0, err = 0.0;
+  const double e = 1e-6;
+  Chain c;
+  int i, j;
+  memset(q, 0, sizeof q);
+  if (Initial(n, &c, y, yp, &rn) != 0) return INFINITY;
+  for (i = 0; i < 7 * n; i++) q[i] = y[i] + 0.1 * sin(1.0 + 2.7 * i); /* generic, |p| != 1 */
+  Constraints(&c, q, pp, B);
+  for (i = 0; i < 7 * n * 4 * n; i++) scale = fmax(scale, fabs(B[i]));
+  for (j = 0; j < 7 * n; j++) {
+    double qj = q[j];
+    memset(dq, 0, sizeof dq);
+    q[j] = qj + e;
+    Constraints(&c, q, pp, NULL);
+    q[j] = qj - e;
+    Constraints(&c, q, pm, NULL);
+    q[j] = qj;
+    for (i = 0; i < 4 * n; i++)
+      err = fmax(err, fabs((pp[i] - pm[i]) / (2.0 * e) - B[i * 7 * n + j]));
+  }
+  return err / (1.0 + scale);
+}
+
+void ida_chain_tip(int n, const double *q, double tip[3])
+{
+  BodyPoint(q + 7 * (n - 1), BOTTOM, tip, NULL);
+}
+
+/* =============================================================================
+ * Driver
+ * ===========================================================================*/
+
+void ida_chain_default_options(IdaChainOptions *opt)
+{
+  memset(opt, 0, sizeof *opt);
+  opt->n = 3;
+  opt->rtol = 1e-6;
+  opt->t_end = 1.0;
+  opt->h0 = 1e-6;
+}
+
+int ida_chain_run(const IdaChainOptions *opt, IdaChainResult *res)
+{
+  const int n = opt->n, ny = 22 * n;
+  SUNContext ctx = NULL;
+  N_Vector y = NULL, yp = NULL, id = NULL, atol = NULL;
+  SUNMatrix A = NULL;
+  SUNLinearSolver LS = NULL;
+  void *mem = NULL;
+  UserData *ud = NULL;
+  double *yy, *pp, *ii, *aa, rn, tret = 0.0, phi[4 * MAXN];
+  clock_t c0;
+  int flag = -100, i;
+
+  memset(res, 0, sizeof *res);
+  res->flag = -100;
+  if (n < 1 || n > MAXN || SUNContext_Create(NULL, &ctx) != 0) return -100;
+  ud = calloc(1, sizeof *ud);
+  y = N_VNew_Serial(ny, ctx);
+  yp = N_VNew_Serial(ny, ctx);
+  id = N_VNew_Serial(ny, ctx);
+  atol = N_VNew_Serial(ny, ctx);
+  if (!ud || !y || !yp || !id || !atol) goto done;
+  yy = N_VGetArrayPointer(y);
+  pp = N_VGetArrayPointer(yp);
+  ii = N_VGetArrayPointer(id);
+  aa = N_VGetArrayPointer(atol);
+  if (Initial(n, &ud->c, yy, pp, &rn) != 0) goto done;
+  for (i = 0; i < ny; i++) {
+    ii[i] = i < OL(n) ? 1.0 : 0.0;
+    aa[i] = opt->rtol * (i < OV(n) ? 1.0 : i < OL(n) ? 5.0 : 1e3);
+  }
+  A = SUNDenseMatrix(ny, ny, ctx);
+  LS = A ? SUNLinSol_Dense(y, A, ctx) : NULL;
+  mem = IDACreate(ctx);
+  if (!A || !LS || !mem) goto done;
+  flag = IDAInit(mem, ResFn, 0.0, y, yp);
+  if (flag == 0) flag = IDASVtolerances(mem, opt->rtol, atol);
+  if (flag == 0) flag = IDASetUserData(mem, ud);
+  if (flag == 0) flag = IDASetId(mem, id);
+  if (flag == 0) flag = IDASetSuppressAlg(mem, SUNTRUE);
+  if (flag == 0) flag = IDASetStopTime(mem, opt->t_end);
+  if (flag == 0) flag = IDASetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 1000000L);
+  if (flag == 0 && opt->h0 > 0.0) flag = IDASetInitStep(mem, opt->h0);
+  if (flag == 0) flag = IDASetLinearSolver(mem, LS, A);
+  if (flag != 0) goto done;
+
+  c0 = clock();
+  flag = IDASolve(mem, opt->t_end, &tret, y, yp, IDA_NORMAL);
+  res->cpu_seconds = (double)(clock() - c0) / CLOCKS_PER_SEC;
+  res->t = tret;
+  ida_chain_tip(n, yy + OQ(n), res->tip);
+  Constraints(&ud->c, yy + OQ(n), phi, NULL);
+  for (i = 0; i < 4 * n; i++) res->max_phi_end = fmax(res->max_phi_end, fabs(phi[i]));
+  {
+    long int nre = 0, nreLS = 0;
+    IDAGetNumSteps(mem, &res->nsteps);
+    IDAGetNumNonlinSolvIters(mem, &res->nniters);
+    IDAGetNumResEvals(mem, &nre);
+    IDAGetNumLinResEvals(mem, &nreLS);
+    IDAGetNumJacEvals(mem, &res->njevals);
+    res->nres = nre + nreLS;
+  }
+
+done:
+  res->flag = flag;
+  if (mem) IDAFree(&mem);
+  if (LS) SUNLinSolFree(LS);
+  if (A) SUNMatDestroy(A);
+  if (y) N_VDestroy(y);
+  if (yp) N_VDestroy(yp);
+  if (id) N_VDestroy(id);
+  if (atol) N_VDestroy(atol);
+  free(ud);
+  SUNContext_Free(&ctx);
+  return flag;
+}
