@@ -22,7 +22,9 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
 
 #include "models/chain.h"
 #include "models/euler_parameters.h"
@@ -157,10 +159,160 @@ static void Residual(const Chain *c, const double *y, const double *yp, double *
   }
 }
 
+/* =============================================================================
+ * Analytic Jacobian dF/dy + c_j dF/dy'.  l . R(p) s = p^T A(l, s) p with
+ *   A00 = l.s,  A0m = Am0 = (s x l)_m,  Amm' = -(l.s) delta + l_m s_m' + s_m l_m',
+ * so the Hessian of l . Phi_joint in p is +-2 A(l, s) (zero in x), that of
+ * the norm 2 I; the rotational dynamics' derivatives are those of
+ * ida_heavy_top.c (K and C).
+ * ===========================================================================*/
+
+static void AddA(const double l[3], const double s[3], double f, double *J, int ld)
+{
+  const double ls = l[0] * s[0] + l[1] * s[1] + l[2] * s[2];
+  double sxl[3];
+  int m, k;
+  sxl[0] = s[1] * l[2] - s[2] * l[1];
+  sxl[1] = s[2] * l[0] - s[0] * l[2];
+  sxl[2] = s[0] * l[1] - s[1] * l[0];
+  J[0] += f * ls;
+  for (m = 0; m < 3; m++) {
+    J[1 + m] += f * sxl[m];
+    J[(size_t)(1 + m) * ld] += f * sxl[m];
+    for (k = 0; k < 3; k++)
+      J[(size_t)(1 + m) * ld + 1 + k] += f * ((m == k ? -ls : 0.0) + l[m] * s[k] + s[m] * l[k]);
+  }
+}
+
+/* J[rows of q or v, cols of q] += f * sum_r w_r Hess(Phi_r) (ld = row stride) */
+static void AddWeightedHessian(const Chain *c, const double *w, double f, double *J, int ld)
+{
+  const int n = c->n;
+  int j, k;
+  for (j = 0; j < n; j++) {
+    if (j > 0) AddA(w + 3 * j, BOTTOM, 2.0 * f, J + (size_t)(7 * (j - 1) + 3) * ld + 7 * (j - 1) + 3, ld);
+    AddA(w + 3 * j, TOP, -2.0 * f, J + (size_t)(7 * j + 3) * ld + 7 * j + 3, ld);
+  }
+  for (j = 0; j < n; j++)
+    for (k = 0; k < 4; k++) J[(size_t)(7 * j + 3 + k) * ld + 7 * j + 3 + k] += 2.0 * f * w[3 * n + j];
+}
+
+static void Jacobian(const Chain *c, double cj, const double *y, const double *yp, double *Jd,
+                     double *B)
+{
+  const int n = c->n, ny = 22 * n, nq = 7 * n, nl = 4 * n;
+  const double *q = y + OQ(n), *v = y + OV(n), *l = y + OL(n), *mu = y + OM(n);
+  double phi[4 * MAXN];
+  int i, j, k;
+#define JD(r, cc) Jd[(size_t)(r) * ny + (cc)]
+  memset(Jd, 0, (size_t)ny * ny * sizeof(double));
+  Constraints(c, q, phi, B);
+  /* F_q = q' - v - B^T mu */
+  AddWeightedHessian(c, mu, -1.0, &JD(OQ(n), OQ(n)), ny);
+  for (i = 0; i < nq; i++) {
+    JD(OQ(n) + i, OQ(n) + i) += cj;
+    JD(OQ(n) + i, OV(n) + i) = -1.0;
+    for (j = 0; j < nl; j++) JD(OQ(n) + i, OM(n) + j) = -B[j * nq + i];
+  }
+  /* F_v = M v' + g + B^T lambda */
+  AddWeightedHessian(c, l, 1.0, &JD(OV(n), OQ(n)), ny);
+  for (i = 0; i < nq; i++)
+    for (j = 0; j < nl; j++) JD(OV(n) + i, OL(n) + j) = B[j * nq + i];
+  for (k = 0; k < n; k++) {
+    const double *p = q + 7 * k + 3, *pd = v + 7 * k + 3, *w = yp + OV(n) + 7 * k + 3;
+    const double *Jb = c->J + 3 * k;
+    double G[12], Gd[12], Gw[12], a[3], Mp[16], K[16], C[16];
+    const int r0 = OV(n) + 7 * k;
+    ep_matrix_g(p, G);
+    ep_matrix_g(pd, Gd);
+    ep_matrix_g(w, Gw);
+    memset(K, 0, sizeof K);
+    ep_g_vec(G, w, a);
+    for (i = 0; i < 3; i++) a[i] *= Jb[i];
+    ep_add_h(a, 4.0, K);
+    ep_add_gt_j_g(G, Jb, Gw, -4.0, K);
+    ep_add_gt_j_g(Gd, Jb, Gd, -8.0, K);
+    memset(C, 0, sizeof C);
+    ep_g_vec(G, pd, a);
+    for (i = 0; i < 3; i++) a[i] *= Jb[i];
+    ep_add_h(a, 8.0, C);
+    ep_add_gt_j_g(Gd, Jb, G, 8.0, C);
+    memset(Mp, 0, sizeof Mp);
+    ep_add_gt_j_g(G, Jb, G, 4.0, Mp);
+    for (i = 0; i < 4; i++)
+      for (j = 0; j < 4; j++) {
+        JD(r0 + 3 + i, OQ(n) + 7 * k + 3 + j) += K[4 * i + j];
+        JD(r0 + 3 + i, OV(n) + 7 * k + 3 + j) = cj * Mp[4 * i + j] + C[4 * i + j];
+      }
+    for (i = 0; i < 3; i++) JD(r0 + i, OV(n) + 7 * k + i) = cj * c->mass[k];
+  }
+  /* Phi = 0: B;  B v = 0: d(Bv)/dq and B */
+  for (i = 0; i < nl; i++)
+    for (j = 0; j < nq; j++) {
+      JD(OL(n) + i, OQ(n) + j) = B[i * nq + j];
+      JD(OM(n) + i, OV(n) + j) = B[i * nq + j];
+    }
+  for (i = 0; i < nl; i++) { /* row i of d(Bv)/dq = v^T Hess(Phi_i) */
+    double e[4 * MAXN], H[7 * MAXN * 7 * MAXN];
+    memset(e, 0, sizeof e);
+    e[i] = 1.0;
+    memset(H, 0, (size_t)(nq * nq) * sizeof(double));
+    AddWeightedHessian(c, e, 1.0, H, nq);
+    for (j = 0; j < nq; j++) {
+      double sum = 0.0;
+      for (k = 0; k < nq; k++) sum += H[k * nq + j] * v[k];
+      JD(OM(n) + i, OQ(n) + j) = sum;
+    }
+  }
+#undef JD
+}
+
 typedef struct {
   Chain c;
   double B[4 * MAXN * 7 * MAXN];
+  double Jd[22 * MAXN * 22 * MAXN];
+  unsigned char P[22 * MAXN * 22 * MAXN]; /* structural pattern (KLU) */
+  sunindextype nnz;
 } UserData;
+
+static int JacDense(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vector rr,
+                    SUNMatrix Jac, void *ud, N_Vector t1, N_Vector t2, N_Vector t3)
+{
+  UserData *u = ud;
+  const int ny = 22 * u->c.n;
+  int i, j;
+  (void)t; (void)rr; (void)t1; (void)t2; (void)t3;
+  Jacobian(&u->c, cj, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), u->Jd, u->B);
+  for (j = 0; j < ny; j++) {
+    sunrealtype *col = SUNDenseMatrix_Column(Jac, j);
+    for (i = 0; i < ny; i++) col[i] = u->Jd[(size_t)i * ny + j];
+  }
+  return 0;
+}
+
+static int JacSparse(sunrealtype t, sunrealtype cj, N_Vector yy, N_Vector yp, N_Vector rr,
+                     SUNMatrix Jac, void *ud, N_Vector t1, N_Vector t2, N_Vector t3)
+{
+  UserData *u = ud;
+  const int ny = 22 * u->c.n;
+  sunindextype *cp = SUNSparseMatrix_IndexPointers(Jac);
+  sunindextype *ri = SUNSparseMatrix_IndexValues(Jac);
+  sunrealtype *d = SUNSparseMatrix_Data(Jac);
+  sunindextype k = 0;
+  int i, j;
+  (void)t; (void)rr; (void)t1; (void)t2; (void)t3;
+  Jacobian(&u->c, cj, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp), u->Jd, u->B);
+  for (j = 0; j < ny; j++) {
+    cp[j] = k;
+    for (i = 0; i < ny; i++)
+      if (u->P[(size_t)i * ny + j]) {
+        ri[k] = i;
+        d[k++] = u->Jd[(size_t)i * ny + j];
+      }
+  }
+  cp[ny] = k;
+  return 0;
+}
 
 static int ResFn(sunrealtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *ud)
 {
@@ -298,6 +450,69 @@ double ida_chain_check_constraint_jacobian(int n)
   return err / (1.0 + scale);
 }
 
+/* a generic state (every block nonzero, |p| != 1, mu != 0) near the start */
+static void Perturbed(int n, double *y, double *yp)
+{
+  int i;
+  for (i = 0; i < 22 * n; i++) {
+    y[i] += 0.1 * sin(1.0 + 2.7 * i) * (i >= OV(n) && i < OL(n) ? 10.0 : 1.0);
+    yp[i] += 0.3 * cos(0.5 + 1.3 * i);
+  }
+}
+
+double ida_chain_check_jacobian(int n, double cj)
+{
+  static UserData u;
+  static double y[22 * MAXN], yp[22 * MAXN], Fp[22 * MAXN], Fm[22 * MAXN];
+  const int ny = 22 * n;
+  double rn, scale = 0.0, err = 0.0;
+  int i, j;
+  if (Initial(n, &u.c, y, yp, &rn) != 0) return INFINITY;
+  Perturbed(n, y, yp);
+  Jacobian(&u.c, cj, y, yp, u.Jd, u.B);
+  for (j = 0; j < ny; j++) {
+    const double yj = y[j], ypj = yp[j], d = 1e-6 * (1.0 + fabs(yj));
+    y[j] = yj + d;
+    yp[j] = ypj + cj * d;
+    Residual(&u.c, y, yp, Fp, u.B);
+    y[j] = yj - d;
+    yp[j] = ypj - cj * d;
+    Residual(&u.c, y, yp, Fm, u.B);
+    y[j] = yj;
+    yp[j] = ypj;
+    for (i = 0; i < ny; i++) {
+      const double a = u.Jd[(size_t)i * ny + j];
+      err = fmax(err, fabs((Fp[i] - Fm[i]) / (2.0 * d) - a));
+      scale = fmax(scale, fabs(a));
+    }
+  }
+  return err / (1.0 + scale);
+}
+
+/* The structural pattern: the nonzeros of the Jacobian at a generic state
+ * (its entries are polynomials in y, y', so a generic state misses none). */
+static sunindextype Pattern(UserData *u, const double *y0, const double *yp0)
+{
+  static double y[22 * MAXN], yp[22 * MAXN];
+  const int ny = 22 * u->c.n;
+  sunindextype nnz = 0;
+  int i;
+  memcpy(y, y0, (size_t)ny * sizeof(double));
+  memcpy(yp, yp0, (size_t)ny * sizeof(double));
+  Perturbed(u->c.n, y, yp);
+  Jacobian(&u->c, 1.0, y, yp, u->Jd, u->B);
+  for (i = 0; i < ny * ny; i++) {
+    u->P[i] = u->Jd[i] != 0.0;
+    nnz += u->P[i];
+  }
+  return nnz;
+}
+
+const char *ida_chain_linsol_name(IdaChainLinSol ls)
+{
+  return ls == IDACH_DENSE_DQ ? "dense-DQ" : ls == IDACH_DENSE_JAC ? "dense-Jac" : "KLU";
+}
+
 void ida_chain_tip(int n, const double *q, double tip[3])
 {
   BodyPoint(q + 7 * (n - 1), BOTTOM, tip, NULL);
@@ -314,6 +529,7 @@ void ida_chain_default_options(IdaChainOptions *opt)
   opt->rtol = 1e-6;
   opt->t_end = 1.0;
   opt->h0 = 1e-6;
+  opt->linsol = IDACH_DENSE_DQ;
 }
 
 int ida_chain_run(const IdaChainOptions *opt, IdaChainResult *res)
@@ -347,8 +563,14 @@ int ida_chain_run(const IdaChainOptions *opt, IdaChainResult *res)
     ii[i] = i < OL(n) ? 1.0 : 0.0;
     aa[i] = opt->rtol * (i < OV(n) ? 1.0 : i < OL(n) ? 5.0 : 1e3);
   }
-  A = SUNDenseMatrix(ny, ny, ctx);
-  LS = A ? SUNLinSol_Dense(y, A, ctx) : NULL;
+  if (opt->linsol == IDACH_KLU) {
+    ud->nnz = Pattern(ud, yy, pp);
+    A = SUNSparseMatrix(ny, ny, ud->nnz, CSC_MAT, ctx);
+    LS = A ? SUNLinSol_KLU(y, A, ctx) : NULL;
+  } else {
+    A = SUNDenseMatrix(ny, ny, ctx);
+    LS = A ? SUNLinSol_Dense(y, A, ctx) : NULL;
+  }
   mem = IDACreate(ctx);
   if (!A || !LS || !mem) goto done;
   flag = IDAInit(mem, ResFn, 0.0, y, yp);
@@ -360,6 +582,8 @@ int ida_chain_run(const IdaChainOptions *opt, IdaChainResult *res)
   if (flag == 0) flag = IDASetMaxNumSteps(mem, opt->max_steps > 0 ? opt->max_steps : 1000000L);
   if (flag == 0 && opt->h0 > 0.0) flag = IDASetInitStep(mem, opt->h0);
   if (flag == 0) flag = IDASetLinearSolver(mem, LS, A);
+  if (flag == 0 && opt->linsol != IDACH_DENSE_DQ)
+    flag = IDASetJacFn(mem, opt->linsol == IDACH_KLU ? JacSparse : JacDense);
   if (flag != 0) goto done;
 
   c0 = clock();

@@ -15,9 +15,10 @@
  * joint j: Phi_j = x_{j-1} + R_{j-1} (0,0,-L/2) - x_j - R_j (0,0,L/2)
  * (the ground's point 0 for j = 0), Phi_{3N+k} = p_k.p_k - 1, B = dPhi/dq.
  * Unknowns y = (q, v, lambda, mu), 22 N; lambda and mu algebraic (IDASetId
- * 0, excluded from the error test by IDASetSuppressAlg).  Jacobian: IDA's
- * own difference quotients with the dense LU (no analytic Jacobian written
- * for this problem).  Same initial values as Lignum's chain_create() (its q0,
+ * 0, excluded from the error test by IDASetSuppressAlg).  Linear solvers as
+ * for the heavy top: dense LU with IDA's difference-quotient Jacobian, dense
+ * LU with the analytic Jacobian, KLU (CSC) with the analytic Jacobian.
+ * Same initial values as Lignum's chain_create() (its q0,
  * v0 = 0); v'0 and lambda0 from the saddle-point system, mu0 = 0.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
@@ -27,8 +28,15 @@
 
 #define IDACH_MAXN 8 /* largest number of bodies */
 
+typedef enum {
+  IDACH_DENSE_DQ = 0,  /* dense LU, IDA's difference-quotient Jacobian */
+  IDACH_DENSE_JAC = 1, /* dense LU, analytic Jacobian                  */
+  IDACH_KLU = 2        /* sparse KLU (CSC), analytic Jacobian          */
+} IdaChainLinSol;
+
 typedef struct {
   int n;             /* bodies (1..IDACH_MAXN)                           */
+  IdaChainLinSol linsol;
   double rtol;
   double t_end;
   /* atol_i = rtol * scale: 1 for x and p, 5 for x' and p', 1e3 for
@@ -55,6 +63,13 @@ int ida_chain_initial(int n, double *y0, double *yp0, double *res_norm);
 /* max |B dq - (Phi(q + e dq) - Phi(q - e dq)) / (2 e)| / (1 + max|B|) at a
  * perturbed state: checks the constraint Jacobian the residual uses. */
 double ida_chain_check_constraint_jacobian(int n);
+
+/* Analytic Jacobian against central differences of the residual at a
+ * perturbed, non-consistent state, for c_j = cj: max |J_an - J_dq| / (1 + max|J_an|). */
+double ida_chain_check_jacobian(int n, double cj);
+
+/* "dense-DQ", "dense-Jac", "KLU" */
+const char *ida_chain_linsol_name(IdaChainLinSol ls);
 
 /* Tip (free end of the last rod) of a state q (7 n: x, p per body). */
 void ida_chain_tip(int n, const double *q, double tip[3]);

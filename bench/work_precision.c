@@ -136,7 +136,7 @@ static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
  * N = CHAIN_N, t in [0, 1] s.  Lignum: the rows of LIGNUM[] named in
  * CHAIN_ROWS[] through rigid_run() (R^3 x SO(3) per body, dense, analytic
  * K_t, C_t, Z); IDA: ida_chain.c (GGL index 2 in Euler parameters) with
- * IDA's dense difference-quotient Jacobian (row "IDA GGL dense-DQ").
+ * the three linear-solver set-ups of IDA[] (dense-DQ, dense-Jac, KLU).
  * Error: |tip(1) - tip_ref(1)|_2, the free end of the last rod.
  * ------------------------------------------------------------------------- */
 #define CHAIN_N 3
@@ -314,6 +314,7 @@ static int RunOnce(Run *r, const LGNRefHeavyTop *ref, double *cpu)
     IdaChainResult res;
     ida_chain_default_options(&opt);
     opt.n = CHAIN_N;
+    opt.linsol = (IdaChainLinSol)IDA[r->spec].linsol; /* same three set-ups */
     opt.rtol = r->setting;
     opt.t_end = T_END;
     ida_chain_run(&opt, &res);
@@ -912,6 +913,25 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
     snprintf(msg, sizeof msg, "chain: B = dPhi/dq against central differences (%.1e < 1e-7)", bj);
     fails += Check(bj < 1e-7, msg);
     fails += Check(ida_chain_initial(CHAIN_N, cy, cyp, &rn) == 0, "chain: IDA initial values computed");
+    for (i = 0; i < 2; i++) {
+      const double cj = i == 0 ? 1.0 : 1e4;
+      jerr = ida_chain_check_jacobian(CHAIN_N, cj);
+      snprintf(msg, sizeof msg,
+               "chain: IDA analytic Jacobian = central differences (c_j = %g, rel. diff %.1e < 1e-7)",
+               cj, jerr);
+      fails += Check(jerr < 1e-7, msg);
+    }
+    for (i = 0; i < NIDA; i++) {
+      Run r;
+      memset(&r, 0, sizeof r);
+      r.problem = 1;
+      r.ida = 1;
+      r.spec = i;
+      r.setting = 1e-7;
+      r.ok = RunOnce(&r, ref, &cpu);
+      snprintf(msg, sizeof msg, "chain: %s rtol 1e-7: tip err %.3e < 1e-4", IDA[i].name, r.err);
+      fails += Check(r.ok && r.err < 1e-4, msg);
+    }
     snprintf(msg, sizeof msg, "chain: IDA max|F(0, y0, y'0)| = %.2e < 1e-10", rn);
     fails += Check(rn < 1e-10, msg);
     for (k = 0; k < 3; k++) {
@@ -1019,9 +1039,10 @@ static const char *DetectSundials(int verbose)
  * Curves cv[0 .. *ncv_top - 1] are the heavy top's.
  * ------------------------------------------------------------------------- */
 
-#define MAXCURVES (NLIGNUM + NIDA + NCHAIN_ROWS + 1)
-#define MAXRUNS \
-  (NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL + (NCHAIN_ROWS + 1) * (CHAIN_NH + CHAIN_NRTOL))
+#define MAXCURVES (NLIGNUM + NIDA + NCHAIN_ROWS + NIDA)
+#define MAXRUNS                                                                  \
+  (NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL + NCHAIN_ROWS * CHAIN_NH + \
+   NIDA * CHAIN_NRTOL)
 
 static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
 {
@@ -1059,8 +1080,8 @@ static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
     }
   }
   *ncv_top = *ncv;
-  for (c = 0; c <= NCHAIN_ROWS; c++) {
-    const int ida = c == NCHAIN_ROWS, spec = ida ? 0 : LignumRow(CHAIN_ROWS[c]);
+  for (c = 0; c < NCHAIN_ROWS + NIDA; c++) {
+    const int ida = c >= NCHAIN_ROWS, spec = ida ? c - NCHAIN_ROWS : LignumRow(CHAIN_ROWS[c]);
     Curve *v = &cv[(*ncv)++];
     v->first = nruns;
     v->n = quick ? 3 : ida ? CHAIN_NRTOL : CHAIN_NH;
