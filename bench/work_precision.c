@@ -140,8 +140,8 @@ static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
  * Error: |tip(1) - tip_ref(1)|_2, the free end of the last rod.
  * ------------------------------------------------------------------------- */
 #define CHAIN_N 3
-#define CHAIN_H0 2e-2    /* Lignum: h = CHAIN_H0 * 2^-k, k = 0..CHAIN_NH-1 */
-#define CHAIN_NH 10
+#define CHAIN_H0 4e-2    /* Lignum: h = CHAIN_H0 * 2^-k, k = 0..CHAIN_NH-1 */
+#define CHAIN_NH 11
 #define CHAIN_RTOL0 1e-2 /* IDA: rtol = CHAIN_RTOL0 * 10^-k, k = 0..CHAIN_NRTOL-1 */
 #define CHAIN_NRTOL 9
 #define CHAIN_REF_X -1.855169400564356
@@ -1296,7 +1296,7 @@ static int Merge(const char *out_csv, const char *png, int nin, char **in)
           "}\n"
           "set output '%s'\n"
           "set logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
-          "set xrange [1e-6:1e-2] reverse\n"
+          "set xrange [1e-6:1e-2]\n"
           "set ylabel 'best CPU time [ms]'\nset key top left font ',9'\n"
           "set multiplot layout 1,2 title 'Lignum vs SUNDIALS IDA, Debian SUNDIALS (-O0) and "
           "-O2 build%s (best method per error level)'\n",
