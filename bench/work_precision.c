@@ -44,11 +44,14 @@
 #include <lignum/lignum.h>
 
 #include "bench_gnuplot.h"
+#include "ida_chain.h"
 #include "ida_heavy_top.h"
 #include "lgn_reference.h"
+#include "models/chain.h"
 #include "models/heavy_top.h"
 
-#define CSV_HEADER "solver,method,setting,err_com,cpu_s,steps,newton_iters,res_evals,jac_evals"
+#define CSV_HEADER \
+  "solver,method,setting,err_com,cpu_s,steps,newton_iters,res_evals,jac_evals,problem,sundials"
 #define T_END 1.0
 
 /* ---------------------------------------------------------------------------
@@ -118,17 +121,46 @@ static const IdaSpec IDA[] = {
 #define NIDA ((int)(sizeof IDA / sizeof IDA[0]))
 
 #define H0      4e-3 /* h_k = H0 * 2^-k, k = 0..NH-1 */
-#define NH      8
+#define NH      9
 #define RTOL0   1e-3 /* rtol_k = RTOL0 * 10^-k       */
 #define NRTOL   8
 #define TOL0    1e-3 /* error control: rtol = atol = TOL0 * 10^-(k/2) */
 #define NTOL    11   /* 1e-3 .. 1e-8 */
 
-static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5};
-#define NLEVELS 4
+static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
+#define NLEVELS 5
+
+/* ---------------------------------------------------------------------------
+ * The second problem: the N-body chain of examples/models/chain.c (N rods,
+ * spherical joints, at rest in a bent configuration, falling and whipping),
+ * N = CHAIN_N, t in [0, 1] s.  Lignum: the rows of LIGNUM[] named in
+ * CHAIN_ROWS[] through rigid_run() (R^3 x SO(3) per body, dense, analytic
+ * K_t, C_t, Z); IDA: ida_chain.c (GGL index 2 in Euler parameters) with
+ * the three linear-solver set-ups of IDA[] (dense-DQ, dense-Jac, KLU).
+ * Error: |tip(1) - tip_ref(1)|_2, the free end of the last rod.
+ * ------------------------------------------------------------------------- */
+#define CHAIN_N 3
+#define CHAIN_H0 4e-2    /* Lignum: h = CHAIN_H0 * 2^-k, k = 0..CHAIN_NH-1 */
+#define CHAIN_NH 11
+#define CHAIN_RTOL0 1e-2 /* IDA: rtol = CHAIN_RTOL0 * 10^-k, k = 0..CHAIN_NRTOL-1 */
+#define CHAIN_NRTOL 9
+#define CHAIN_REF_X -1.855169400564356
+#define CHAIN_REF_Y -6.545653961586941e-03
+#define CHAIN_REF_Z -2.068593335280935
+static const char *const CHAIN_ROWS[] = {
+  "LGGalpha idx3 lie", "LGGalpha idx2 lie", "mod. LGGalpha idx3 lie", "mod. LGGalpha idx2 lie",
+  "mod. LGNM idx2 lie", "LGGalpha idx3 lie mN", "mod. LGGalpha idx3 lie mN",
+  "mod. LGGalpha idx3 lie mN h2",
+};
+#define NCHAIN_ROWS ((int)(sizeof CHAIN_ROWS / sizeof CHAIN_ROWS[0]))
+/* Reference tip position at t = 1 (see ChainReference(), --chain-reference) */
+static const double CHAIN_TIP_REF[3] = {CHAIN_REF_X, CHAIN_REF_Y, CHAIN_REF_Z};
+
+static const char *const PROBLEM_NAME[2] = {"top", "chain"};
 
 /* One run (one method at one setting). */
 typedef struct {
+  int problem;      /* 0: heavy top, 1: chain     */
   int ida;          /* 0: Lignum, 1: IDA          */
   int spec;         /* row of LIGNUM[] or IDA[]   */
   double setting;   /* h or rtol                  */
@@ -158,10 +190,12 @@ static int CmpDouble(const void *a, const void *b)
   return (x > y) - (x < y);
 }
 
-static double Median(double *v, int n)
+/* the best (smallest) of n CPU times: the least disturbed by the other
+ * processes of a shared machine */
+static double BestOf(double *v, int n)
 {
   qsort(v, (size_t)n, sizeof *v, CmpDouble);
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return v[0];
 }
 
 static double ComErr(const double x[3], const LGNRefHeavyTop *ref)
@@ -216,10 +250,83 @@ static void IdaOptions(const IdaSpec *s, double rtol, IdaHTOptions *opt)
   opt->h0 = 1e-6;
 }
 
+static double Dist3(const double a[3], const double b[3])
+{
+  double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+  return sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+}
+
+/* The chain with Lignum: spec's method at step h (tip at t_end in tip). */
+static void ChainLignum(const LignumSpec *s, double h, double t_end, RigidRunResult *res,
+                        double tip[3])
+{
+  SUNContext ctx = NULL;
+  RigidSystem *sys = NULL;
+  RigidRunOptions opt;
+  memset(res, 0, sizeof *res);
+  res->flag = -100;
+  tip[0] = tip[1] = tip[2] = NAN;
+  if (SUNContext_Create(NULL, &ctx) != 0) return;
+  sys = chain_create(CHAIN_N, RB_R3XSO3, ctx);
+  if (sys != NULL) {
+    rigid_default_run_options(&opt);
+    opt.solver = RB_DENSE;
+    opt.method = s->method == HT_GENALPHA ? 1 : 0;
+    opt.rho_inf = 0.9;
+    opt.beta = 0.25;
+    opt.gamma = 0.5;
+    opt.kinematics = s->kinematics;
+    opt.constraints = s->constraints;
+    opt.newton = s->newton;
+    opt.predictor = s->predictor;
+    opt.analytic = 1;
+    opt.h = h;
+    opt.t_end = t_end;
+    opt.outputs = 1; /* one LGNSolve call to t_end */
+    if (s->tol_h2 > 0.0) opt.rtol = opt.atol = s->tol_h2 * h * h;
+    rigid_run(sys, &opt, res);
+    if (res->q != NULL) ida_chain_tip(CHAIN_N, res->q, tip);
+    rigid_free(&sys);
+  }
+  SUNContext_Free(&ctx);
+}
+
 /* One measurement; returns 1 if the run reached T_END. */
 static int RunOnce(Run *r, const LGNRefHeavyTop *ref, double *cpu)
 {
-  if (!r->ida) {
+  if (r->problem == 1 && !r->ida) {
+    RigidRunResult res;
+    double tip[3];
+    ChainLignum(&LIGNUM[r->spec], r->setting, T_END, &res, tip);
+    r->flag = res.flag;
+    r->t = res.t;
+    r->err = Dist3(tip, CHAIN_TIP_REF);
+    r->steps = res.nsteps;
+    r->nni = res.nni;
+    r->nres = res.nre + res.ndq;
+    r->njac = res.nje;
+    r->netf = res.netf;
+    r->nncf = res.nncf;
+    *cpu = res.cpu_seconds;
+    rigid_result_free(&res);
+  } else if (r->problem == 1) {
+    IdaChainOptions opt;
+    IdaChainResult res;
+    ida_chain_default_options(&opt);
+    opt.n = CHAIN_N;
+    opt.linsol = (IdaChainLinSol)IDA[r->spec].linsol; /* same three set-ups */
+    opt.rtol = r->setting;
+    opt.t_end = T_END;
+    ida_chain_run(&opt, &res);
+    r->flag = res.flag;
+    r->t = res.t;
+    r->err = Dist3(res.tip, CHAIN_TIP_REF);
+    r->steps = res.nsteps;
+    r->nni = res.nniters;
+    r->nres = res.nres;
+    r->njac = res.njevals;
+    *cpu = res.cpu_seconds;
+  } else if (!r->ida) {
     HeavyTopOptions opt;
     HeavyTopResult res;
     LignumOptions(&LIGNUM[r->spec], r->setting, &opt);
@@ -266,7 +373,7 @@ static void Measure(Run *r, const LGNRefHeavyTop *ref, int reps)
     if (!RunOnce(&again, ref, &c)) break; /* cannot happen: deterministic */
     cpu[i] = c;
   }
-  r->cpu = Median(cpu, i);
+  r->cpu = BestOf(cpu, i);
 }
 
 /* ---------------------------------------------------------------------------
@@ -340,7 +447,7 @@ static int Best(const Curve *cv, int ncv, const Run *runs, int ida, double level
   return found;
 }
 
-static int WriteCsv(const char *path, const Run *runs, int nruns)
+static int WriteCsv(const char *path, const Run *runs, int nruns, const char *sundials)
 {
   FILE *fp = fopen(path, "w");
   int i;
@@ -355,7 +462,8 @@ static int WriteCsv(const char *path, const Run *runs, int nruns)
             r->ida ? "ida" : LIGNUM[r->spec].adaptive ? "lignum-adaptive" : "lignum",
             MethodName(r), r->setting);
     if (r->ok) fprintf(fp, "%.6e", r->err);
-    fprintf(fp, ",%.6e,%ld,%ld,%ld,%ld\n", r->cpu, r->steps, r->nni, r->nres, r->njac);
+    fprintf(fp, ",%.6e,%ld,%ld,%ld,%ld,%s,%s\n", r->cpu, r->steps, r->nni, r->nres, r->njac,
+            PROBLEM_NAME[r->problem], sundials);
   }
   if (fclose(fp) != 0) {
     perror(path);
@@ -383,12 +491,14 @@ static void PrintRuns(const Curve *cv, int ncv, const Run *runs)
 }
 
 /* The table of issue 6 and the PASS/MISS lines. */
-static void PrintSummary(const Curve *cv, int ncv, const Run *runs)
+static void PrintSummary(const Curve *cv, int ncv, const Run *runs, int problem)
 {
   double ratio[NLEVELS];
   int have[NLEVELS], l, all = 1;
-  printf("\nWork-precision summary: CPU time to reach |x(1) - x_ref(1)| = level\n"
-         "(interpolated on each method's log-log curve; best = fastest method)\n");
+  printf("\nWork-precision summary (%s): CPU time to reach %s = level\n"
+         "(interpolated on each method's log-log curve; best = fastest method)\n",
+         problem ? "chain" : "heavy top",
+         problem ? "|tip(1) - tip_ref(1)|" : "|x(1) - x_ref(1)|");
   printf("%8s  %-24s %10s  %-20s %10s  %8s\n", "level", "best Lignum", "cpu [ms]",
          "best IDA", "cpu [ms]", "IDA/Lig");
   for (l = 0; l < NLEVELS; l++) {
@@ -407,6 +517,7 @@ static void PrintSummary(const Curve *cv, int ncv, const Run *runs)
     printf("%8.0e  %-24s %10s  %-20s %10s  %8s\n", LEVELS[l],
            hl ? LIGNUM[cv[wl].spec].name : "-", sl, hi ? IDA[cv[wi].spec].name : "-", si, sr);
   }
+  if (problem) return;
   printf("\nTargets of issue 6 (reported, never enforced):\n");
   if (have[1])
     printf("  %s  Lignum's best at least 5x faster than IDA's best at error 1e-3: factor %.2f\n",
@@ -416,7 +527,7 @@ static void PrintSummary(const Curve *cv, int ncv, const Run *runs)
            "level not reached by both\n");
   for (l = 0; l < NLEVELS; l++)
     if (!have[l] || !(ratio[l] > 1.0)) all = 0;
-  printf("  %s  Lignum faster at every level 1e-2 .. 1e-5: factors", all ? "PASS" : "MISS");
+  printf("  %s  Lignum faster at every level 1e-2 .. 1e-6: factors", all ? "PASS" : "MISS");
   for (l = 0; l < NLEVELS; l++) {
     if (have[l]) printf(" %.0e: %.2f", LEVELS[l], ratio[l]);
     else printf(" %.0e: -", LEVELS[l]);
@@ -631,6 +742,58 @@ static void WritePlot(const char *png, const Curve *cv, int ncv, const Run *runs
 }
 
 /* ---------------------------------------------------------------------------
+ * --chain-reference: how CHAIN_TIP_REF was computed.  IDA (dense-DQ) at
+ * rtol = 1e-9 .. 1e-12, and Lignum's LGGalpha / mod. LGGalpha (index 3) at
+ * h = 1e-4 / 2^k with Richardson extrapolation (second order:
+ * (4 tip(h/2) - tip(h)) / 3); prints the tips and their distances.
+ * ------------------------------------------------------------------------- */
+
+static int LignumRow(const char *name)
+{
+  int k;
+  for (k = 0; k < NLIGNUM; k++)
+    if (strcmp(LIGNUM[k].name, name) == 0) return k;
+  return -1;
+}
+
+static void ChainReference(void)
+{
+  double tip_ida[3] = {0, 0, 0}, prev[3] = {0, 0, 0};
+  int k, i, row;
+  printf("Chain (N = %d) reference: tip at t = %g (%s, %d rows)\n", CHAIN_N, T_END, PROBLEM_NAME[1], NCHAIN_ROWS);
+  for (k = 9; k <= 12; k++) {
+    IdaChainOptions opt;
+    IdaChainResult res;
+    ida_chain_default_options(&opt);
+    opt.n = CHAIN_N;
+    opt.rtol = pow(10.0, -k);
+    opt.t_end = T_END;
+    ida_chain_run(&opt, &res);
+    printf("  IDA rtol 1e-%d: flag %d steps %ld tip %.15e %.15e %.15e  |d prev| %.2e |Phi| %.1e cpu %.2f s\n",
+           k, res.flag, res.nsteps, res.tip[0], res.tip[1], res.tip[2],
+           k > 9 ? Dist3(res.tip, tip_ida) : 0.0, res.max_phi_end, res.cpu_seconds);
+    for (i = 0; i < 3; i++) tip_ida[i] = res.tip[i];
+  }
+  for (row = 0; row < 2; row++) {
+    const int spec = LignumRow(row == 0 ? "LGGalpha idx3 lie" : "mod. LGGalpha idx3 lie");
+    for (k = 0; k < 4; k++) {
+      RigidRunResult res;
+      double tip[3], rich[3];
+      const double h = 1e-4 / (double)(1 << k);
+      ChainLignum(&LIGNUM[spec], h, T_END, &res, tip);
+      for (i = 0; i < 3; i++) rich[i] = (4.0 * tip[i] - prev[i]) / 3.0;
+      printf("  %s h %.3e: flag %d tip %.15e %.15e %.15e  |d IDA| %.2e", LIGNUM[spec].name, h,
+             res.flag, tip[0], tip[1], tip[2], Dist3(tip, tip_ida));
+      if (k > 0) printf("  Richardson %.15e %.15e %.15e |d IDA| %.2e", rich[0], rich[1], rich[2],
+                        Dist3(rich, tip_ida));
+      printf("\n");
+      for (i = 0; i < 3; i++) prev[i] = tip[i];
+      rigid_result_free(&res);
+    }
+  }
+}
+
+/* ---------------------------------------------------------------------------
  * --quick: correctness checks (CTest bench_work_precision_quick)
  * ------------------------------------------------------------------------- */
 
@@ -741,8 +904,416 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
     snprintf(msg, sizeof msg, "%s tol 1e-7: err %.3e < 1e-2", LIGNUM[k].name, e_prev);
     fails += Check(e_prev < 1e-2, msg);
   }
+  /* the chain: constraint Jacobian, consistent start, IDA converging to the
+   * reference, Lignum second order towards it */
+  {
+    static double cy[22 * IDACH_MAXN], cyp[22 * IDACH_MAXN];
+    const double bj = ida_chain_check_constraint_jacobian(CHAIN_N);
+    double e_prev = INFINITY, cpu;
+    snprintf(msg, sizeof msg, "chain: B = dPhi/dq against central differences (%.1e < 1e-7)", bj);
+    fails += Check(bj < 1e-7, msg);
+    fails += Check(ida_chain_initial(CHAIN_N, cy, cyp, &rn) == 0, "chain: IDA initial values computed");
+    for (i = 0; i < 2; i++) {
+      const double cj = i == 0 ? 1.0 : 1e4;
+      jerr = ida_chain_check_jacobian(CHAIN_N, cj);
+      snprintf(msg, sizeof msg,
+               "chain: IDA analytic Jacobian = central differences (c_j = %g, rel. diff %.1e < 1e-7)",
+               cj, jerr);
+      fails += Check(jerr < 1e-7, msg);
+    }
+    for (i = 0; i < NIDA; i++) {
+      Run r;
+      memset(&r, 0, sizeof r);
+      r.problem = 1;
+      r.ida = 1;
+      r.spec = i;
+      r.setting = 1e-7;
+      r.ok = RunOnce(&r, ref, &cpu);
+      snprintf(msg, sizeof msg, "chain: %s rtol 1e-7: tip err %.3e < 1e-4", IDA[i].name, r.err);
+      fails += Check(r.ok && r.err < 1e-4, msg);
+    }
+    snprintf(msg, sizeof msg, "chain: IDA max|F(0, y0, y'0)| = %.2e < 1e-10", rn);
+    fails += Check(rn < 1e-10, msg);
+    for (k = 0; k < 3; k++) {
+      Run r;
+      memset(&r, 0, sizeof r);
+      r.problem = 1;
+      r.ida = 1;
+      r.setting = k == 0 ? 1e-5 : k == 1 ? 1e-7 : 1e-9;
+      r.ok = RunOnce(&r, ref, &cpu);
+      snprintf(msg, sizeof msg, "chain: IDA dense-DQ rtol %.0e: reaches t = 1, tip err %.3e < %.3e",
+               r.setting, r.err, e_prev);
+      fails += Check(r.ok && r.err < e_prev, msg);
+      e_prev = r.err;
+    }
+    snprintf(msg, sizeof msg, "chain: IDA rtol 1e-9: tip err %.3e < 1e-6", e_prev);
+    fails += Check(e_prev < 1e-6, msg);
+    for (k = 0; k < NCHAIN_ROWS; k += 2) {
+      Run a, b;
+      memset(&a, 0, sizeof a);
+      a.problem = 1;
+      a.spec = LignumRow(CHAIN_ROWS[k]);
+      a.setting = 1e-3;
+      b = a;
+      b.setting = 5e-4;
+      a.ok = RunOnce(&a, ref, &cpu);
+      b.ok = RunOnce(&b, ref, &cpu);
+      snprintf(msg, sizeof msg, "chain: %s: tip err(h=1e-3) = %.3e < 1e-3, err(5e-4) = %.3e, ratio %.2f > 3",
+               CHAIN_ROWS[k], a.err, b.err, a.err / b.err);
+      fails += Check(a.ok && b.ok && a.err < 1e-3 && a.err / b.err > 3.0, msg);
+    }
+  }
   printf("%s\n", fails ? "Quick checks FAILED" : "Quick checks passed");
   return fails;
+}
+
+/* ---------------------------------------------------------------------------
+ * main
+ * ------------------------------------------------------------------------- */
+
+
+/* ---------------------------------------------------------------------------
+ * Which SUNDIALS this process loaded (from /proc/self/maps): "debian" when
+ * every libsundials_* mapped comes from /usr/lib or /lib, "O2" when every
+ * one comes from a directory whose parent holds the stamp
+ * lignum-ida-O2.stamp written by bench/build-ida-O2, "mixed" otherwise,
+ * "unknown" without /proc.  ARKODE (the heavy top's reference only, never
+ * timed) is not part of the -O2 build and is not counted.
+ * ------------------------------------------------------------------------- */
+
+static const char *const SUNDIALS_LIBS[] = {
+  "libsundials_ida.so", "libsundials_sunlinsoldense.so", "libsundials_sunmatrixdense.so",
+  "libsundials_nvecserial.so", "libsundials_sunlinsolklu.so", "libsundials_sunmatrixsparse.so",
+};
+#define NSUNDIALS_LIBS ((int)(sizeof SUNDIALS_LIBS / sizeof SUNDIALS_LIBS[0]))
+
+static int IsO2Path(const char *path)
+{
+  char stamp[4200];
+  const char *slash = strrchr(path, '/');
+  size_t n;
+  FILE *fp;
+  if (slash == NULL) return 0;
+  n = (size_t)(slash - path); /* the library's directory */
+  while (n > 0 && path[n - 1] != '/') n--;
+  if (n == 0) return 0;
+  snprintf(stamp, sizeof stamp, "%.*slignum-ida-O2.stamp", (int)n, path);
+  fp = fopen(stamp, "r");
+  if (fp == NULL) return 0;
+  fclose(fp);
+  return 1;
+}
+
+static const char *DetectSundials(int verbose)
+{
+  char line[4608], found[NSUNDIALS_LIBS][4200];
+  int k, deb = 0, o2 = 0, other = 0;
+  FILE *fp = fopen("/proc/self/maps", "r");
+  if (fp == NULL) return "unknown";
+  for (k = 0; k < NSUNDIALS_LIBS; k++) found[k][0] = '\0';
+  while (fgets(line, sizeof line, fp) != NULL) {
+    char *path = strchr(line, '/'), *nl;
+    if (path == NULL) continue;
+    if ((nl = strchr(path, '\n')) != NULL) *nl = '\0';
+    for (k = 0; k < NSUNDIALS_LIBS; k++)
+      if (found[k][0] == '\0' && strstr(path, SUNDIALS_LIBS[k]) != NULL)
+        snprintf(found[k], sizeof found[k], "%s", path);
+  }
+  fclose(fp);
+  for (k = 0; k < NSUNDIALS_LIBS; k++) {
+    const char *f = found[k];
+    if (f[0] == '\0') continue;
+    if (IsO2Path(f)) o2++;
+    else if (strncmp(f, "/usr/lib/", 9) == 0 || strncmp(f, "/lib/", 5) == 0) deb++;
+    else other++;
+    if (verbose) printf("  loaded %s\n", f);
+  }
+  if (o2 > 0 && deb == 0 && other == 0) return "O2";
+  if (deb > 0 && o2 == 0 && other == 0) return "debian";
+  return o2 + deb + other == 0 ? "unknown" : "mixed";
+}
+
+/* ---------------------------------------------------------------------------
+ * The runs of a full (or --quick) benchmark, in a fixed order: heavy top
+ * (LIGNUM[], IDA[]), then the chain (CHAIN_ROWS[], IDA dense-DQ).
+ * Curves cv[0 .. *ncv_top - 1] are the heavy top's.
+ * ------------------------------------------------------------------------- */
+
+#define MAXCURVES (NLIGNUM + NIDA + NCHAIN_ROWS + NIDA)
+#define MAXRUNS                                                                  \
+  (NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL + NCHAIN_ROWS * CHAIN_NH + \
+   NIDA * CHAIN_NRTOL)
+
+static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
+{
+  const int nh = quick ? 3 : NH, nrt = quick ? 3 : NRTOL, ntol = quick ? 3 : NTOL;
+  int c, k, nruns = 0;
+  *ncv = 0;
+  for (c = 0; c < NLIGNUM; c++) {
+    const int adaptive = LIGNUM[c].adaptive;
+    Curve *v = &cv[(*ncv)++];
+    v->first = nruns;
+    v->n = adaptive ? ntol : nh;
+    v->ida = 0;
+    v->spec = c;
+    for (k = 0; k < v->n; k++) {
+      Run *r = &runs[nruns++];
+      memset(r, 0, sizeof *r);
+      r->spec = c;
+      /* quick: 1e-3, 1e-4, 1e-5 */
+      r->setting = adaptive ? TOL0 * pow(10.0, -0.5 * (quick ? 2 * k : k))
+                            : H0 / (double)(1L << k);
+    }
+  }
+  for (c = 0; c < NIDA; c++) {
+    Curve *v = &cv[(*ncv)++];
+    v->first = nruns;
+    v->n = nrt;
+    v->ida = 1;
+    v->spec = c;
+    for (k = 0; k < nrt; k++) {
+      Run *r = &runs[nruns++];
+      memset(r, 0, sizeof *r);
+      r->ida = 1;
+      r->spec = c;
+      r->setting = RTOL0 * pow(10.0, -k);
+    }
+  }
+  *ncv_top = *ncv;
+  for (c = 0; c < NCHAIN_ROWS + NIDA; c++) {
+    const int ida = c >= NCHAIN_ROWS, spec = ida ? c - NCHAIN_ROWS : LignumRow(CHAIN_ROWS[c]);
+    Curve *v = &cv[(*ncv)++];
+    v->first = nruns;
+    v->n = quick ? 3 : ida ? CHAIN_NRTOL : CHAIN_NH;
+    v->ida = ida;
+    v->spec = spec;
+    for (k = 0; k < v->n; k++) {
+      Run *r = &runs[nruns++];
+      memset(r, 0, sizeof *r);
+      r->problem = 1;
+      r->ida = ida;
+      r->spec = spec;
+      r->setting = ida ? CHAIN_RTOL0 * pow(10.0, -k) : CHAIN_H0 / (double)(1L << k);
+    }
+  }
+  return nruns;
+}
+
+/* ---------------------------------------------------------------------------
+ * --merge: best CPU time over several raw CSVs (one per process, each of
+ * one SUNDIALS build: column "sundials"), per build; the table, CSV and
+ * figure of the fair comparison.
+ * ------------------------------------------------------------------------- */
+
+#define MERGE_HEADER                                                                     \
+  "problem,level,lignum_method,lignum_debian_ms,lignum_O2_ms,lignum_steps,ida_method,"   \
+  "ida_debian_ms,ida_O2_ms,ida_steps,ratio_debian,ratio_O2"
+
+/* split a CSV line in place (no quoting; empty fields kept) */
+static int SplitCsv(char *line, char **f, int maxf)
+{
+  int n = 0;
+  char *p = line, *e;
+  if ((e = strpbrk(line, "\r\n")) != NULL) *e = '\0';
+  while (n < maxf) {
+    f[n++] = p;
+    if ((e = strchr(p, ',')) == NULL) break;
+    *e = '\0';
+    p = e + 1;
+  }
+  return n;
+}
+
+static int ReadRaw(const char *path, Run *runs[2], int nruns, int *have, int *nfiles)
+{
+  char line[1024], *f[16];
+  FILE *fp = fopen(path, "r");
+  int b = -1, nrows = 0;
+  if (fp == NULL) {
+    perror(path);
+    return -1;
+  }
+  if (fgets(line, sizeof line, fp) == NULL || strncmp(line, CSV_HEADER, strlen(CSV_HEADER)) != 0) {
+    fprintf(stderr, "work_precision: %s: not a work_precision CSV\n", path);
+    fclose(fp);
+    return -1;
+  }
+  while (fgets(line, sizeof line, fp) != NULL) {
+    int i, ida, problem, nf = SplitCsv(line, f, 16);
+    double setting, cpu;
+    if (nf < 11) continue;
+    if (strcmp(f[10], "debian") == 0) b = 0;
+    else if (strcmp(f[10], "O2") == 0) b = 1;
+    else {
+      fprintf(stderr, "work_precision: %s: SUNDIALS build '%s' is neither debian nor O2: skipped\n",
+              path, f[10]);
+      fclose(fp);
+      return 0;
+    }
+    ida = strcmp(f[0], "ida") == 0;
+    problem = strcmp(f[9], "chain") == 0;
+    setting = atof(f[2]);
+    cpu = atof(f[4]);
+    for (i = 0; i < nruns; i++) {
+      Run *r = &runs[b][i];
+      if (r->problem != problem || r->ida != ida || strcmp(MethodName(r), f[1]) != 0 ||
+          fabs(r->setting - setting) > 1e-4 * r->setting)
+        continue;
+      if (f[3][0] != '\0') {
+        r->ok = 1;
+        r->t = T_END;
+        r->err = atof(f[3]);
+        r->steps = atol(f[5]);
+        r->nni = atol(f[6]);
+        r->nres = atol(f[7]);
+        r->njac = atol(f[8]);
+        if (!(r->cpu > 0.0) || cpu < r->cpu) r->cpu = cpu;
+      }
+      nrows++;
+      break;
+    }
+  }
+  fclose(fp);
+  if (b >= 0) {
+    have[b] = 1;
+    nfiles[b]++;
+  }
+  printf("  %s: %s SUNDIALS, %d rows\n", path, b == 1 ? "-O2" : "Debian's", nrows);
+  return 0;
+}
+
+static int Merge(const char *out_csv, const char *png, int nin, char **in)
+{
+  static Run rd[MAXRUNS], ro[MAXRUNS];
+  Run *runs[2] = {rd, ro};
+  Curve cv[MAXCURVES];
+  int ncv, ncv_top, nruns, i, b, p, l, have[2] = {0, 0}, nfiles[2] = {0, 0}, differ = 0;
+  FILE *fp;
+  char script[4096];
+
+  nruns = BuildRuns(0, rd, cv, &ncv, &ncv_top);
+  BuildRuns(0, ro, cv, &ncv, &ncv_top);
+  printf("Merging %d raw CSV file(s) (best CPU time per run and SUNDIALS build):\n", nin);
+  for (i = 0; i < nin; i++)
+    if (ReadRaw(in[i], runs, nruns, have, nfiles) != 0) return 1;
+  if (!have[0]) {
+    fprintf(stderr, "work_precision: no run with Debian's SUNDIALS among the inputs\n");
+    return 1;
+  }
+  for (i = 0; i < nruns && have[1]; i++)
+    if (rd[i].ok && ro[i].ok && rd[i].err != ro[i].err) differ++;
+  fp = fopen(out_csv, "w");
+  if (fp == NULL) {
+    perror(out_csv);
+    return 1;
+  }
+  fprintf(fp, "%s\n", MERGE_HEADER);
+  printf("\nFair comparison: best CPU time [ms] over %d process(es) with Debian's SUNDIALS (-O0)"
+         " and %d with the -O2 build (bench/build-ida-O2)%s.\n"
+         "Same binary; per error level the fastest Lignum method and the fastest IDA set-up\n"
+         "(interpolated on each method's log-log curve; steps of that method at that level).\n",
+         nfiles[0], nfiles[1], have[1] ? "" : " -- the -O2 build was NOT run: Debian's column only");
+  if (have[1])
+    printf("Errors identical between the two builds in all but %d run(s).\n", differ);
+  for (p = 0; p < 2; p++) {
+    const Curve *pc = p == 0 ? cv : cv + ncv_top;
+    const int pn = p == 0 ? ncv_top : ncv - ncv_top;
+    printf("\n%s, error %s at t = 1 s\n", p == 0 ? "Heavy top" : "Chain of 3 rods",
+           p == 0 ? "|x - x_ref| of the centre of mass" : "|tip - tip_ref| of the free end");
+    printf("%6s | %-28s %9s %9s %7s | %-17s %9s %9s %6s | %8s %8s\n", "level", "best Lignum",
+           "Deb [ms]", "O2 [ms]", "steps", "best IDA", "Deb [ms]", "O2 [ms]", "steps",
+           "IDA/Lig", "IDA/Lig");
+    printf("%6s | %-28s %9s %9s %7s | %-17s %9s %9s %6s | %8s %8s\n", "", "", "", "", "", "", "",
+           "", "", "Debian", "-O2");
+    for (l = 0; l < NLEVELS; l++) {
+      double cl[2] = {0, 0}, ci[2] = {0, 0}, sl = 0, si = 0;
+      int hl[2] = {0, 0}, hi[2] = {0, 0}, wl[2] = {-1, -1}, wi[2] = {-1, -1}, bl, bi;
+      char s[8][32];
+      for (b = 0; b < 2; b++) {
+        if (!have[b]) continue;
+        hl[b] = Best(pc, pn, runs[b], 0, LEVELS[l], &cl[b], &wl[b]);
+        hi[b] = Best(pc, pn, runs[b], 1, LEVELS[l], &ci[b], &wi[b]);
+      }
+      bl = have[1] && hl[1] ? 1 : 0; /* whose best method is named */
+      bi = have[1] && hi[1] ? 1 : 0;
+      if (hl[bl]) ValueAtLevel(&runs[bl][pc[wl[bl]].first], pc[wl[bl]].n, LEVELS[l], 1, &sl);
+      if (hi[bi]) ValueAtLevel(&runs[bi][pc[wi[bi]].first], pc[wi[bi]].n, LEVELS[l], 1, &si);
+      for (i = 0; i < 8; i++) snprintf(s[i], sizeof s[i], "-");
+      for (b = 0; b < 2; b++) {
+        if (hl[b]) snprintf(s[b], sizeof s[b], "%.3f", 1e3 * cl[b]);
+        if (hi[b]) snprintf(s[2 + b], sizeof s[2 + b], "%.3f", 1e3 * ci[b]);
+        if (hl[b] && hi[b]) snprintf(s[4 + b], sizeof s[4 + b], "%.2f", ci[b] / cl[b]);
+      }
+      if (hl[bl]) snprintf(s[6], sizeof s[6], "%.0f", sl);
+      if (hi[bi]) snprintf(s[7], sizeof s[7], "%.0f", si);
+      printf("%6.0e | %-28s %9s %9s %7s | %-17s %9s %9s %6s | %8s %8s\n", LEVELS[l],
+             hl[bl] ? LIGNUM[pc[wl[bl]].spec].name : "not reached", s[0], s[1], s[6],
+             hi[bi] ? IDA[pc[wi[bi]].spec].name : "not reached", s[2], s[3], s[7], s[4], s[5]);
+      fprintf(fp, "%s,%g,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", PROBLEM_NAME[p], LEVELS[l],
+              hl[bl] ? LIGNUM[pc[wl[bl]].spec].name : "", hl[0] ? s[0] : "", hl[1] ? s[1] : "",
+              hl[bl] ? s[6] : "", hi[bi] ? IDA[pc[wi[bi]].spec].name : "", hi[0] ? s[2] : "",
+              hi[1] ? s[3] : "", hi[bi] ? s[7] : "", hl[0] && hi[0] ? s[4] : "",
+              hl[1] && hi[1] ? s[5] : "");
+    }
+  }
+  if (fclose(fp) != 0) {
+    perror(out_csv);
+    return 1;
+  }
+  printf("\nCSV: %s\n", out_csv);
+  fflush(stdout);
+  if (png == NULL) return 0;
+  /* figure: per problem, the best time over all methods at 4 levels per
+   * decade, 1e-2 .. 1e-6, for Lignum and IDA under both builds */
+  fp = bench_gnuplot_open("work_precision", png, script, sizeof script);
+  if (fp == NULL) return 0;
+  fprintf(fp, "# Fair work-precision comparison (generated by work_precision --merge).\n");
+  for (p = 0; p < 2; p++) {
+    const Curve *pc = p == 0 ? cv : cv + ncv_top;
+    const int pn = p == 0 ? ncv_top : ncv - ncv_top;
+    fprintf(fp, "$d%d << EOD\n", p);
+    for (l = 0; l <= 16; l++) {
+      const double level = 1e-2 * pow(10.0, -0.25 * l);
+      fprintf(fp, "%.4e", level);
+      for (b = 0; b < 2; b++) {
+        int ida;
+        for (ida = 0; ida < 2; ida++) {
+          double c = 0.0;
+          int w;
+          if (have[b] && Best(pc, pn, runs[b], ida, level, &c, &w)) fprintf(fp, " %.6e", 1e3 * c);
+          else fprintf(fp, " NaN");
+        }
+      }
+      fprintf(fp, "\n");
+    }
+    fprintf(fp, "EOD\n");
+  }
+  fprintf(fp,
+          "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+          "  set terminal pngcairo size 1200,520 enhanced font 'sans,10'\n"
+          "} else {\n"
+          "  set terminal png size 1200,520\n"
+          "}\n"
+          "set output '%s'\n"
+          "set logscale xy\nset grid\nset format x '10^{%%L}'\nset format y '10^{%%L}'\n"
+          "set xrange [1e-6:1e-2]\n"
+          "set ylabel 'best CPU time [ms]'\nset key top left font ',9'\n"
+          "set multiplot layout 1,2 title 'Lignum vs SUNDIALS IDA, Debian SUNDIALS (-O0) and "
+          "-O2 build%s (best method per error level)'\n",
+          png, have[1] ? "" : " [-O2 build not run]");
+  for (p = 0; p < 2; p++)
+    fprintf(fp,
+            "set title '%s'\nset xlabel '%s'\n"
+            "plot $d%d using 1:2 with linespoints lw 2 pt 7 lc rgb '#d62728' title 'Lignum, Debian SUNDIALS', "
+            "$d%d using 1:4 with linespoints lw 2 pt 6 dt 2 lc rgb '#d62728' title 'Lignum, -O2 SUNDIALS', "
+            "$d%d using 1:3 with linespoints lw 2 pt 5 lc rgb '#0072b2' title 'IDA, Debian (-O0)', "
+            "$d%d using 1:5 with linespoints lw 2 pt 4 dt 2 lc rgb '#0072b2' title 'IDA, -O2'\n",
+            p == 0 ? "Heavy top, t in [0, 1] s" : "Chain of 3 rods, t in [0, 1] s",
+            p == 0 ? "error of the centre of mass at t = 1 [m]" : "error of the tip at t = 1 [m]",
+            p, p, p, p);
+  fprintf(fp, "unset multiplot\n");
+  bench_gnuplot_run("work_precision", fp, script, png);
+  return 0;
 }
 
 /* ---------------------------------------------------------------------------
@@ -752,20 +1323,28 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
 static void Usage(const char *prog)
 {
   printf("usage: %s [--quick] [--reps N] [--csv FILE] [--png FILE | --no-png]\n"
-         "  Heavy top work-precision: Lignum (h = 4e-3 * 2^-k, k = 0..7) against\n"
-         "  IDA (GGL, rtol = 1e-3 .. 1e-10); CPU time = median of N runs (default 5).\n"
+         "          [--expect-sundials debian|O2] [--chain-reference]\n"
+         "       %s --merge OUT.csv [--png FILE | --no-png] RAW.csv...\n"
+         "  Work-precision of the heavy top and of a 3-rod chain: Lignum\n"
+         "  (h = 4e-3 * 2^-k, k = 0..8) against IDA (GGL, rtol = 1e-3 .. 1e-10); CPU time =\n"
+         "  best of N runs (default 3).  The header says which SUNDIALS libraries the\n"
+         "  process loaded (Debian's or bench/build-ida-O2's, via LD_LIBRARY_PATH);\n"
+         "  --expect-sundials refuses to run (exit 3) if that is not the one named.\n"
+         "  --merge: the fair table from raw CSVs of both builds (scripts/work-precision).\n"
          "  --quick: correctness checks and a few settings, one run each.\n",
-         prog);
+         prog, prog);
 }
 
 int main(int argc, char **argv)
 {
-  const char *csv = "work_precision.csv", *png = "work_precision.png";
-  int quick = 0, reps = 5, i, k, c, nruns = 0, ncv = 0, nh, nrt, ntol, fails = 0;
+  const char *csv = "work_precision.csv", *png = "work_precision.png", *expect = NULL;
+  const char *merge = NULL, *sundials;
+  int quick = 0, reps = 3, i, nruns = 0, ncv = 0, ncv_top = 0, fails = 0, nin = 0;
   double t1 = T_END, t_start = WallSeconds();
   LGNRefHeavyTop ref;
-  Run *runs;
-  Curve cv[NLIGNUM + NIDA];
+  static Run runs[MAXRUNS];
+  static char *inputs[256];
+  Curve cv[MAXCURVES];
 
   for (i = 1; i < argc; i++) {
     if (strcmp(argv[i], "--quick") == 0) quick = 1;
@@ -773,81 +1352,77 @@ int main(int argc, char **argv)
     else if (strcmp(argv[i], "--png") == 0 && i + 1 < argc) png = argv[++i];
     else if (strcmp(argv[i], "--no-png") == 0) png = NULL;
     else if (strcmp(argv[i], "--reps") == 0 && i + 1 < argc) reps = atoi(argv[++i]);
-    else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+    else if (strcmp(argv[i], "--expect-sundials") == 0 && i + 1 < argc) expect = argv[++i];
+    else if (strcmp(argv[i], "--merge") == 0 && i + 1 < argc) merge = argv[++i];
+    else if (strcmp(argv[i], "--chain-reference") == 0) {
+      ChainReference();
+      return 0;
+    } else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
       Usage(argv[0]);
       return 0;
+    } else if (merge != NULL && argv[i][0] != '-' && nin < 256) {
+      inputs[nin++] = argv[i];
     } else {
       Usage(argv[0]);
       return 2;
     }
+  }
+  if (merge != NULL) {
+    if (nin == 0) {
+      Usage(argv[0]);
+      return 2;
+    }
+    return Merge(merge, png, nin, inputs);
   }
   if (reps < 1 || reps > 64) {
     fprintf(stderr, "work_precision: --reps must be in 1..64\n");
     return 2;
   }
   if (quick) reps = 1;
-  nh = quick ? 3 : NH;     /* quick: h = 4e-3, 2e-3, 1e-3     */
-  nrt = quick ? 3 : NRTOL; /* quick: rtol = 1e-3, 1e-4, 1e-5  */
-  ntol = quick ? 3 : NTOL;  /* quick: tol = 1e-3, 1e-4, 1e-5   */
+
+  printf("SUNDIALS libraries loaded by this process (IDA, and Lignum's dense LU and vectors):\n");
+  sundials = DetectSundials(1);
+  printf("SUNDIALS build: %s\n", strcmp(sundials, "O2") == 0 ? "-O2 (bench/build-ida-O2)"
+                                 : strcmp(sundials, "debian") == 0 ? "Debian's packages (-O0)"
+                                                                    : sundials);
+  if (expect != NULL && strcmp(expect, sundials) != 0) {
+    fprintf(stderr, "work_precision: expected the %s SUNDIALS build but loaded '%s': refusing "
+                    "to label this run\n", expect, sundials);
+    return 3;
+  }
 
   if (lgnref_heavy_top(&t1, 1, &ref, LGNREF_FEHLBERG_8) != 0) {
     fprintf(stderr, "work_precision: reference solution failed\n");
     return 1;
   }
-  printf("Heavy top work-precision, t in [0, %g] s; error = |x(1) - x_ref(1)|_2 against\n"
-         "ARKODE Fehlberg 7(8) (test/reference); CPU = median of %d run(s), process CPU time\n"
-         "of the integration only.\n", T_END, reps);
+  printf("Heavy top and 3-rod chain work-precision, t in [0, %g] s; heavy top error =\n"
+         "|x(1) - x_ref(1)|_2 against ARKODE Fehlberg 7(8) (test/reference); chain error =\n"
+         "|tip(1) - tip_ref(1)|_2 against IDA at rtol 1e-12 (--chain-reference); CPU = best\n"
+         "of %d run(s), process CPU time of the integration only.\n", T_END, reps);
   if (quick) fails = QuickChecks(&ref);
 
-  runs = calloc((size_t)(NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL), sizeof *runs);
-  if (runs == NULL) {
-    fprintf(stderr, "work_precision: out of memory\n");
-    return 1;
-  }
-  for (c = 0; c < NLIGNUM; c++) {
-    const int adaptive = LIGNUM[c].adaptive;
-    cv[ncv].first = nruns;
-    cv[ncv].n = adaptive ? ntol : nh;
-    cv[ncv].ida = 0;
-    cv[ncv++].spec = c;
-    for (k = 0; k < (adaptive ? ntol : nh); k++) {
-      Run *r = &runs[nruns++];
-      r->spec = c;
-      /* quick: 1e-3, 1e-4, 1e-5 */
-      r->setting = adaptive ? TOL0 * pow(10.0, -0.5 * (quick ? 2 * k : k))
-                            : H0 / (double)(1L << k);
-    }
-  }
-  for (c = 0; c < NIDA; c++) {
-    cv[ncv].first = nruns;
-    cv[ncv].n = nrt;
-    cv[ncv].ida = 1;
-    cv[ncv++].spec = c;
-    for (k = 0; k < nrt; k++) {
-      Run *r = &runs[nruns++];
-      r->ida = 1;
-      r->spec = c;
-      r->setting = RTOL0 * pow(10.0, -k);
-    }
-  }
+  nruns = BuildRuns(quick, runs, cv, &ncv, &ncv_top);
   for (i = 0; i < nruns; i++) Measure(&runs[i], &ref, reps);
 
-  if (WriteCsv(csv, runs, nruns) != 0) fails++;
-  PrintRuns(cv, ncv, runs);
-  PrintSummary(cv, ncv, runs);
+  if (WriteCsv(csv, runs, nruns, sundials) != 0) fails++;
+  printf("\nHeavy top");
+  PrintRuns(cv, ncv_top, runs);
+  printf("\nChain of %d rods (tip error)", CHAIN_N);
+  PrintRuns(cv + ncv_top, ncv - ncv_top, runs);
+  PrintSummary(cv, ncv_top, runs, 0);
+  PrintSummary(cv + ncv_top, ncv - ncv_top, runs, 1);
   {
     char acsv[4096], apng[4096];
     SiblingPath(csv, "_adaptive", ".csv", acsv, sizeof acsv);
-    if (PrintAdaptive(cv, ncv, runs, acsv) != 0) fails++;
+    if (PrintAdaptive(cv, ncv_top, runs, acsv) != 0) fails++;
     printf("\nCSV: %s, %s\n", csv, acsv);
     fflush(stdout);
     if (png != NULL && !quick) {
-      WritePlot(png, cv, ncv, runs);
+      WritePlot(png, cv, ncv_top, runs);
       SiblingPath(png, "_adaptive", ".png", apng, sizeof apng);
-      WriteAdaptivePlot(apng, acsv, cv, ncv);
+      WriteAdaptivePlot(apng, acsv, cv, ncv_top);
     }
   }
-  printf("Total wall time %.1f s\n", WallSeconds() - t_start);
-  free(runs);
+  printf("Total wall time %.1f s (SUNDIALS: %s)\n", WallSeconds() - t_start, sundials);
   return fails ? 1 : 0;
 }
