@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum benchmarks: accuracy study of the heavy top (spec numerics.md §5).
+ * Lignum benchmarks: accuracy study of the heavy top (doc/accuracy-study.md).
  *
  * Runs the heavy top on t in [0, 1] s with every method of METHODS[] below,
  * index 3 and index 2, rho_inf in {0.6, 0.9} for the generalized-alpha

@@ -1,8 +1,8 @@
 /* -----------------------------------------------------------------------------
- * Lignum benchmarks: the heavy top (spec numerics.md §5) for SUNDIALS IDA, as
+ * Lignum benchmarks: the heavy top (doc/accuracy-study.md) for SUNDIALS IDA, as
  * the stabilised index-2 (GGL, Gear-Gupta-Leimkuhler) DAE in Euler parameters,
  * with the physics of Lignum's HT_EULER_PARAMETERS model
- * (examples/models/heavy_top.c, spec §3): q = (x, p) in R^7, v = qdot,
+ * (examples/models/heavy_top.c, doc/theory.md §1.1): q = (x, p) in R^7, v = qdot,
  *
  *   q' = v + B(q)^T mu                       (7, GGL: mu = 0 on the solution)
  *   M(q) v' + g(q, v) + B(q)^T lambda = 0    (7)

@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Method parameters as pure functions (spec numerics.md §2): the Chung-Hulbert
+ * Method parameters as pure functions (doc/theory.md §2): the Chung-Hulbert
  * map rho_inf -> (alpha_m, alpha_f, beta, gamma), and the admissibility check
  * of a parameter set.
  *

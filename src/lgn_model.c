@@ -8,7 +8,7 @@
  *   r = [ beta h^2 (M vdot + g + B^T lambda) ;  Phi(q)          ]   (index 3)
  *       [                                    ;  (B(q) v + Phi_t) / gamma' ]  (index 2)
  *
- * (spec numerics.md §2 "Scaling"), plus the matrix-vector kernels.
+ * (doc/theory.md §6, scaling), plus the matrix-vector kernels.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>

@@ -63,7 +63,7 @@ static int Predict(LGNMem mem, const LGNStepCoeffs *c)
 }
 
 /* After convergence: a_{n+1} (with the chart shift of the exact variant,
- * modified-kinematics.md §2 step 3), then commit the new state. */
+ * doc/theory.md §4), then commit the new state. */
 void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c)
 {
   sunindextype i, nv = mem->nv;

@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * The tangent operator T(sigma) of the step and the derivatives of the exact
  * kinematics, stored block by block. On a product group G_1 x ... x G_k, T is
- * block diagonal (spec numerics.md §4); the blocks are the factors of the
+ * block diagonal (doc/theory.md §1.1); the blocks are the factors of the
  * product, flattened (a product of products gives the leaves). Factors on
  * which T = I (R^n) are "identity blocks" and store nothing. So a chain of N
  * bodies keeps N 6x6 blocks, not an (6N)^2 matrix, and every routine here is

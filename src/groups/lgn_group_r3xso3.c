@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * R^3 x SO(3) (spec numerics.md §1, §4.2): q = (x[3], p[4]), v = (u, Omega)
+ * R^3 x SO(3) (doc/theory.md §1.1): q = (x[3], p[4]), v = (u, Omega)
  * with u inertial and Omega body-fixed; q o exp(u, psi) = (x + u,
  * p (x) expq(psi)); T = diag(I3, T_SO3(psi)), Tdot = diag(0, Tdot_SO3).
  * ---------------------------------------------------------------------------*/

@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * The vector space R^n as an additive Lie group (spec numerics.md §1):
+ * The vector space R^n as an additive Lie group (doc/theory.md §1.1):
  * q o exp(w) = q + w, T = T^{-1} = I, Tdot = 0. No content: n = G->nv.
  * ---------------------------------------------------------------------------*/
 

@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * SE(3) (spec numerics.md §1, §4.3): q = (x[3], p[4]), v = (U, Omega), both
+ * SE(3) (doc/theory.md §1.1): q = (x[3], p[4]), v = (U, Omega), both
  * body-fixed (xdot = R U). (x1,R1) o (x2,R2) = (x1 + R1 x2, R1 R2) and
  * exp(U, Omega) = (T_SO3(Omega)^T U, exp Omega~), so
  *   q o exp(U, Omega) = (x + R(p) T(Omega)^T U, p (x) expq(Omega)).

@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * SO(3) with unit-quaternion storage p = (w, x, y, z), body angular
  * velocity, q o exp(w) = p (x) expq(w) (renormalised). Operators of spec
- * numerics.md §4.1 through lgn_so3.h.
+ * doc/theory.md §1.1 through lgn_so3.h.
  * ---------------------------------------------------------------------------*/
 
 #include <stddef.h>

@@ -2,7 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Private SO(3) math (spec numerics.md §4.1, §4.3): coefficients of the
+ * Private SO(3) math (doc/theory.md §1.1): coefficients of the
  * tangent operator with small-angle series, operators applied with cross
  * products (x~ y = x cross y), dense blocks, quaternion exponential.
  *
@@ -32,14 +32,14 @@ sunrealtype lgnSO3_Norm(const sunrealtype x[3])
 
 void lgnSO3_Tilde(const sunrealtype x[3], sunrealtype M[9])
 {
-  /* x~ = [[0,-x3,x2],[x3,0,-x1],[-x2,x1,0]]  (spec §1) */
+  /* x~ = [[0,-x3,x2],[x3,0,-x1],[-x2,x1,0]]  (the hat map) */
   M[0] = 0;     M[1] = -x[2]; M[2] = x[1];
   M[3] = x[2];  M[4] = 0;     M[5] = -x[0];
   M[6] = -x[1]; M[7] = x[0];  M[8] = 0;
 }
 
 /* =============================================================================
- * Coefficients (spec §4.1 table): series below the threshold, closed form
+ * Coefficients (doc/theory.md §1.1): series below the threshold, closed form
  * above. The closed forms use the half angle, 1 - cos(phi) = 2 sin^2(phi/2),
  * which removes one cancellation.
  * ===========================================================================*/
@@ -119,7 +119,7 @@ void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
 void lgnSO3_TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                     const sunrealtype v[3], sunrealtype y[3])
 {
-  /* T v = v + a x~v + b x~x~v  (spec §4.1) */
+  /* T v = v + a x~v + b x~x~v  (doc/theory.md §1.1) */
   sunrealtype xv[3], xxv[3];
   int i;
   lgnVec3Cross(x, v, xv);
@@ -138,7 +138,7 @@ void lgnSO3_TApply(const sunrealtype x[3], const sunrealtype v[3],
 void lgnSO3_TInvApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                        const sunrealtype v[3], sunrealtype y[3])
 {
-  /* T^{-1} v = v + x~v/2 + d x~x~v  (spec §4.1) */
+  /* T^{-1} v = v + x~v/2 + d x~x~v  (doc/theory.md §1.1) */
   sunrealtype xv[3], xxv[3];
   int i;
   lgnVec3Cross(x, v, xv);
@@ -185,7 +185,7 @@ void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                       const sunrealtype U[3], const sunrealtype W[3],
                       const sunrealtype v[3], sunrealtype y[3])
 {
-  /* D^2T(x)[U,W] v (spec §4.3):
+  /* D^2T(x)[U,W] v (the second derivative of T(x)):
    *   (c3 (x.W)(x.U) + c1 (W.U)) x~v + c1 ((x.U) W~v + (x.W) U~v)
    * + (c4 (x.W)(x.U) + c2 (W.U)) x~x~v
    * + c2 ((x.U)(W~x~ + x~W~)v + (x.W)(U~x~ + x~U~)v) + b (U~W~ + W~U~)v  */

@@ -2,8 +2,7 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Private SO(3) math shared by the built-in groups (spec numerics.md §4.1,
- * §4.3): the scalar coefficients of the tangent operator with their
+ * Private SO(3) math shared by the built-in groups (doc/theory.md §1.1): the scalar coefficients of the tangent operator with their
  * small-angle series, T, T^{-1}, Tdot and D^2T applied with cross products,
  * T and DT as dense blocks, and the quaternion exponential.
  *
@@ -22,7 +21,7 @@
 
 #include <lignum/lignum_group.h>
 
-/* Below these angles the series of the spec table (§4.1) are used. */
+/* Below these angles the Taylor series of doc/theory.md §1.1 are used. */
 #define LGN_SO3_THR_SINC SUN_RCONST(0.05) /* sin(phi)/phi        */
 #define LGN_SO3_THR_CC   SUN_RCONST(0.05) /* (1-cos(phi))/phi^2  */
 #define LGN_SO3_THR_A    SUN_RCONST(0.1)
@@ -45,7 +44,7 @@
 #define LGN_SO3_C4   (1u << 8)
 #define LGN_SO3_ALL  (0x1FFu)
 
-/* Coefficients at one angle phi (spec §4.1 table; those not requested are
+/* Coefficients at one angle phi (doc/theory.md §1.1; those not requested are
  * left unset):
  *   sinc = sin(phi)/phi          cc = (1-cos phi)/phi^2
  *   a    = (cos phi - 1)/phi^2   b  = (phi - sin phi)/phi^3
@@ -83,7 +82,7 @@ void lgnSO3_TDotApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                        const sunrealtype xd[3], const sunrealtype v[3],
                        sunrealtype y[3]);
 
-/* y = D^2T(x)[U,W] v (spec §4.3), coefficients A|B|C1|C2|C3|C4 at |x|. */
+/* y = D^2T(x)[U,W] v (the second derivative of T(x)), coefficients A|B|C1|C2|C3|C4 at |x|. */
 void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                       const sunrealtype U[3], const sunrealtype W[3],
                       const sunrealtype v[3], sunrealtype y[3]);

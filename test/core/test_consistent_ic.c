@@ -1,7 +1,7 @@
 /* -----------------------------------------------------------------------------
  * Consistent initial values (LGNCalcIC, LGNGetConsistentIC, the check of the
  * first LGNSolve, LGNSetPerturbedStart) on the heavy top in R^3 x SO(3)
- * (spec numerics.md §5: m = 15, J = diag(0.234375, 0.46875, 0.234375),
+ * (doc/accuracy-study.md: m = 15, J = diag(0.234375, 0.46875, 0.234375),
  * X = e_y, spherical joint Phi = X - R^T x), with a model of its own that
  * fills dense and sparse (CSC) matrices; K_t, C_t, Z by difference quotients.
  *  (a) LGNCalcIC from q0 1 cm off the joint and a v0 off B v = 0, dense and

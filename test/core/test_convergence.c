@@ -1,4 +1,4 @@
-/* Convergence of the heavy top (spec numerics.md §5) in the centre-of-mass
+/* Convergence of the heavy top (doc/accuracy-study.md) in the centre-of-mass
  * position at t = 1 s, against the independent reference (ARKODE Fehlberg
  * 7(8) at tol 1e-13 on the equivalent ODE, test/reference): Lie group
  * generalized-alpha (rho_inf 0.9) and Euler-parameter generalized-alpha must

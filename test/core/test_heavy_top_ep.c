@@ -1,4 +1,4 @@
-/* The heavy top in Euler parameters on R^7 (spec numerics.md §3, §5),
+/* The heavy top in Euler parameters on R^7 (doc/accuracy-study.md),
  * formulation HT_EULER_PARAMETERS of examples/models/heavy_top.c, with its
  * analytic tangents EPStiffness, EPDamping, EPCurvature:
  *  (a) B, K_t, C_t and Z agree with central differences of the constraint,

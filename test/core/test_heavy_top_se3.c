@@ -1,7 +1,7 @@
-/* The heavy top on the Lie group SE(3) (spec numerics.md §5 "SE(3) variant",
+/* The heavy top on the Lie group SE(3) (doc/accuracy-study.md, the SE(3) variant,
  * §7.4), formulation HT_SE3 of examples/models/heavy_top.c:
  *  (a) the consistent start (vdot in inertial terms, lambda) equals the
- *      R^3 x SO(3) one and the spec §5 values to 1e-9;
+ *      R^3 x SO(3) one and the published values to 1e-9;
  *  (b) analytic K_t, C_t, Z and difference quotients give the same solution
  *      at t = 0.1 s (1e-9 in x with Newton rtol = atol = 1e-11: at 1e-12 the
  *      Newton iteration stalls at roundoff in both formulations, also on
@@ -23,7 +23,7 @@
 
 static void ConsistentStart(void)
 {
-  /* spec §5: vdot0 = (udot0 | Omegadot0), lambda0 for Phi = X - R^T x */
+  /* published: vdot0 = (udot0 | Omegadot0), lambda0 for Phi = X - R^T x */
   const double udot0[3] = {0.0, -21.3017325444, -30.9608307692};
   const double wdot0[3] = {661.3461692308, 0.0, 0.0};
   const double lambda0[3] = {0.0, -319.525988166, -317.2624615385};
@@ -52,7 +52,7 @@ static void ConsistentStart(void)
     CHECK_CLOSE(se3.lambda[k], lie.lambda[k], 1e-9, what);
     snprintf(what, sizeof what, "SE3 vs LIE u0[%d]", k);
     CHECK_CLOSE(se3.u[k], lie.u[k], 1e-12, what);
-    /* the spec values carry 10 decimals: 1e-9 */
+    /* the published values carry 10 decimals: 1e-9 */
     snprintf(what, sizeof what, "SE3 udot0[%d] vs spec", k);
     CHECK_CLOSE(se3.vdot[k], udot0[k], 1e-9, what);
     snprintf(what, sizeof what, "SE3 Omegadot0[%d] vs spec", k);

@@ -1,4 +1,4 @@
-/* Reproduction of modified-kinematics.md §4: the heavy top on R^3 x SO(3),
+/* Reproduction of the seed paper's heavy top results (doc/accuracy-study.md): the heavy top on R^3 x SO(3),
  * t in [0, 1] s, CoM error at t = 1 s against the independent reference, for
  * simplified, sigma and exact kinematics with generalized-alpha (rho_inf 0.3,
  * 0.6, 0.9, index 3) and undamped Newmark (index 2 and 3), at

@@ -1,5 +1,5 @@
 /* Method parameters: the Chung-Hulbert map rho_inf -> (alpha_m, alpha_f,
- * gamma, beta) against the table of spec numerics.md §2, the second-order
+ * gamma, beta) against the table of doc/theory.md §2, the second-order
  * condition, and rejection of illegal values. */
 #include <lignum/lignum.h>
 #include <sundials/sundials_context.h>

@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * The sparse iteration matrix through its scatter maps (lgn_assemble_sparse.c,
- * spec numerics.md §2). A chain of 6 rigid bodies (R^3 x SO(3) or SE(3),
+ * doc/theory.md §2). A chain of 6 rigid bodies (R^3 x SO(3) or SE(3),
  * spherical joints) is integrated three times in lock step, one step at a
  * time: with the maps as in use (the fill path whenever the patterns are
  * known), with every map dropped by the model's callbacks (so that every

@@ -1,4 +1,4 @@
-/* Reproduction target A (spec numerics.md §5): LGGalpha, rho_inf = 0.6,
+/* Reproduction target A (doc/accuracy-study.md): LGGalpha, rho_inf = 0.6,
  * h = 0.002, 10 steps, a_0 = 0, values at t = 0.02 s to all six printed
  * digits (OpenTurbine's pilot-code values), plus the a_0 = vdot_0 variant
  * and the consistent initial values. Analytic and difference-quotient
@@ -80,7 +80,7 @@ int main(void)
   CHECK(res_dq.ndq > 0 && res.ndq == 0, "DQ evaluations counted only when used (%ld, %ld)",
         res_dq.ndq, res.ndq);
 
-  /* ---- a_0 = vdot_0 (spec: x = (0.0919489, 0.9957440, -0.0062635),
+  /* ---- a_0 = vdot_0 (published: x = (0.0919489, 0.9957440, -0.0062635),
    *      v_Omega = (1.2871406, 150, 4.5210325)), seven printed digits ---- */
   opt.analytic_jacobians = 1;
   opt.zero_a0 = 0;

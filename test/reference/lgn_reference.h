@@ -2,7 +2,7 @@
  * lgn_reference.h -- independent high-accuracy reference solutions for the
  * Lignum tests (internal test library, prefix lgnref_).
  *
- * Method.  The heavy top of numerics spec §5 is the unconstrained ODE
+ * Method.  The heavy top of doc/accuracy-study.md is the unconstrained ODE
  *
  *     Rdot = R Omega~ ,   J_O Omegadot + Omega x J_O Omega = X x (R^T m gamma_g),
  *
@@ -27,7 +27,7 @@
  *   LGNREF_DIRECT.  The (R, Omega) ODE above as written; it resolves the
  *     150 rad/s spin, needs ~1e4 (Fehlberg) to ~4e5 (Verner) steps on
  *     [0, 2] s and is roundoff-limited at ~1e-10 in Omega (Fehlberg).  Kept
- *     as the literal form of spec §5 and as a cross-check of the
+ *     as the literal form of the published model and as a cross-check of the
  *     transformation (test_reference asserts the two agree).
  * Default tolerances rtol = atol: 1e-13 for Fehlberg, 1e-15 for Verner (the
  * 6th-order table needs the tighter tolerance to reach ~1e-11).
@@ -37,7 +37,7 @@
  *     u        = R (Omega x X)                        its velocity
  *     Omegadot = J_O^{-1}(X x (R^T m gamma_g) - Omega x J_O Omega)
  *     lambda   = m(Omega x (Omega x X) + Omegadot x X) - m R^T gamma_g
- *                multiplier of Phi = X - R^T x (spec §5).  For the
+ *                multiplier of Phi = X - R^T x (the published heavy top).  For the
  *                OpenTurbine/Kynema convention Phi_OT = R X - x use R lambda.
  *     p        = unit quaternion (w,x,y,z), scalar first, w >= 0 (Shepperd).
  *
@@ -52,7 +52,7 @@
  *     (|Omega| ~ 150, |lambda| ~ 650: relative 3e-13 and 1e-11).
  *   - Direct vs spin-separated (Fehlberg 1e-13): |dx| <= 6e-13,
  *     |dOmega| <= 1.6e-10, |dlambda| <= 1.1e-8 on [0, 2] s.
- *   - Torque-free symmetric top (spec §7.1, analytic solution, |Omega| = 150),
+ *   - Torque-free symmetric top (analytic solution, |Omega| = 150),
  *     direct formulation on [0, 2] s: Fehlberg 1e-13 rotation error 5.5e-11,
  *     |dOmega| 1.1e-10; Verner 1e-15 (4e5 steps) 6.6e-10, 2.0e-9.
  *   - Invariants on [0, 2] s (relative drift of energy / of (R J_O Omega)_z;
@@ -77,7 +77,7 @@ extern "C" {
 #endif
 
 /* ---------------------------------------------------------------------------
- * Heavy top (spec §5): m = 15, J = diag(0.234375, 0.46875, 0.234375) about the
+ * Heavy top (the published heavy top): m = 15, J = diag(0.234375, 0.46875, 0.234375) about the
  * centre of mass, X = (0,1,0), gamma_g = (0,0,-9.81), R0 = I,
  * Omega0 = (0, 150, -4.61538).
  * ------------------------------------------------------------------------- */
@@ -155,7 +155,7 @@ void lgnref_heavy_top_momentum(const LGNRefHeavyTop *s, double pi[3]);
 
 /* ---------------------------------------------------------------------------
  * General rigid body about a fixed point (used for the heavy top and for the
- * torque-free top of spec §7.1): principal inertia Jdiag about the fixed
+ * torque-free top): principal inertia Jdiag about the fixed
  * point, constant inertial force f acting at body point X (f = 0: free).
  * R_out (9*ntimes, row-major, raw integrated R) and Omega_out (3*ntimes)
  * may be NULL.

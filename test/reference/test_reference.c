@@ -3,7 +3,7 @@
  * (lgn_reference.h).  Every check can fail; all checked values are printed.
  *
  * Bounds and why:
- *  - consistent start: the spec prints Omegadot0, udot0, lambda0 to 9-10
+ *  - consistent start: the published values of Omegadot0, udot0, lambda0 to 9-10
  *    decimals, so |ours - spec| <= 1e-9 (rounding 5e-10/5e-11 + roundoff).
  *  - Verner vs Fehlberg (spin-separated, default tolerances) at t = 1, 2 s:
  *    Fehlberg's self-convergence is ~1e-13, so the difference is Verner's
@@ -20,7 +20,7 @@
  *    the raw integrated R: Fehlberg <= 1e-12 each (measured <= 2e-13);
  *    Verner (6th order) energy <= 1e-11, pi_z <= 5e-11, orth <= 5e-10
  *    (measured 3e-12, 1.1e-11, 9e-11).
- *  - torque-free symmetric top (spec §7.1, analytic), direct formulation
+ *  - torque-free symmetric top (analytic), direct formulation
  *    (|Omega| = 150 rad/s, roundoff-limited): Fehlberg rotation <= 5e-10,
  *    |dOmega| <= 1e-9; Verner 1e-8, 2e-8.
  */
@@ -105,7 +105,7 @@ static void test_helpers(void)
 /* ------------------------------------------------------------------------ */
 static void test_consistent_start(void)
 {
-    printf("Consistent start (spec §5)\n");
+    printf("Consistent start (heavy top)\n");
     double t0 = 0.0;
     LGNRefHeavyTop s;
     if (lgnref_heavy_top(&t0, 1, &s, 1) != 0) {
@@ -256,7 +256,7 @@ static void test_invariants(void)
 /* ------------------------------------------------------------------------ */
 static void test_torque_free(void)
 {
-    printf("Torque-free symmetric top (spec §7.1, analytic), direct ODE\n");
+    printf("Torque-free symmetric top (analytic), direct ODE\n");
     const double J1 = 0.234375, J3 = 0.46875;
     const double Om0[3] = {1.0, -2.0, 150.0};
     const double w0[3] = {0.3, -0.2, 0.1};

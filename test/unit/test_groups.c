@@ -3,7 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Unit test of the built-in Lie groups (R^n, SO(3), R^3xSO(3), SE(3),
- * products) and of the private SO(3) math (spec numerics.md §1, §4.1-§4.3).
+ * products) and of the private SO(3) math (doc/theory.md §1.1).
  *
  * Every check records its worst error against a tolerance; a summary table
  * (check, count, max error, tolerance) is printed at the end and the exit
@@ -448,7 +448,7 @@ static void LogDiff(const TG *t, const RT *qa, const RT *qb, LD *out)
   }
 }
 
-/* y = ad(xi) x per factor (spec §1): so3: Om x; R3xSO3: diag(0, Om~);
+/* y = ad(xi) x per factor (doc/theory.md §1.1): so3: Om x; R3xSO3: diag(0, Om~);
  * SE3: [[Om~, U~], [0, Om~]] */
 static void AdApply(const TG *t, const RT *xi, const RT *x, RT *y)
 {
@@ -489,7 +489,7 @@ static void AdApply(const TG *t, const RT *xi, const RT *x, RT *y)
  * ===========================================================================*/
 
 /* q(s) = q0 o exp(w0 + s w1 + s^2 w2): Richardson-extrapolated central
- * difference of log(q(0)^{-1} q(s)) vs T(w0) w1 (spec §1 key property) */
+ * difference of log(q(0)^{-1} q(s)) vs T(w0) w1 (the defining property of T) */
 static void CheckDefining(const TG *t, const RT *q0, const RT *w0, const RT *w1,
                           const RT *w2, const char *ctx)
 {
@@ -657,7 +657,7 @@ static void CheckCompose(const TG *t, const RT *q0, const RT *w, const char *ctx
         4e-15 * (1 + MaxAbs(w, nv)), ctx);
 }
 
-/* T(0) = I, Tdot(0,xd) = -ad(xd)/2 so Tdot(0,xd) xd = 0 (spec §4.1) */
+/* T(0) = I, Tdot(0,xd) = -ad(xd)/2 so Tdot(0,xd) xd = 0 (doc/theory.md §1.1) */
 static void CheckAtZero(const TG *t)
 {
   LGNGroup G = t->G;
@@ -738,7 +738,7 @@ static void RunCoefficients(void)
     LD rb = CoefClosedL(cd, below), ra = CoefClosedL(cd, thr);
     LD rs = CoefSeriesL(cd, below);
     snprintf(ctx, sizeof ctx, "%s at %.17g", cd->name, (double)thr);
-    /* jump = series truncation (spec table) + closed-form rounding */
+    /* jump = series truncation (doc/theory.md §1.1) + closed-form rounding */
     Check("continuity across threshold: rel jump / (series + closed tol)",
           fabs((ca - sb) / sb) / (cd->stol + cd->ctol), 1, ctx);
     if (!ldx) continue;
@@ -1055,7 +1055,7 @@ int main(void)
   TG t;
   int k, nfail = 0;
 
-  printf("Lignum unit test: built-in Lie groups (spec numerics.md §1, §4.1-4.3)\n");
+  printf("Lignum unit test: built-in Lie groups (doc/theory.md §1.1)\n");
   {
     volatile LD one = 1, tiny = LDBL_EPSILON;
     ldx = (LDBL_MANT_DIG > 53) && ((one + tiny) - one == tiny);
