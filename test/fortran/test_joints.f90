@@ -355,14 +355,14 @@ contains
                      "Jacobian into a 3 x 6 matrix (nv = 12)")
     call expect_flag(LGNJoints_Stiffness(J, 0.0_c_double, qv, phiv, B), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "Stiffness with lambda of length 4 /= m = 3")
-    call expect_flag(LGNJoints_Residual(c_null_ptr, qv, phiv), LGN_ILL_INPUT, &
+    call expect_flag(LGNJoints_Residual(c_null_ptr, 0.0_c_double, qv, phiv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "Residual of c_null_ptr")
     lv = N_VNew_Serial(3_c_int64_t, ctx)
     call expect_flag(LGNJoints_ConstraintForce(J, 0.0_c_double, qv, phiv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce with lambda of length 4 /= m = 3")
     call expect_flag(LGNJoints_ConstraintForce(J, 0.0_c_double, qv, lv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce into f of length 14 /= nv = 12")
-    call expect_flag(LGNJoints_ConstraintForce(c_null_ptr, qv, lv, qv), LGN_ILL_INPUT, &
+    call expect_flag(LGNJoints_ConstraintForce(c_null_ptr, 0.0_c_double, qv, lv, qv), LGN_ILL_INPUT, &
                      "LGN_ILL_INPUT", "ConstraintForce of c_null_ptr")
     call expect(LGNJoints_NumBodies(c_null_ptr) == 0, "NumBodies(c_null_ptr) = 0")
     call expect(LGNJoints_NumConstraints(c_null_ptr) == 0, "NumConstraints(c_null_ptr) = 0")

@@ -252,15 +252,15 @@ contains
     Ka => FSUNDenseMatrix_Array(K)
     Ba = 0
     Ka = 0
-    call expect(LGNJoints_Jacobian(J, qv, B) == 0, "dense B")
-    call expect(LGNJoints_Stiffness(J, qv, lv, K) == 0, "dense K")
+    call expect(LGNJoints_Jacobian(J, 0.0_c_double, qv, B) == 0, "dense B")
+    call expect(LGNJoints_Stiffness(J, 0.0_c_double, qv, lv, K) == 0, "dense K")
 
     do kind = 1, 2
       st = merge(CSC_MAT, CSR_MAT, kind == 1)
       name = merge("CSC", "CSR", kind == 1)
       ! too small on purpose: LGNJoints_Jacobian reallocates
       S = SUNSparseMatrix(m, nv, 4_c_int64_t, st, ctx)
-      call expect(LGNJoints_Jacobian(J, qv, S) == 0, name//" B")
+      call expect(LGNJoints_Jacobian(J, 0.0_c_double, qv, S) == 0, name//" B")
       allocate (D(m, nv))
       call to_dense(S, D, sorted)
       call expect(sorted, name//" B: indices in range and increasing")
@@ -272,7 +272,7 @@ contains
       call SUNMatDestroy(S)
 
       S = SUNSparseMatrix(nv, nv, 4_c_int64_t, st, ctx)
-      call expect(LGNJoints_Stiffness(J, qv, lv, S) == 0, name//" K")
+      call expect(LGNJoints_Stiffness(J, 0.0_c_double, qv, lv, S) == 0, name//" K")
       allocate (D(nv, nv))
       call to_dense(S, D, sorted)
       call expect(sorted, name//" K: indices in range and increasing")
