@@ -126,6 +126,7 @@ module flignum_mod
     type(c_funptr) :: identity              !< LGNGroupIdentityFn
     type(c_funptr) :: normalize             !< LGNGroupIdentityFn (may be null)
     type(c_funptr) :: free_content          !< LGNGroupFreeContentFn (may be null)
+    type(c_funptr) :: compose_log           !< LGNGroupComposeLogFn (may be null)
   end type LGNGroupOpsRec
 
   type, bind(c) :: LGNGroupRec
@@ -225,6 +226,14 @@ module flignum_mod
       type(c_ptr), value :: G
       real(c_double) :: q(*), w(*), q_out(*)
     end function LGNGroupComposeExpFn
+
+    !> w = log(q1^{-1} q2), the inverse of compose_exp (q1 o exp(w) = q2).
+    integer(c_int) function LGNGroupComposeLogFn(G, q1, q2, w) bind(c)
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: q1(*), q2(*)
+      real(c_double), intent(out) :: w(*)
+    end function LGNGroupComposeLogFn
 
     !> y = T(w) x (tangent_apply) or y = T(w)^{-1} x (tangent_inverse_apply).
     integer(c_int) function LGNGroupTangentApplyFn(G, w, x, y) bind(c)
@@ -1090,6 +1099,17 @@ module flignum_mod
       real(c_double), intent(in) :: q(*), w(*)
       real(c_double), intent(out) :: q_out(*)
     end function LGNGroup_ComposeExp
+
+    !> w = log(q1^{-1} q2) in R^nv, the inverse of LGNGroup_ComposeExp.
+    !! Returns LGN_SUCCESS, LGN_ILL_INPUT (a null argument, or no
+    !! compose_log op) or LGN_GROUP_FAIL (the op failed), with a message.
+    integer(c_int) function LGNGroup_ComposeLog(G, q1, q2, w) &
+        bind(c, name="LGNGroup_ComposeLog")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: G
+      real(c_double), intent(in) :: q1(*), q2(*)
+      real(c_double), intent(out) :: w(*)
+    end function LGNGroup_ComposeLog
 
     !> y = T(w) x.
     integer(c_int) function LGNGroup_TangentApply(G, w, x, y) &

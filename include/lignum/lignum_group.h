@@ -73,6 +73,13 @@ typedef struct LGNGroupOpsRec {
   int (*normalize)(LGNGroup G, sunrealtype *q);
   /** Free the content (not the LGNGroup itself). May be NULL. */
   void (*free_content)(LGNGroup G);
+  /** w = log(q1^{-1} q2) in R^nv, the inverse of compose_exp:
+   *  q1 o exp(w) = q2 (for SO(3) parts the rotation vector with angle in
+   *  [0, pi]). w may not alias q1 or q2. May be NULL in a user-supplied
+   *  group; then LGNGroup_ComposeLog reports LGN_ILL_INPUT. (Last in the
+   *  record so that the earlier fields keep their offsets.) */
+  int (*compose_log)(LGNGroup G, const sunrealtype *q1, const sunrealtype *q2,
+                     sunrealtype *w);
 } *LGNGroupOps;
 
 /** The group object. Built-in constructors fill it; a user-supplied group
@@ -123,12 +130,45 @@ LGN_EXPORT LGNGroup LGNGroup_NewEmpty(sunindextype nq, sunindextype nv);
 LGN_EXPORT void LGNGroup_Destroy(LGNGroup G);
 
 /* -------------------------------------------------------------------------
- * Dispatchers (call the op, return its flag; -1 if the op is missing)
+ * Dispatchers (call the op, return its flag; -1 if the op is missing;
+ * LGNGroup_ComposeLog checks its arguments and returns LGN_* flags)
  * ---------------------------------------------------------------------- */
 
 /** q_out = q o exp(w). */
 LGN_EXPORT int LGNGroup_ComposeExp(LGNGroup G, const sunrealtype *q,
                                    const sunrealtype *w, sunrealtype *q_out);
+/**
+ * The local chart at q1: w = log(q1^{-1} q2) in R^nv, the inverse of
+ * LGNGroup_ComposeExp (q1 o exp(w) = q2 and log(q1^{-1} (q1 o exp(w))) = w
+ * while every rotation angle of w is below pi).
+ *
+ * Per built-in group (doc/theory.md §1.1): R^n: w = q2 - q1; SO(3): the
+ * rotation vector of conj(p1) (x) p2, angle in [0, pi], the same for p2
+ * and -p2 (at angle pi the vector whose first nonzero entry is positive);
+ * R^3 x SO(3): (x2 - x1, SO(3) part); SE(3): Omega as for SO(3) and
+ * U = T_SO3(Omega)^{-T} R(p1)^T (x2 - x1), inverting compose_exp's
+ * x + R T_SO3(Omega)^T U; products: factor by factor. Quaternions need not
+ * be exactly unit (the log of p/|p| is taken). Small angles keep their
+ * relative accuracy (tiny or zero angles included) when q1's rotation is
+ * exact, e.g. the identity; otherwise the rounding of q1 and q2 limits w
+ * to an absolute accuracy of a few eps.
+ *
+ * Derivative: d/de log(q1^{-1} q2 o exp(e d)) at e = 0 is T(w)^{-1} d.
+ *
+ * @param G  the group
+ * @param q1 the base point (nq reals)
+ * @param q2 the point to chart (nq reals)
+ * @param w  out: nv reals; must not alias q1 or q2
+ * @return LGN_SUCCESS; LGN_ILL_INPUT (G, q1, q2 or w NULL, or the group has
+ *         no compose_log op: a user-supplied group that did not set it);
+ *         LGN_GROUP_FAIL (the op failed: for a built-in group a zero or
+ *         not finite quaternion, or a product factor without the op).
+ *         Errors are reported, naming the argument or the op, on stderr
+ *         (a group has no error handler of its own). Unlike the other
+ *         dispatchers it returns these flags, not -1 or the op's flag.
+ */
+LGN_EXPORT int LGNGroup_ComposeLog(LGNGroup G, const sunrealtype *q1,
+                                   const sunrealtype *q2, sunrealtype *w);
 /** y = T(w) x. */
 LGN_EXPORT int LGNGroup_TangentApply(LGNGroup G, const sunrealtype *w,
                                      const sunrealtype *x, sunrealtype *y);

@@ -4,7 +4,8 @@
  * -----------------------------------------------------------------------------
  * The generic LGNGroup object: LGNGroup_NewEmpty, LGNGroup_Destroy, the
  * LGNGroup_* dispatchers (each returns the op's flag, or -1 when G or the op
- * is NULL), and the public quaternion helpers LGNQuaternionToRotation,
+ * is NULL; LGNGroup_ComposeLog checks its arguments, reports on stderr and
+ * returns LGN_* flags), and the public quaternion helpers LGNQuaternionToRotation,
  * LGNQuaternionFromRotationVector, LGNRotationVectorFromQuaternion,
  * LGNQuaternionMultiply (p = (w, x, y, z), Hamilton product).
  * ---------------------------------------------------------------------------*/
@@ -12,6 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "lgn_err.h"
 #include "lgn_so3.h"
 
 #define ONE SUN_RCONST(1.0)
@@ -51,6 +53,36 @@ int LGNGroup_ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
 {
   if (G == NULL || G->ops.compose_exp == NULL) return -1;
   return G->ops.compose_exp(G, q, w, q_out);
+}
+
+int LGNGroup_ComposeLog(LGNGroup G, const sunrealtype *q1,
+                        const sunrealtype *q2, sunrealtype *w)
+{
+  int flag;
+  if (G == NULL) {
+    lgnReport(NULL, LGN_ILL_INPUT, __func__, "G = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (q1 == NULL || q2 == NULL || w == NULL) {
+    lgnReport(NULL, LGN_ILL_INPUT, __func__, "%s = NULL illegal.",
+              q1 == NULL ? "q1" : q2 == NULL ? "q2" : "w");
+    return LGN_ILL_INPUT;
+  }
+  if (G->ops.compose_log == NULL) {
+    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+              "The group has no compose_log op (G->ops.compose_log = NULL): "
+              "a user-supplied group must set it to use the logarithm.");
+    return LGN_ILL_INPUT;
+  }
+  flag = G->ops.compose_log(G, q1, q2, w);
+  if (flag != 0) {
+    lgnReport(NULL, LGN_GROUP_FAIL, __func__,
+              "The group's compose_log op failed (flag %d): a zero or not "
+              "finite quaternion, a product factor without compose_log, or "
+              "the failure of a user-supplied op.", flag);
+    return LGN_GROUP_FAIL;
+  }
+  return LGN_SUCCESS;
 }
 
 int LGNGroup_TangentApply(LGNGroup G, const sunrealtype *w,

@@ -2,7 +2,8 @@
  * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
- * Direct product G_1 x ... x G_n: coordinates concatenated, T block diagonal.
+ * Direct product G_1 x ... x G_n: coordinates concatenated, exp and log
+ * factor by factor, T block diagonal.
  * The content is an array of factor pointers (referenced, not owned; the
  * same factor may appear many times) with the q and v offsets of each
  * factor, so a chain of many identical bodies costs one pointer and two
@@ -33,6 +34,21 @@ static int ProdComposeExp(LGNGroup G, const sunrealtype *q,
     if (F->ops.compose_exp == NULL) return -1;
     flag = F->ops.compose_exp(F, q + c->qoff[k], w + c->voff[k],
                               q_out + c->qoff[k]);
+    if (flag != 0) return flag;
+  }
+  return 0;
+}
+
+static int ProdComposeLog(LGNGroup G, const sunrealtype *q1,
+                          const sunrealtype *q2, sunrealtype *w)
+{
+  const ProductContent *c = PC(G);
+  int k, flag;
+  for (k = 0; k < c->nf; k++) {
+    LGNGroup F = c->f[k];
+    const sunindextype o = c->qoff[k];
+    if (F->ops.compose_log == NULL) return -1;
+    flag = F->ops.compose_log(F, q1 + o, q2 + o, w + c->voff[k]);
     if (flag != 0) return flag;
   }
   return 0;
@@ -196,6 +212,7 @@ LGNGroup LGNGroup_Product(int nfactors, const LGNGroup *factors)
   G->ops.tangent_matrix        = ProdTangentMatrix;
   G->ops.identity              = ProdIdentity;
   G->ops.normalize             = ProdNormalize;
+  G->ops.compose_log           = ProdComposeLog;
   return G;
 }
 

@@ -4,7 +4,8 @@
  * -----------------------------------------------------------------------------
  * R^3 x SO(3) (doc/theory.md §1.1): q = (x[3], p[4]), v = (u, Omega)
  * with u inertial and Omega body-fixed; q o exp(u, psi) = (x + u,
- * p (x) expq(psi)); T = diag(I3, T_SO3(psi)), Tdot = diag(0, Tdot_SO3).
+ * p (x) expq(psi)); log(q1^{-1} q2) = (x2 - x1, log(conj(p1) (x) p2));
+ * T = diag(I3, T_SO3(psi)), Tdot = diag(0, Tdot_SO3).
  * ---------------------------------------------------------------------------*/
 
 #include <stddef.h>
@@ -20,6 +21,16 @@ static int R3SO3ComposeExp(LGNGroup G, const sunrealtype *q,
   q_out[2] = q[2] + w[2];
   lgnSO3_QuatComposeExp(q + 3, w + 3, q_out + 3);
   return 0;
+}
+
+static int R3SO3ComposeLog(LGNGroup G, const sunrealtype *q1,
+                           const sunrealtype *q2, sunrealtype *w)
+{
+  (void)G;
+  w[0] = q2[0] - q1[0];
+  w[1] = q2[1] - q1[1];
+  w[2] = q2[2] - q1[2];
+  return lgnSO3_QuatComposeLog(q1 + 3, q2 + 3, w + 3);
 }
 
 static int R3SO3TangentApply(LGNGroup G, const sunrealtype *w,
@@ -95,5 +106,6 @@ LGNGroup LGNGroup_R3xSO3(void)
   G->ops.identity              = R3SO3Identity;
   G->ops.normalize             = R3SO3Normalize;
   G->ops.free_content          = NULL;
+  G->ops.compose_log           = R3SO3ComposeLog;
   return G;
 }

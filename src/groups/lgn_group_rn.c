@@ -3,7 +3,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * The vector space R^n as an additive Lie group (doc/theory.md §1.1):
- * q o exp(w) = q + w, T = T^{-1} = I, Tdot = 0. No content: n = G->nv.
+ * q o exp(w) = q + w, log(q1^{-1} q2) = q2 - q1, T = T^{-1} = I, Tdot = 0.
+ * No content: n = G->nv.
  * ---------------------------------------------------------------------------*/
 
 #include <stddef.h>
@@ -16,6 +17,15 @@ static int RnComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
 {
   sunindextype i;
   for (i = 0; i < G->nv; i++) q_out[i] = q[i] + w[i];
+  return 0;
+}
+
+/* w = q2 - q1 */
+static int RnComposeLog(LGNGroup G, const sunrealtype *q1,
+                        const sunrealtype *q2, sunrealtype *w)
+{
+  sunindextype i;
+  for (i = 0; i < G->nv; i++) w[i] = q2[i] - q1[i];
   return 0;
 }
 
@@ -74,5 +84,6 @@ LGNGroup LGNGroup_Rn(sunindextype n)
   G->ops.identity              = RnIdentity;
   G->ops.normalize             = NULL;
   G->ops.free_content          = NULL;
+  G->ops.compose_log           = RnComposeLog;
   return G;
 }

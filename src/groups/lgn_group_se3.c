@@ -5,7 +5,10 @@
  * SE(3) (doc/theory.md §1.1): q = (x[3], p[4]), v = (U, Omega), both
  * body-fixed (xdot = R U). (x1,R1) o (x2,R2) = (x1 + R1 x2, R1 R2) and
  * exp(U, Omega) = (T_SO3(Omega)^T U, exp Omega~), so
- *   q o exp(U, Omega) = (x + R(p) T(Omega)^T U, p (x) expq(Omega)).
+ *   q o exp(U, Omega) = (x + R(p) T(Omega)^T U, p (x) expq(Omega)),
+ * and its inverse, the log in the chart at q1 = (x1, p1):
+ *   log(q1^{-1} q2) = (T(Omega)^{-T} R(p1)^T (x2 - x1), Omega),
+ *   Omega = log(conj(p1) (x) p2),   T(Omega)^{-T} = T(-Omega)^{-1}.
  * With DT(Omega)[U] := Tdot_SO3(Omega, U) (§4.3):
  *   T      = [[T, DT[U]], [0, T]]
  *   T^{-1} = [[T^{-1}, -T^{-1} DT[U] T^{-1}], [0, T^{-1}]]
@@ -34,6 +37,28 @@ static int SE3ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
     q_out[i] = q[i] + R[3 * i] * VU[0] + R[3 * i + 1] * VU[1]
              + R[3 * i + 2] * VU[2];
   lgnSO3_QuatComposeExp(q + 3, w + 3, q_out + 3);
+  return 0;
+}
+
+static int SE3ComposeLog(LGNGroup G, const sunrealtype *q1,
+                         const sunrealtype *q2, sunrealtype *w)
+{
+  /* undo compose_exp step by step with the same R(p1): xr = R^T (x2 - x1)
+   * = T(Omega)^T U, so U = T(-Omega)^{-1} xr */
+  sunrealtype R[9], dx[3], xr[3], mOm[3];
+  int flag;
+  (void)G;
+  flag = lgnSO3_QuatComposeLog(q1 + 3, q2 + 3, w + 3);
+  if (flag != 0) return flag;
+  LGNQuaternionToRotation(q1 + 3, R);
+  dx[0] = q2[0] - q1[0];
+  dx[1] = q2[1] - q1[1];
+  dx[2] = q2[2] - q1[2];
+  lgnMat3ApplyT(R, dx, xr);
+  mOm[0] = -w[3];
+  mOm[1] = -w[4];
+  mOm[2] = -w[5];
+  lgnSO3_TInvApply(mOm, xr, w);
   return 0;
 }
 
@@ -134,5 +159,6 @@ LGNGroup LGNGroup_SE3(void)
   G->ops.identity              = SE3Identity;
   G->ops.normalize             = SE3Normalize;
   G->ops.free_content          = NULL;
+  G->ops.compose_log           = SE3ComposeLog;
   return G;
 }

@@ -3,8 +3,9 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * SO(3) with unit-quaternion storage p = (w, x, y, z), body angular
- * velocity, q o exp(w) = p (x) expq(w) (renormalised). Operators of spec
- * doc/theory.md §1.1 through lgn_so3.h.
+ * velocity, q o exp(w) = p (x) expq(w) (renormalised), log(q1^{-1} q2) =
+ * the rotation vector of conj(p1) (x) p2. Operators of doc/theory.md §1.1
+ * through lgn_so3.h.
  * ---------------------------------------------------------------------------*/
 
 #include <stddef.h>
@@ -17,6 +18,13 @@ static int SO3ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
   (void)G;
   lgnSO3_QuatComposeExp(q, w, q_out);
   return 0;
+}
+
+static int SO3ComposeLog(LGNGroup G, const sunrealtype *q1,
+                         const sunrealtype *q2, sunrealtype *w)
+{
+  (void)G;
+  return lgnSO3_QuatComposeLog(q1, q2, w);
 }
 
 static int SO3TangentApply(LGNGroup G, const sunrealtype *w,
@@ -80,5 +88,6 @@ LGNGroup LGNGroup_SO3(void)
   G->ops.identity              = SO3Identity;
   G->ops.normalize             = SO3Normalize;
   G->ops.free_content          = NULL;
+  G->ops.compose_log           = SO3ComposeLog;
   return G;
 }

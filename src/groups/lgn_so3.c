@@ -9,7 +9,8 @@
  * Functions: lgnSO3_Coefs, lgnSO3_Norm, lgnSO3_Tilde, lgnSO3_TApply[C],
  * lgnSO3_TInvApply[C], lgnSO3_TDotApply[C], lgnSO3_D2TApplyC,
  * lgnSO3_TMatrix[C], lgnSO3_TDotMatrixC, lgnSO3_ExpQuat,
- * lgnSO3_QuatComposeExp, lgnSO3_QuatNormalize, lgnSO3_QuatRotate.
+ * lgnSO3_QuatComposeExp, lgnSO3_QuatNormalize, lgnSO3_QuatRotate,
+ * lgnSO3_LogQuat, lgnSO3_QuatComposeLog.
  * None of them allocates.
  * ---------------------------------------------------------------------------*/
 
@@ -332,4 +333,66 @@ void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],
   for (i = 0; i < 3; i++) t[i] *= TWO;
   lgnVec3Cross(q, t, qt);
   for (i = 0; i < 3; i++) y[i] = v[i] + p[0] * t[i] + qt[i];
+}
+
+/* =============================================================================
+ * Quaternion logarithm (the inverse of expq and of the composition above)
+ * ===========================================================================*/
+
+/* |p|^2 outside [LOG_TINY, LOG_HUGE]: rescale before squaring (far from a
+ * unit quaternion, zero, or not finite). */
+#define LOG_TINY SUN_RCONST(1.0e-200)
+#define LOG_HUGE SUN_RCONST(1.0e200)
+
+int lgnSO3_LogQuat(const sunrealtype p[4], sunrealtype phi[3])
+{
+  /* p = (w, v) = s (cos(h), sin(h) u), h = angle/2 in [0, pi/2] once w >= 0:
+   * phi = 2 h u = k v with k = 2 atan2(|v|, w) / |v|. atan2, not acos(w) or
+   * asin(|v|), keeps full relative accuracy at both ends (acos loses half
+   * the digits near 0, asin near pi). For r = |v|/w < LGN_SO3_THR_LOG,
+   * k = (2/w) atan(r)/r by its series in r^2, which needs no square root
+   * and stays exact when |v|^2 underflows (angles below 1e-154). */
+  sunrealtype w = p[0], x = p[1], y = p[2], z = p[3], n2, w2, k;
+
+  /* p and -p are the same rotation: w >= 0; at w = 0 (angle pi) the first
+   * nonzero of (x, y, z) positive, so that log(-p) = log(p) there too */
+  if (w < 0 || (w == 0 && (x < 0 || (x == 0 && (y < 0 || (y == 0 && z < 0)))))) {
+    w = -w; x = -x; y = -y; z = -z;
+  }
+  n2 = x * x + y * y + z * z;
+  w2 = w * w;
+  if (!(n2 + w2 >= LOG_TINY && n2 + w2 <= LOG_HUGE)) {
+    const sunrealtype m = fmax(fmax(w, fabs(x)), fmax(fabs(y), fabs(z)));
+    if (!isfinite(w + x + y + z) || !(m > 0)) {
+      phi[0] = phi[1] = phi[2] = 0;
+      return -1; /* zero or not finite: no rotation */
+    }
+    w /= m; x /= m; y /= m; z /= m;
+    n2 = x * x + y * y + z * z;
+    w2 = w * w;
+  }
+  if (n2 < (LGN_SO3_THR_LOG * LGN_SO3_THR_LOG) * w2) {
+    /* atan(r)/r = 1 - r^2/3 + r^4/5 - ... - r^10/11 + r^12/13 */
+    const sunrealtype r2 = n2 / w2;
+    k = (TWO / w)
+      * (ONE + r2 * (-ONE / 3 + r2 * (ONE / 5 + r2 * (-ONE / 7 + r2 * (ONE / 9
+          + r2 * (-ONE / 11 + r2 * (ONE / 13)))))));
+  } else {
+    const sunrealtype n = sqrt(n2);
+    k = TWO * atan2(n, w) / n;
+  }
+  phi[0] = k * x;
+  phi[1] = k * y;
+  phi[2] = k * z;
+  return 0;
+}
+
+int lgnSO3_QuatComposeLog(const sunrealtype p1[4], const sunrealtype p2[4],
+                          sunrealtype phi[3])
+{
+  /* conj(p1) is p1^{-1} up to the factor |p1|^2, which the log ignores */
+  const sunrealtype c[4] = {p1[0], -p1[1], -p1[2], -p1[3]};
+  sunrealtype r[4];
+  lgnSO3_QuatMultiply(c, p2, r);
+  return lgnSO3_LogQuat(r, phi);
 }

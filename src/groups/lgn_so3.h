@@ -154,6 +154,27 @@ void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4]);
 void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
                            sunrealtype p_out[4]);
 
+/* Below this ratio r = |v|/w = tan(angle/2) of a quaternion (w, v), w >= 0,
+ * the logarithm uses the series of atan(r)/r (to r^12: truncation below
+ * r^14/15 < 5e-20 there) instead of atan2: the same increments that take
+ * the series branch of expq (angle/2 < 0.05) take it here. */
+#define LGN_SO3_THR_LOG SUN_RCONST(0.05)
+
+/* phi = log(p), the rotation vector of the rotation of p, |phi| <= pi.
+ * p and -p give the same phi: the sign is chosen with w >= 0 and, at w = 0
+ * (angle pi), with the first nonzero entry of (x, y, z) positive.
+ * Scale-invariant: any nonzero multiple of a unit quaternion (a quaternion
+ * unnormalised by roundoff, say) gives the log of p/|p|. Relative accuracy
+ * down to the smallest normal angles (no squares that underflow decide a
+ * branch). Returns 0, or -1 (phi = 0) when p is zero or not finite. */
+int lgnSO3_LogQuat(const sunrealtype p[4], sunrealtype phi[3]);
+
+/* phi = log(conj(p1) (x) p2), the body-fixed rotation vector with
+ * p2 = p1 (x) expq(phi) (the inverse of lgnSO3_QuatComposeExp); phi must
+ * not alias p1 or p2. Returns lgnSO3_LogQuat's flag. */
+int lgnSO3_QuatComposeLog(const sunrealtype p1[4], const sunrealtype p2[4],
+                          sunrealtype phi[3]);
+
 /* Scale p to unit length (left unchanged if p = 0). */
 int lgnSO3_QuatNormalize(sunrealtype p[4]); /* -1: zero or not finite */
 

@@ -318,6 +318,11 @@ contains
                 "T(w) as a column-major Fortran matrix")
     call expect(LGNGroup_TangentMatrix(G, w6, Tm, 5_c_int64_t) == -1, &
                 "LGNGroup_TangentMatrix with ld < nv returns -1")
+    ! the logarithm: log(q, exp(q, w)) = w, and the op in the record
+    call expect(c_associated(rec%ops%compose_log), "R^3 x SO(3) has a compose_log op")
+    call expect(LGNGroup_ComposeExp(G, q7, w6, qo) == 0, "LGNGroup_ComposeExp (for the log)")
+    call expect(LGNGroup_ComposeLog(G, q7, qo, y) == LGN_SUCCESS, "LGNGroup_ComposeLog")
+    call expect(maxval(abs(y - w6)) <= 1.0e-15_c_double, "log(q, exp(q, w)) = w")
 
     ! products of built-in groups
     S = LGNGroup_SO3()
