@@ -935,6 +935,35 @@ module flignum_mod
       real(c_double), intent(out) :: alpha_m, alpha_f, beta, gamma
     end function LGNGetMethodParams
 
+    !> BDF: the order of the next step (2 for the Newmark family).
+    integer(c_int) function LGNGetCurrentOrder(lgn_mem, order) bind(c, name="LGNGetCurrentOrder")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: order
+    end function LGNGetCurrentOrder
+
+    !> BDF: the order of the last step taken (2 for the Newmark family).
+    integer(c_int) function LGNGetLastOrder(lgn_mem, order) bind(c, name="LGNGetLastOrder")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), intent(out) :: order
+    end function LGNGetLastOrder
+
+    !> BDF: steps taken at each order, nsteps(k + 1) for order k = 1 ... 5.
+    integer(c_int) function LGNGetNumStepsAtOrder(lgn_mem, nsteps) &
+        bind(c, name="LGNGetNumStepsAtOrder")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nsteps(6)
+    end function LGNGetNumStepsAtOrder
+
+    !> Select the BDF family of variable order 1 ... maxord (maxord <= 5).
+    integer(c_int) function LGNSetBDF(lgn_mem, maxord) bind(c, name="LGNSetBDF")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: maxord
+    end function LGNSetBDF
+
     !> Number of steps taken.
     integer(c_int) function LGNGetNumSteps(lgn_mem, nsteps) bind(c, name="LGNGetNumSteps")
       import :: c_int, c_long, c_ptr

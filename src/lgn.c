@@ -338,7 +338,8 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
       flag = LGN_TOO_MUCH_WORK;
       break;
     }
-    flag = lgnAdaptiveStep(mem, tout);
+    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFAdaptiveStep(mem, tout)
+                                         : lgnAdaptiveStep(mem, tout);
     if (flag != LGN_SUCCESS) break;
     nstloc++;
     if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
@@ -441,7 +442,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     return SolveAdaptive(mem, tout, tret, q, v, itask);
 
   if (itask == LGN_ONE_STEP) {
-    flag = lgnStep(mem, mem->h);
+    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, mem->h) : lgnStep(mem, mem->h);
     if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
@@ -476,7 +477,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     hstep     = (remaining <= mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)))
                     ? remaining
                     : mem->h;
-    flag = lgnStep(mem, hstep);
+    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tout; /* exact arrival */
     nstloc++;

@@ -50,7 +50,7 @@ static sunrealtype ErrorFactor(sunrealtype err)
 #define H_FLOOR SUN_RCONST(1.0e-150)
 
 /* h limited to [hmin, hmax] (and the floor). */
-static sunrealtype Limit(LGNMem mem, sunrealtype h)
+sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h)
 {
   if (mem->hmax > SUN_RCONST(0.0)) h = SUNMIN(h, mem->hmax);
   return SUNMAX(SUNMAX(h, mem->hmin), H_FLOOR);
@@ -59,7 +59,7 @@ static sunrealtype Limit(LGNMem mem, sunrealtype h)
 /* The first step size when the user gives none: the displacement by the
  * initial acceleration, h^2 |vdot_0| / 2, one error tolerance (weighted
  * norm, weights at a zero increment), and not beyond tout. */
-static sunrealtype InitialStep(LGNMem mem, sunrealtype tout)
+sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout)
 {
   const sunrealtype span = fabs(tout - mem->tn);
   sunrealtype h, anorm, vnorm;
@@ -74,7 +74,7 @@ static sunrealtype InitialStep(LGNMem mem, sunrealtype tout)
     h = SUN_RCONST(1.0e-3) * span;
   if (span > SUN_RCONST(0.0)) h = SUNMIN(h, span);
   if (!(h > SUN_RCONST(0.0))) h = SUN_RCONST(1.0e-6);
-  return Limit(mem, h);
+  return lgnLimitStep(mem, h);
 }
 
 /* The auxiliary variable for a step of size h (header comment). */
@@ -95,7 +95,7 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
 
 /* Newton's tolerances for a step of size h: epcon times the error test's,
  * in the units of its norm (lgn_newton.c: configuration part atol h). */
-static void NewtonTolerances(LGNMem mem, sunrealtype h)
+void lgnNewtonTolerances(LGNMem mem, sunrealtype h)
 {
   mem->nls_rtol  = mem->epcon * mem->rtol;
   mem->nls_atol  = mem->epcon * mem->atol / h;
@@ -117,11 +117,11 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
   LGNStepCoeffs c;
 
   if (!(mem->hnext > SUN_RCONST(0.0))) {
-    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? Limit(mem, mem->h0_user)
-                                                    : InitialStep(mem, tout);
+    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? lgnLimitStep(mem, mem->h0_user)
+                                                    : lgnInitialStep(mem, tout);
     mem->h0_actual = mem->hnext;
   }
-  h = Limit(mem, mem->hnext); /* the limits may have changed since */
+  h = lgnLimitStep(mem, mem->hnext); /* the limits may have changed since */
   for (;;) {
     /* a stop time ahead within this step (or nearly): land on it */
     h_wanted = h;
@@ -133,7 +133,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     RescaleAux(mem, h);
-    NewtonTolerances(mem, h);
+    lgnNewtonTolerances(mem, h);
     c    = lgnStepCoeffs(mem, h);
     flag = lgnStepAttempt(mem, &c);
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
@@ -151,7 +151,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       if (factor >= SUN_RCONST(1.0) && factor < KEEP_BELOW) factor = SUN_RCONST(1.0);
       factor = SUNMAX(factor, FMIN);
       /* after a landing, go on from the step size the controller wanted */
-      mem->hnext = Limit(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
+      mem->hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
       return LGN_SUCCESS;
     }
 
@@ -187,7 +187,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       lgnStepRejected(mem); /* (the estimate itself failed) */
       return flag; /* unrecoverable: reported where it happened */
     }
-    h = Limit(mem, h * factor);
+    h = lgnLimitStep(mem, h * factor);
     mem->hnext = h;
   }
 }

@@ -90,11 +90,19 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
     mem->ele[i] = s[i] - (h * v0[i] + h2 * (SUN_RCONST(0.5) * a0[i] +
                                             (a1[i] - a0[i]) / SUN_RCONST(6.0)) -
                           h2 * h * td[i] / SUN_RCONST(6.0));
+  return lgnErrorNorm(mem, c, s, norm);
+}
+
+/* The norm of the estimate in mem->ele (projected at index 3), with the
+ * weights of the step's increment incr into mem->ewt. */
+int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
+                 sunrealtype *norm)
+{
   if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3) {
     int flag = ProjectOnConstraints(mem, c);
     if (flag != LGN_SUCCESS) return flag;
   }
-  lgnErrorWeights(mem, s, mem->ewt);
+  lgnErrorWeights(mem, incr, mem->ewt);
   *norm = lgnWrmsNorm(mem, mem->ele, mem->ewt);
   return LGN_SUCCESS;
 }

@@ -37,6 +37,12 @@
 
 #define LGN_RECOVERABLE 100 /* a callback asked for a retry (error control) */
 
+/* The method families (LGNSetNewmark ... / LGNSetBDF). */
+#define LGN_FAMILY_NEWMARK 0
+#define LGN_FAMILY_BDF     1
+#define LGN_BDF_MAXORD     5
+#define LGN_BDF_MAXHIST    (LGN_BDF_MAXORD + 2) /* points kept: order k + 2 */
+
 /* Which callback produced an error: used to pick the flag and message. */
 typedef enum {
   LGN_CB_MASS = 0,
@@ -94,6 +100,27 @@ typedef struct LGNMemRec {
   int kinematics;           /* LGN_KINEMATICS_*                            */
   const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
+  int family;               /* LGN_FAMILY_NEWMARK or LGN_FAMILY_BDF        */
+
+  /* ---- BDF (lgn_bdf.c): the history q_{n-j}, v_{n-j} at t_{n-j} ---- */
+  int bdf_maxord;           /* LGNSetBDF: 1 ... 5                          */
+  sunbooleantype lsetup_recoverable; /* a singular setup is retried with a
+                                        smaller step: no message (BDF)     */
+  int bdf_order;            /* the order of the next step                  */
+  int bdf_last_order;       /* the order of the last step taken            */
+  int bdf_nhist;            /* valid history points (0: start anew)        */
+  int bdf_nsteps_order;     /* steps taken at the current order            */
+  sunbooleantype bdf_phase0;/* start-up: the order rises every step        */
+  sunrealtype bdf_chart_t;  /* t_n of the chart coordinates in bdf_x       */
+  sunrealtype bdf_t[LGN_BDF_MAXHIST];
+  sunrealtype *bdf_q;       /* LGN_BDF_MAXHIST x nq: q_{n-j}               */
+  sunrealtype *bdf_v;       /* LGN_BDF_MAXHIST x nv: v_{n-j}               */
+  sunrealtype *bdf_x;       /* LGN_BDF_MAXHIST x nv: log(q_n^{-1} q_{n-j}) */
+  sunrealtype *bdf_rx, *bdf_rv; /* the known parts of xdot, vdot (nv each) */
+  sunrealtype *bdf_xpred, *bdf_vpred; /* the predictor (nv each)           */
+  sunrealtype *bdf_dd;      /* divided differences, (LGN_BDF_MAXHIST + 1) nv */
+  sunrealtype bdf_c0;       /* leading coefficient of the BDF derivative   */
+  long int bdf_nord[LGN_BDF_MAXORD + 1]; /* steps taken at each order      */
   sunrealtype rtol, atol;   /* Newton stop test                            */
   int maxcor;               /* max Newton iterations per step              */
   int newton_mode;          /* LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED      */
@@ -315,6 +342,7 @@ int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
 int lgnAllocWork(LGNMem mem);
+int lgnAllocBDF(LGNMem mem);
 void lgnFreeWork(LGNMem mem);
 int lgnAllocMatrices(LGNMem mem);
 void lgnFreeMatrices(LGNMem mem);
@@ -373,6 +401,8 @@ typedef struct {
   sunrealtype gamma_p; /* gamma' = gamma/(h beta):           d sigma_dot  / d sigma */
   sunrealtype scale;   /* beta h^2: scaling of the dynamic rows              */
   sunrealtype qscale;  /* max(1, |q_n|_max): size of the configuration       */
+  sunrealtype hmat;    /* the step the iteration matrix depends on: h (Newmark),
+                        * 1/c0 (BDF), compared for its reuse                */
 } LGNStepCoeffs;
 
 /* The scaled iteration matrix as a sum of terms (lgn_matrix.c):
@@ -409,6 +439,7 @@ typedef struct LGNKinematicsOps {
 } LGNKinematicsOps;
 
 const LGNKinematicsOps *lgnKinematicsOps(int kinematics);
+const LGNKinematicsOps *lgnBDFOps(void);
 void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
 void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 
@@ -443,6 +474,8 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
 /* ---- lgn_errtest.c: the local error of a step --------------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
+int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
+                 sunrealtype *norm);
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);
 void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w);
 
@@ -457,11 +490,20 @@ int lgnCheckProgress(LGNMem mem, sunrealtype h);
 int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c);
 void lgnStepRejected(LGNMem mem);
 void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
+void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);
 
 /* ---- lgn_adapt.c: one error-controlled step ----------------------------- */
 
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
+sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
+sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout);
+void lgnNewtonTolerances(LGNMem mem, sunrealtype h);
+
+/* ---- lgn_bdf.c: the BDF family ------------------------------------------ */
+
+int lgnBDFStep(LGNMem mem, sunrealtype h);
+int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout);
 
 /* ---- lgn_root.c: events (root finding on the dense output) ------------- */
 

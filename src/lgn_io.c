@@ -215,7 +215,62 @@ static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
   mem->alpha_f = af;
   mem->beta    = beta;
   mem->gamma   = gamma;
+  mem->family  = LGN_FAMILY_NEWMARK; /* (back) to the Newmark family */
+  mem->kin     = lgnKinematicsOps(mem->kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
+  return LGN_SUCCESS;
+}
+
+int LGNSetBDF(void *lgn_mem, int maxord)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (maxord < 1 || maxord > LGN_BDF_MAXORD) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "maxord = %d illegal: BDF orders are 1 to %d.",
+              maxord, LGN_BDF_MAXORD);
+    return LGN_ILL_INPUT;
+  }
+  mem->family     = LGN_FAMILY_BDF;
+  mem->bdf_maxord = maxord;
+  mem->kin        = lgnBDFOps();
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
+  return LGN_SUCCESS;
+}
+
+int LGNGetCurrentOrder(void *lgn_mem, int *order)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (order == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf_order : 2;
+  return LGN_SUCCESS;
+}
+
+int LGNGetLastOrder(void *lgn_mem, int *order)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (order == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf_last_order : 2;
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6])
+{
+  LGNMem mem;
+  int k;
+  ACCESS_MEM(lgn_mem, mem);
+  if (nsteps == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "nsteps = NULL illegal.");
+    return LGN_ILL_INPUT;
+  }
+  for (k = 0; k <= LGN_BDF_MAXORD; k++) nsteps[k] = mem->bdf_nord[k];
   return LGN_SUCCESS;
 }
 
@@ -285,7 +340,7 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
     return LGN_ILL_INPUT;
   }
   mem->kinematics = kinematics;
-  mem->kin        = lgnKinematicsOps(kinematics);
+  if (mem->family == LGN_FAMILY_NEWMARK) mem->kin = lgnKinematicsOps(kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }

@@ -288,6 +288,54 @@ static const LGNKinematicsOps sigma_ops = {
   SigmaIncrement};
 
 /* =============================================================================
+ * BDF (lgn_bdf.c): x = sigma the chart coordinate of q_{n+1} at q_n, its
+ * BDF derivative xdot = c0 x + r_x, v = T(x) xdot, vdot = c0 v + r_v
+ * ===========================================================================*/
+
+static int BDFPredict(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
+                      sunbooleantype extrapolate)
+{
+  (void)mem;
+  (void)c;
+  (void)acc;
+  (void)extrapolate;
+  return LGN_SUCCESS; /* lgn_bdf.c predicts */
+}
+
+static int BDFIterate(LGNMem mem, sunbooleantype with_tangent)
+{
+  LGNGroup G = mem->G;
+  sunindextype i, nv = mem->nv;
+  const sunrealtype c0 = mem->bdf_c0;
+  sunrealtype *v1 = lgnData(mem->v1), *vdot1 = lgnData(mem->vdot1);
+  int ret = Configuration(mem, with_tangent);
+  if (ret != LGN_SUCCESS) return ret;
+  for (i = 0; i < nv; i++) mem->sigma_dot[i] = c0 * mem->sigma[i] + mem->bdf_rx[i];
+  ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
+  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  for (i = 0; i < nv; i++) vdot1[i] = c0 * v1[i] + mem->bdf_rv[i];
+  return LGN_SUCCESS;
+}
+
+/* dv/dx ~ c0 T(x) and dvdot/dx ~ c0^2 T(x) (the derivative of T itself
+ * along xdot, O(h) relative, left out): cM M T + cC C T + cK K T with
+ * cM = scale c0^2, cC = scale c0, cK = scale; B T, or at index 2 the row
+ * (B v)/c0 with its block B T + (1/c0) D_q(B v) T. */
+static int BDFMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
+{
+  StepTerms(mem, c, terms);
+  terms->TM = terms->TC = terms->TK = terms->TB = mem->Tm;
+  ConstraintVelocityTerm(mem, terms);
+  return LGN_SUCCESS;
+}
+
+static const LGNKinematicsOps bdf_ops = {
+  "BDF", SUNFALSE, SUNFALSE, SUNFALSE,
+  ExactBind, BDFPredict, BDFIterate, BDFMatrix, NULL, NewmarkIncrement};
+
+const LGNKinematicsOps *lgnBDFOps(void) { return &bdf_ops; }
+
+/* =============================================================================
  * The table of a variant
  * ===========================================================================*/
 

@@ -410,6 +410,8 @@ int lgnLsSetup(LGNMem mem)
   if (ret == 0) ret = DenseNearlySingular(mem);
   if (ret != 0) {
     lgnDiagnoseSingular(mem, ret, mem->diag_text, sizeof mem->diag_text);
+    /* singular at this step size: the caller retries a smaller one */
+    if (mem->lsetup_recoverable && (ret > 0 || mem->diag_pivot >= 0)) return LGN_RECOVERABLE;
     LGN_ERROR(mem, LGN_LSETUP_FAIL,
               MSG_TIME "the linear solver setup failed (%d%s).%s",
               (double)mem->tn, ret,

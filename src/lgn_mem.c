@@ -63,6 +63,9 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->sp->have_dq_patterns = SUNFALSE;
   }
   if (what & LGN_CHANGE_LINSOL) mem->ls_initialized = SUNFALSE;
+  if (what & (LGN_CHANGE_STATE | LGN_CHANGE_METHOD | LGN_CHANGE_MODEL |
+              LGN_CHANGE_MASS))
+    mem->bdf_nhist = 0; /* the BDF history belongs to the old problem */
   if (what & LGN_CHANGE_STATE) {
     mem->ic_done     = SUNFALSE;
     mem->h_prev      = SUN_RCONST(0.0);
@@ -402,6 +405,10 @@ void lgnFreeWork(LGNMem mem)
   mem->h_prev = SUN_RCONST(0.0);
   free(mem->Tm);
   mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
+  free(mem->bdf_q);
+  mem->bdf_q = mem->bdf_v = mem->bdf_x = mem->bdf_rx = mem->bdf_rv = NULL;
+  mem->bdf_xpred = mem->bdf_vpred = mem->bdf_dd = NULL;
+  mem->bdf_nhist = 0;
   BlocksFree(mem);
   mem->work_done = SUNFALSE;
   mem->ic_done = SUNFALSE;
@@ -576,6 +583,29 @@ int lgnAllocWork(LGNMem mem)
   mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
+/* The BDF history and work arrays (lgn_bdf.c), once, in one block:
+ * LGN_BDF_MAXHIST points of q (nq) and v, x (nv), r_x, r_v, the predictor
+ * (4 nv) and the divided differences ((LGN_BDF_MAXHIST + 1) nv). */
+int lgnAllocBDF(LGNMem mem)
+{
+  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, H = LGN_BDF_MAXHIST;
+  if (mem->bdf_q != NULL) return LGN_SUCCESS;
+  mem->bdf_q = (sunrealtype *)calloc(H * nq + (3 * H + 5) * nv, sizeof(sunrealtype));
+  if (mem->bdf_q == NULL) {
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->bdf_v     = mem->bdf_q + H * nq;
+  mem->bdf_x     = mem->bdf_v + H * nv;
+  mem->bdf_rx    = mem->bdf_x + H * nv;
+  mem->bdf_rv    = mem->bdf_rx + nv;
+  mem->bdf_xpred = mem->bdf_rv + nv;
+  mem->bdf_vpred = mem->bdf_xpred + nv;
+  mem->bdf_dd    = mem->bdf_vpred + nv;
+  mem->bdf_nhist = 0;
   return LGN_SUCCESS;
 }
 

@@ -227,7 +227,7 @@ static NewtonVerdict TestCorrection(LGNMem mem, const LGNStepCoeffs *c,
 /* Can the step start with the factorised matrix already in A? */
 static sunbooleantype MatrixReusable(LGNMem mem, const LGNStepCoeffs *c)
 {
-  return mem->lu_valid && fabs(c->h - mem->lu_h) <= REUSE_H_TOL * mem->lu_h &&
+  return mem->lu_valid && fabs(c->hmat - mem->lu_h) <= REUSE_H_TOL * mem->lu_h &&
          (mem->msbp < 0 || mem->nst - mem->lu_nst < mem->msbp);
 }
 
@@ -247,7 +247,7 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
     if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
     if (flag == LGN_SUCCESS) {
       mem->lu_valid = SUNTRUE;
-      mem->lu_h     = c->h;
+      mem->lu_h     = c->hmat;
       mem->lu_nst   = mem->nst;
     }
   }

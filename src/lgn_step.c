@@ -26,6 +26,7 @@ LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
   c.gamma_p = mem->gamma / (h * mem->beta);
   c.scale   = mem->beta * h * h;
   c.qscale  = SUN_RCONST(1.0);
+  c.hmat    = h;
   for (i = 0; i < mem->nq; i++) c.qscale = SUNMAX(c.qscale, fabs(q[i]));
   return c;
 }
@@ -70,7 +71,6 @@ void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c)
   const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
                          (SUN_RCONST(1.0) - mem->alpha_m);
   sunrealtype *a = lgnData(mem->a), *vdot1 = lgnData(mem->vdot1);
-  N_Vector tmp;
 
   for (i = 0; i < nv; i++)
     a[i] = mem->a_pred[i] + ca * mem->sigma_ddot[i] +
@@ -79,8 +79,16 @@ void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c)
   memcpy(mem->vdot_prev, lgnData(mem->vdot), (size_t)nv * sizeof(sunrealtype));
   if (mem->m > 0)
     memcpy(mem->lambda_prev, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
-  mem->h_prev = c->h;
+  lgnCommitStep(mem, c);
+}
 
+/* The iterate becomes the state at t_{n+1} (every family): q, v, vdot,
+ * lambda swap with the iterate, which keeps the step's start for the
+ * dense output. */
+void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c)
+{
+  N_Vector tmp;
+  mem->h_prev = c->h;
   tmp = mem->q;    mem->q = mem->q1;       mem->q1 = tmp;
   tmp = mem->v;    mem->v = mem->v1;       mem->v1 = tmp;
   tmp = mem->vdot; mem->vdot = mem->vdot1; mem->vdot1 = tmp;

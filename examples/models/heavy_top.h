@@ -49,6 +49,8 @@ typedef struct {
                               rtol, atol as the error test's tolerances;
                               h is then the output interval and the run
                               stops at t_end exactly (LGNSetStopTime)    */
+  int bdf_maxord;          /* > 0: the BDF family of this highest order
+                              (LGNSetBDF) instead of method             */
   SUNLinearSolver (*make_ls)(N_Vector y, SUNMatrix A, SUNContext ctx);
                            /* the dense linear solver's constructor
                               (NULL: SUNLinSol_Dense)                    */

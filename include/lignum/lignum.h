@@ -333,6 +333,23 @@ LGN_EXPORT int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
                                     sunrealtype alpha_f, sunrealtype beta,
                                     sunrealtype gamma);
 
+/**
+ * Select the BDF family on the Lie group: backward differentiation formulas
+ * of variable order 1 ... maxord and variable step in the local chart of the
+ * last step, q = q_n o exp(x) (doc/theory.md, "BDF"). Under error control
+ * (LGN_STEP_ADAPTIVE) the order and the step follow the local error of the
+ * positions, as in IDA; with a fixed step (LGN_STEP_FIXED) the order rises
+ * from 1 to maxord over the first steps. Multipliers and velocities are not
+ * in the error test. The kinematics setting does not apply (BDF uses
+ * v = T(x) xdot exactly); LGNSetNewmark, LGNSetGenAlpha and
+ * LGNSetGenAlphaParams select the Newmark family again. Needs the group's
+ * compose_log operation (every built-in group has it).
+ * @param lgn_mem the integrator memory
+ * @param maxord  the highest order, 1 to 5
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for maxord outside 1 ... 5
+ */
+LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
+
 /** Constraint formulation: LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2. */
 LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
 
@@ -402,6 +419,14 @@ LGN_EXPORT int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
 /* =============================================================================
  * Outputs
  * ===========================================================================*/
+
+/** The order of the next step (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetCurrentOrder(void *lgn_mem, int *order);
+/** The order of the last step taken (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
+/** BDF: the number of steps taken at each order, nsteps[k] for k = 1 ... 5
+ *  (nsteps[0] = 0); six entries. */
+LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
 
 /** Acceleration vdot at the current time (length nv). */
 LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);

@@ -1,0 +1,454 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * The BDF family on the Lie group (LGNSetBDF), variable order 1 ... 5 and
+ * variable step, in the local chart of the last point (Wieloch and Arnold,
+ * "BDF integrators for constrained mechanical systems on Lie groups", 2021):
+ * with q = q_n o exp(x) the equations of motion read
+ *
+ *   xdot = T(x)^{-1} v,   M(q) vdot + g(q, v, t) + B(q)^T lambda = 0,   Phi(q) = 0
+ *
+ * and the history becomes x_{n-j} = log(q_n^{-1} q_{n-j}) (x_n = 0) and
+ * v_{n-j} (body velocities: no transport). A step of order k and size h
+ * solves the BDF equations with the variable coefficients of the nodes
+ * tau_0 = t_{n+1}, tau_j = t_{n+1-j} (the derivative at tau_0 of the
+ * interpolating polynomial, d_j = l_j'(tau_0), c0 = d_0 = sum 1/(tau_0 - tau_j)):
+ *
+ *   xdot_{n+1} = c0 x + r_x,  r_x = sum_{j>=1} d_j x_{n+1-j},   v_{n+1} = T(x) xdot_{n+1},
+ *   vdot_{n+1} = c0 v_{n+1} + r_v,  r_v = sum_{j>=1} d_j v_{n+1-j},
+ *
+ * for (x, lambda) by the Newton iteration of the Newmark family (the BDF
+ * table of lgn_kinematics.c). The predictor is the polynomial through the
+ * last k + 1 points (at the start, the Taylor step x = h v_n, v = v_n + h vdot_n).
+ *
+ * Local error (positions only; velocities and multipliers are left out, as
+ * IDA users leave them out with IDASetSuppressAlg at index 3):
+ *   LTE_k = (x_{n+1} - x_pred) / (c0 psi_{k+1}),  psi_j = t_{n+1} - t_{n+1-j},
+ * from y_{n+1} - y_pred = [y_{n+1}, ..., y_{n-k}] prod_{j<=k+1} psi_j and
+ * LTE_k = y^(k+1)/(k+1)! prod_{j<=k} psi_j / c0 (for constant steps
+ * h^{k+1} y^(k+1) / ((k+1) sum_{j<=k} 1/j): 1/2, 2/9, ... as it should be).
+ * The same with the divided differences of orders k and k + 2 estimates
+ * the error at orders k - 1 and k + 1; order and step follow IDA's rules:
+ * lower the order when E_{k-1} <= E_k, raise it after k + 1 steps at order
+ * k when E_{k+1} < E_k; h_new = h (2 E + 1e-4)^{-1/(k+1)}, at most 2 h, kept
+ * when the factor lies in (1, 2), cut to [0.5, 0.9] h when below 1. At the
+ * start the order rises by one every step (while the estimates allow).
+ * Error test failures: the first lowers the order if E_{k-1} <= E_k and cuts
+ * h by 0.9 (2 E)^{-1/(k+1)} in [0.25, 0.9], the second by 0.25, the third
+ * also drops to order 1; Newton failures cut h by 0.25.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <string.h>
+
+#include "lgn_impl.h"
+
+#define BDF_HMAX_RATIO SUN_RCONST(2.0)
+#define BDF_CUT_FAIL   SUN_RCONST(0.25)
+
+/* =============================================================================
+ * Coefficients
+ * ===========================================================================*/
+
+/* p_j = l_j(t) of the Lagrange basis on the nodes tau[0..n]. */
+static void LagrangeValues(const sunrealtype *tau, int n, sunrealtype t, sunrealtype *p)
+{
+  int i, j;
+  for (j = 0; j <= n; j++) {
+    p[j] = SUN_RCONST(1.0);
+    for (i = 0; i <= n; i++)
+      if (i != j) p[j] *= (t - tau[i]) / (tau[j] - tau[i]);
+  }
+}
+
+/* d_j = l_j'(tau_0): d_0 = sum_{i>0} 1/(tau_0 - tau_i), and for j > 0
+ * d_j = prod_{i != 0, j} (tau_0 - tau_i) / prod_{i != j} (tau_j - tau_i). */
+static void LagrangeDerivativeAtFirst(const sunrealtype *tau, int n, sunrealtype *d)
+{
+  int i, j;
+  d[0] = SUN_RCONST(0.0);
+  for (i = 1; i <= n; i++) d[0] += SUN_RCONST(1.0) / (tau[0] - tau[i]);
+  for (j = 1; j <= n; j++) {
+    sunrealtype num = SUN_RCONST(1.0), den = SUN_RCONST(1.0);
+    for (i = 0; i <= n; i++) {
+      if (i == j) continue;
+      den *= tau[j] - tau[i];
+      if (i != 0) num *= tau[0] - tau[i];
+    }
+    d[j] = num / den;
+  }
+}
+
+/* =============================================================================
+ * The history
+ * ===========================================================================*/
+
+/* Start anew from the state at t_n (one point). */
+static void StartHistory(LGNMem mem)
+{
+  mem->bdf_t[0] = mem->tn;
+  memcpy(mem->bdf_q, lgnData(mem->q), (size_t)mem->nq * sizeof(sunrealtype));
+  memcpy(mem->bdf_v, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
+  mem->bdf_nhist        = 1;
+  mem->bdf_order        = 1;
+  mem->bdf_nsteps_order = 0;
+  mem->bdf_phase0       = SUNTRUE;
+  mem->bdf_chart_t      = NAN;
+}
+
+/* The accepted state at t_n becomes the newest point. */
+static void PushHistory(LGNMem mem)
+{
+  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv;
+  const int n = SUNMIN(mem->bdf_nhist, LGN_BDF_MAXHIST - 1);
+  memmove(mem->bdf_t + 1, mem->bdf_t, (size_t)n * sizeof(sunrealtype));
+  memmove(mem->bdf_q + nq, mem->bdf_q, (size_t)n * nq * sizeof(sunrealtype));
+  memmove(mem->bdf_v + nv, mem->bdf_v, (size_t)n * nv * sizeof(sunrealtype));
+  mem->bdf_t[0] = mem->tn;
+  memcpy(mem->bdf_q, lgnData(mem->q), nq * sizeof(sunrealtype));
+  memcpy(mem->bdf_v, lgnData(mem->v), nv * sizeof(sunrealtype));
+  mem->bdf_nhist   = n + 1;
+  mem->bdf_chart_t = NAN;
+}
+
+/* x_{n-j} = log(q_n^{-1} q_{n-j}), once per t_n (x_n = 0). */
+static int ChartCoordinates(LGNMem mem)
+{
+  LGNGroup G = mem->G;
+  const sunindextype nq = mem->nq, nv = mem->nv;
+  int j, ret;
+  if (mem->bdf_chart_t == mem->tn) return LGN_SUCCESS;
+  memset(mem->bdf_x, 0, (size_t)nv * sizeof(sunrealtype));
+  for (j = 1; j < mem->bdf_nhist; j++) {
+    ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, mem->bdf_x + j * nv);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  }
+  mem->bdf_chart_t = mem->tn;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
+ * One attempt
+ * ===========================================================================*/
+
+/* The coefficients of order k and size h, the predictor, and Newton. The
+ * state at t_n is not touched. */
+static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
+{
+  const sunindextype nv = mem->nv;
+  const int nh = mem->bdf_nhist;
+  const sunrealtype t1 = mem->tn + h;
+  const sunrealtype *X = mem->bdf_x, *V = mem->bdf_v;
+  sunrealtype tau[LGN_BDF_MAXHIST + 1], d[LGN_BDF_MAXHIST + 1];
+  sunrealtype *xp = mem->bdf_xpred, *vp = mem->bdf_vpred;
+  sunbooleantype used_old = SUNFALSE;
+  sunindextype i;
+  int j, kp, flag;
+
+  /* the corrector: nodes t_{n+1}, t_n, ..., t_{n+1-k} */
+  tau[0] = t1;
+  for (j = 1; j <= k; j++) tau[j] = mem->bdf_t[j - 1];
+  LagrangeDerivativeAtFirst(tau, k, d);
+  mem->bdf_c0 = d[0];
+  for (i = 0; i < nv; i++) {
+    sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
+    for (j = 1; j <= k; j++) {
+      rx += d[j] * X[(j - 1) * nv + i];
+      rv += d[j] * V[(j - 1) * nv + i];
+    }
+    mem->bdf_rx[i] = rx;
+    mem->bdf_rv[i] = rv;
+  }
+
+  /* the predictor */
+  if (nh == 1) {
+    const sunrealtype *v0 = lgnData(mem->v), *a0 = lgnData(mem->vdot);
+    for (i = 0; i < nv; i++) {
+      xp[i] = h * v0[i];
+      vp[i] = v0[i] + h * a0[i];
+    }
+  } else {
+    kp = SUNMIN(k, nh - 1);
+    LagrangeValues(mem->bdf_t, kp, t1, d);
+    for (i = 0; i < nv; i++) {
+      sunrealtype x = SUN_RCONST(0.0), v = SUN_RCONST(0.0);
+      for (j = 0; j <= kp; j++) {
+        x += d[j] * X[j * nv + i];
+        v += d[j] * V[j * nv + i];
+      }
+      xp[i] = x;
+      vp[i] = v;
+    }
+  }
+  memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
+  if (mem->m > 0)
+    memcpy(lgnData(mem->lambda1), lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+
+  /* Newton on (x, lambda): d xdot / dx = c0, d vdot / dx ~ c0^2 (T aside) */
+  c->h       = h;
+  c->t1      = t1;
+  c->gamma_p = mem->bdf_c0;
+  c->beta_p  = mem->bdf_c0 * mem->bdf_c0;
+  c->scale   = SUN_RCONST(1.0) / c->beta_p;
+  c->hmat    = SUN_RCONST(1.0) / mem->bdf_c0;
+  c->qscale  = SUN_RCONST(1.0);
+  for (i = 0; i < mem->nq; i++) c->qscale = SUNMAX(c->qscale, fabs(lgnData(mem->q)[i]));
+
+  mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
+  mem->kin->bind(mem);
+  flag = lgnNewton(mem, c, SUNFALSE, &used_old);
+  if (flag == LGN_CONV_FAILURE && used_old) {
+    mem->nrestart++;
+    memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
+    if (mem->m > 0)
+      memcpy(lgnData(mem->lambda1), lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+    flag = lgnNewton(mem, c, SUNTRUE, &used_old);
+  }
+  if (flag != LGN_SUCCESS) mem->nfails++;
+  return flag;
+}
+
+/* The local error estimate of order k (into mem->ele) and its norm. */
+static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *err)
+{
+  const sunindextype nv = mem->nv;
+  sunrealtype f = SUN_RCONST(1.0);
+  sunindextype i;
+  if (mem->bdf_nhist > 1) /* else the Taylor predictor: LTE_1 = x - x_pred */
+    f = SUN_RCONST(1.0) / (mem->bdf_c0 * (c->t1 - mem->bdf_t[k]));
+  for (i = 0; i < nv; i++) mem->ele[i] = f * (mem->sigma[i] - mem->bdf_xpred[i]);
+  return lgnErrorNorm(mem, c, mem->sigma, err);
+}
+
+/* =============================================================================
+ * Order and step selection (after an accepted step)
+ * ===========================================================================*/
+
+/* Estimates E_j of the error of orders j = k - 1, k, k + 1 of the step just
+ * taken (E[j - k + 1]; negative: not available), from the divided
+ * differences of x over t_{n+1}, t_n, ... in the chart of q_n, weights of
+ * the error test. */
+static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype E[3])
+{
+  const sunindextype nv = mem->nv;
+  const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
+  sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf_dd;
+  sunindextype i;
+  int j, m, o;
+
+  tt[0] = c->t1;
+  memcpy(a, mem->sigma, (size_t)nv * sizeof(sunrealtype));
+  for (j = 1; j < npts; j++) {
+    tt[j] = mem->bdf_t[j - 1];
+    memcpy(a + j * nv, mem->bdf_x + (j - 1) * nv, (size_t)nv * sizeof(sunrealtype));
+  }
+  /* in place: a_m <- [P_0 .. P_m] */
+  for (m = 1; m < npts; m++)
+    for (j = npts - 1; j >= m; j--)
+      for (i = 0; i < nv; i++)
+        a[j * nv + i] = (a[j * nv + i] - a[(j - 1) * nv + i]) / (tt[j] - tt[j - m]);
+  for (o = 0; o < 3; o++) {
+    const int ord = k - 1 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
+    sunrealtype prod = SUN_RCONST(1.0), c0 = SUN_RCONST(0.0);
+    E[o] = -SUN_RCONST(1.0);
+    if (ord < 1 || ord + 1 >= npts) continue;
+    for (j = 1; j <= ord; j++) {
+      prod *= c->t1 - tt[j];
+      c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
+    }
+    for (i = 0; i < nv; i++) mem->work_nv[i] = a[(ord + 1) * nv + i] * prod / c0;
+    E[o] = lgnWrmsNorm(mem, mem->work_nv, mem->ewt);
+  }
+}
+
+/* The step factor for an error estimate E at order k. */
+static sunrealtype StepFactor(sunrealtype E, int k)
+{
+  sunrealtype r = pow(SUN_RCONST(2.0) * E + SUN_RCONST(1.0e-4),
+                      -SUN_RCONST(1.0) / (sunrealtype)(k + 1));
+  if (r >= BDF_HMAX_RATIO) return BDF_HMAX_RATIO;
+  if (r <= SUN_RCONST(1.0)) return SUNMAX(SUN_RCONST(0.5), SUNMIN(SUN_RCONST(0.9), r));
+  return SUN_RCONST(1.0);
+}
+
+/* After an accepted step of order k with estimate err: the next order and
+ * the factor of the next step. */
+static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype err)
+{
+  sunrealtype E[3], Enew = err;
+  int knew = k;
+  OrderEstimates(mem, c, k, E);
+  if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[0] <= err) {
+    knew = k - 1;
+    Enew = E[0];
+  } else if (k < mem->bdf_maxord && E[2] >= SUN_RCONST(0.0) && E[2] < err &&
+             (mem->bdf_phase0 || mem->bdf_nsteps_order >= k + 1)) {
+    knew = k + 1;
+    Enew = E[2];
+  } else if (k < mem->bdf_maxord && mem->bdf_phase0) {
+    knew = k + 1; /* start-up: not enough points for E_{k+1} yet */
+  }
+  if (knew != k) mem->bdf_nsteps_order = 0;
+  mem->bdf_order = knew;
+  return StepFactor(Enew, knew);
+}
+
+/* =============================================================================
+ * The steps
+ * ===========================================================================*/
+
+/* The history and work space, the chart of t_n; a group without log is
+ * refused. */
+static int Prepare(LGNMem mem)
+{
+  int flag;
+  if (mem->G->ops.compose_log == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "BDF needs the Lie group's compose_log operation (log(q1^{-1} q2)), "
+              "which this group does not set.");
+    return LGN_ILL_INPUT;
+  }
+  flag = lgnAllocBDF(mem);
+  if (flag != LGN_SUCCESS) return flag;
+  /* a landing on a stop time or tout moves t_n to it by roundoff */
+  if (mem->bdf_nhist > 0 &&
+      fabs(mem->bdf_t[0] - mem->tn) <= SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
+                                           SUNMAX(SUN_RCONST(1.0), fabs(mem->tn)))
+    mem->bdf_t[0] = mem->tn;
+  if (mem->bdf_nhist == 0 || mem->bdf_t[0] != mem->tn) StartHistory(mem);
+  return ChartCoordinates(mem);
+}
+
+/* Commit the accepted step of order k. */
+static void Accept(LGNMem mem, const LGNStepCoeffs *c, int k)
+{
+  lgnCommitStep(mem, c);
+  PushHistory(mem);
+  mem->bdf_last_order = k;
+  mem->bdf_nsteps_order++;
+  mem->bdf_nord[k]++;
+}
+
+/* A step of the fixed size h (LGN_STEP_FIXED): order min(maxord, points
+ * in the history). */
+int lgnBDFStep(LGNMem mem, sunrealtype h)
+{
+  LGNStepCoeffs c;
+  int k, flag = lgnCheckProgress(mem, h);
+  if (flag == LGN_SUCCESS) flag = Prepare(mem);
+  if (flag != LGN_SUCCESS) return flag;
+  k = SUNMIN(mem->bdf_maxord, mem->bdf_nhist);
+  mem->nls_rtol  = mem->rtol;
+  mem->nls_atol  = mem->atol;
+  mem->nls_atolv = NULL;
+  flag = Attempt(mem, h, k, &c);
+  if (flag == LGN_CONV_FAILURE)
+    LGN_ERROR(mem, LGN_CONV_FAILURE,
+              MSG_TIME "the Newton iteration failed to converge (diverged or "
+              "more than %d iterations) with h = %g (the state at t is kept).",
+              (double)mem->tn, mem->maxcor, (double)h);
+  if (flag != LGN_SUCCESS) return flag;
+  Accept(mem, &c, k);
+  mem->bdf_order = SUNMIN(mem->bdf_maxord, mem->bdf_nhist);
+  return LGN_SUCCESS;
+}
+
+/* One accepted error-controlled step from t_n (LGN_SUCCESS), or the flag of
+ * a failure with the state at t_n as it was. A stop time is landed on. */
+int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
+{
+  sunrealtype h, err = SUN_RCONST(0.0), factor, E[3];
+  sunbooleantype landing;
+  int nef = 0, ncf = 0, k, flag;
+  LGNStepCoeffs c;
+
+  flag = Prepare(mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!(mem->hnext > SUN_RCONST(0.0))) {
+    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? lgnLimitStep(mem, mem->h0_user)
+                                                    : lgnInitialStep(mem, tout);
+    mem->h0_actual = mem->hnext;
+  }
+  h = lgnLimitStep(mem, mem->hnext);
+  for (;;) {
+    landing = mem->tstop_set &&
+              mem->tn + h * (SUN_RCONST(1.0) + SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF) >=
+                  mem->tstop;
+    if (landing) h = mem->tstop - mem->tn;
+    flag = lgnCheckProgress(mem, h);
+    if (flag != LGN_SUCCESS) return flag;
+    /* order k needs k + 1 points for its estimate (or the Taylor start) */
+    k = SUNMAX(1, SUNMIN(mem->bdf_order, mem->bdf_nhist - 1));
+    lgnNewtonTolerances(mem, h);
+    mem->lsetup_recoverable = SUNTRUE;
+    flag = Attempt(mem, h, k, &c);
+    mem->lsetup_recoverable = SUNFALSE;
+    if (flag == LGN_SUCCESS) flag = LocalError(mem, &c, k, &err);
+    mem->err_norm = err;
+
+    if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {
+      factor = SelectOrder(mem, &c, k, err);
+      if (nef > 0 || ncf > 0) factor = SUNMIN(factor, SUN_RCONST(1.0));
+      Accept(mem, &c, k);
+      if (landing) mem->tn = mem->tstop;
+      mem->err_prev = err;
+      mem->hnext    = lgnLimitStep(mem, h * factor);
+      return LGN_SUCCESS;
+    }
+
+    mem->bdf_phase0 = SUNFALSE;
+    if (flag == LGN_SUCCESS) { /* error test failed */
+      mem->netf++;
+      nef++;
+      if (nef >= mem->maxnef || h <= mem->hmin) {
+        LGN_ERROR(mem, LGN_ERR_FAILURE,
+                  MSG_TIME "the error test failed %d times, the last with "
+                  "h = %g, order %d and |e| = %g%s (the state at t is kept).",
+                  (double)mem->tn, nef, (double)h, k, (double)err,
+                  h <= mem->hmin ? " at the minimum step size" : "");
+        return LGN_ERR_FAILURE;
+      }
+      if (nef == 1) {
+        OrderEstimates(mem, &c, k, E);
+        if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[0] <= err) {
+          mem->bdf_order = k - 1;
+          mem->bdf_nsteps_order = 0;
+          err = E[0];
+          k--;
+        }
+        factor = SUN_RCONST(0.9) * pow(SUN_RCONST(2.0) * err + SUN_RCONST(1.0e-4),
+                                       -SUN_RCONST(1.0) / (sunrealtype)(k + 1));
+        factor = SUNMAX(BDF_CUT_FAIL, SUNMIN(SUN_RCONST(0.9), factor));
+      } else {
+        if (nef >= 3) {
+          mem->bdf_order = 1;
+          mem->bdf_nsteps_order = 0;
+        }
+        factor = BDF_CUT_FAIL;
+      }
+    } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
+      const sunbooleantype singular = flag == LGN_RECOVERABLE && mem->last_lin_flag != 0;
+      ncf++;
+      if (ncf >= mem->maxncf || h <= mem->hmin) {
+        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE
+                      : singular                 ? LGN_LSETUP_FAIL
+                                                 : LGN_REPTD_CALLBACK_ERR;
+        LGN_ERROR(mem, out,
+                  MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
+                  "is kept).%s", (double)mem->tn,
+                  flag == LGN_CONV_FAILURE ? "the Newton iteration failed to converge"
+                  : singular ? "the iteration matrix was singular"
+                             : "a callback failed recoverably",
+                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "",
+                  singular ? mem->diag_text : "");
+        return out;
+      }
+      factor = BDF_CUT_FAIL;
+    } else {
+      return flag; /* unrecoverable: reported where it happened */
+    }
+    h = lgnLimitStep(mem, h * factor);
+    mem->hnext = h;
+  }
+}
