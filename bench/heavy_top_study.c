@@ -62,7 +62,7 @@
 
 /* ---------------------------------------------------------------------------
  * The methods.  ** Compile-time list: add rows here to extend the study. **
- * Name, formulation (examples/models/heavy_top.h), Newmark or
+ * Name, formulation (bench/models/heavy_top.h), Newmark or
  * generalized-alpha, kinematics.  The ratio column compares each method with
  * "mod-lgnm" (Newmark) resp. "mod-lggalpha" (generalized-alpha); the figure
  * and the table follow this order.

@@ -130,7 +130,7 @@ static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
 #define NLEVELS 5
 
 /* ---------------------------------------------------------------------------
- * The second problem: the N-body chain of examples/models/chain.c (N rods,
+ * The second problem: the N-body chain of bench/models/chain.c (N rods,
  * spherical joints, at rest in a bent configuration, falling and whipping),
  * N = CHAIN_N, t in [0, 1] s.  Lignum: the rows of LIGNUM[] named in
  * CHAIN_ROWS[] through rigid_run() (R^3 x SO(3) per body, dense, analytic

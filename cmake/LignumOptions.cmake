@@ -1,8 +1,8 @@
 # Build options of Lignum, all prefixed LGN_.
 option(BUILD_SHARED_LIBS "Build Lignum as a shared library" ON)
-option(LGN_BUILD_EXAMPLES "Build the examples (also registered as tests)" ON)
+option(LGN_BUILD_EXAMPLES "Build the teaching examples in examples/ (also registered as tests)" ON)
 option(LGN_BUILD_TESTS "Build the test suite" ON)
-option(LGN_BUILD_BENCHMARKS "Build the benchmarks in bench/" ON)
+option(LGN_BUILD_BENCHMARKS "Build the benchmarks and the study tools in bench/ (tools also registered as tests)" ON)
 option(LGN_WARNINGS_AS_ERRORS "Compile with -Wall -Wextra -Wpedantic -Werror" ON)
 option(LGN_ENABLE_SANITIZERS "Build with AddressSanitizer and UBSan" OFF)
 option(LGN_ENABLE_TSAN "Build with ThreadSanitizer (not with LGN_ENABLE_SANITIZERS)" OFF)
@@ -21,4 +21,4 @@ endif()
 option(LGN_ENABLE_FORTRAN
   "Build the Fortran 2003 interface (modules flignum_mod, flignum_sundials_mod, flignum_joints_mod, flignum_bodies_mod, and flignum_klu_mod with KLU)"
   ${_lgn_fortran_default})
-option(LGN_ENABLE_VALGRIND_TESTS "Run examples under valgrind when it is found" ON)
+option(LGN_ENABLE_VALGRIND_TESTS "Run examples and study tools under valgrind when it is found" ON)

@@ -361,7 +361,7 @@ static void Proportionality(void)
   }
 }
 
-/* The chain of 5 bodies (examples/models/chain.h), error control: the
+/* The chain of 5 bodies (bench/models/chain.h), error control: the
  * final state against a run at tolerance 1e-11 (four decades tighter than
  * the tightest below). */
 static double ChainRun(double tol, double *q, long int *nsteps)

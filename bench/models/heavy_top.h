@@ -1,8 +1,8 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the heavy top benchmark (Brüls and Cardona 2010), as a model
+ * Lignum study models: the heavy top benchmark (Brüls and Cardona 2010), as a model
  * (callbacks for R^3 x SO(3), for SE(3) and for Euler parameters on R^7) and as a driver
  * that runs one configuration and reports the final state and statistics.
- * Shared by the heavy_top example, the demo, the tests and the benchmarks.
+ * Shared by the heavy_top tool, the demo, the tests and the benchmarks.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 

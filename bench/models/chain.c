@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the N-body spherical pendulum chain (see chain.h).
+ * Lignum study models: the N-body spherical pendulum chain (see chain.h).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 

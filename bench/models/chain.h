@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the N-body spherical pendulum chain.
+ * Lignum study models: the N-body spherical pendulum chain.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * N identical rods (solid cylinders, length 1 m, mass 1 kg, radius 0.02 m,

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: a system of rigid bodies joined by joints, under gravity.
+ * Lignum study models: a system of rigid bodies joined by joints, under gravity.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Equations of body k (mass m, principal moments J, f = m g the weight):
@@ -513,7 +513,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   }
   if (flag == 0) flag = LGNSetLinearSolver(mem, LS, A);
   /* Lignum's solves on a copy of KLU's factors, off by default in the
-   * library: the examples opt in (--klu-solve lignum) unless the versions
+   * library: the tools opt in (--klu-solve lignum) unless the versions
    * of KLU and SUNDIALS are not those the copy accepts (LGN_ILL_INPUT, with
    * a message naming them: KLU's own solves then) */
   if (flag == 0 && opt->solver != RB_DENSE) {

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: the heavy top (Brüls and Cardona 2010) in three formulations.
+ * Lignum study models: the heavy top (Brüls and Cardona 2010) in three formulations.
  *
  *  Lie group R^3 x SO(3): q = (x, p), v = (u, Omega), spherical joint at 0:
  *    M = diag(m I, J),  g = [-m gamma_g ; Omega x J Omega],

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: a closed-loop four-bar linkage with revolute joints.
+ * Lignum study tool: a closed-loop four-bar linkage with revolute joints.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Crank AB, coupler BC and rocker DC, solid cylinders of radius 0.02 m and

@@ -1,7 +1,12 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: a pendulum bouncing on a stop (events, LGNRootInit).
- * SPDX-License-Identifier: BSD-3-Clause
- * -----------------------------------------------------------------------------
+ * Lignum teaching example: a pendulum bouncing on a stop.
+ *
+ * Shows: events. A root function g(t, q, v) (LGNRootInit), its direction
+ * (LGNSetRootDirection), LGNSolve returning LGN_ROOT_RETURN at the root
+ * (LGNGetRootInfo), a jump of the velocity there and the restart with
+ * LGNReInit; error control (LGN_STEP_ADAPTIVE, LGNSStolerances) and the
+ * counters LGNGetNumSteps, LGNGetNumGEvals.
+ *
  * A rod (a slender cylinder: mass 1 kg, length 1 m, radius 0.02 m) on
  * R^3 x SO(3), hinged at one end to the ground by a revolute joint with
  * axis z (lignum_joints.h: five constraints), swings in the x-y plane under
@@ -15,8 +20,7 @@
  * coefficient e (v -> -e v: every velocity of the hinged rod is
  * proportional to its angular velocity, so this is Newton's law of
  * restitution at the stop and keeps B v = 0) and the integration restarts
- * there with LGNReInit; root finding restarts with it. Error control
- * (LGN_STEP_ADAPTIVE, LGNSStolerances).
+ * there with LGNReInit; root finding restarts with it.
  *
  * Self-checks (exit status), against an independent computation: the
  * physical pendulum theta'' = -w0^2 sin(theta), w0^2 = m g (L/2) / I_pivot,
@@ -31,8 +35,13 @@
  * flight with the energy after the last impact and the energy ratios
  * between impacts with e^2 to 50 tol^(2/3) (10 tol^(2/3) are seen), and
  * every root must be the stop, approached from x > 0.
+ *
+ * Output: for each impact, its time and the exact one, the energy before and
+ * after it and the ratio to the previous one (e^2), the steps taken; then
+ * the largest deviations and the counters.
  * Options: --e <restitution> (default 0.7), --bounces <n> (default 8),
  * --tol <rtol = atol> (default 1e-8), --quick (3 bounces, for valgrind).
+ * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>

@@ -1,7 +1,7 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the N-body spherical pendulum chain of
-! examples/models/chain.{h,c} on (R^3 x SO(3))^N, with the callbacks of
-! examples/models/rigid_bodies.c (formulation RB_R3XSO3, analytic tangents)
+! Lignum Fortran study tool: the N-body spherical pendulum chain of
+! bench/models/chain.{h,c} on (R^3 x SO(3))^N, with the callbacks of
+! bench/models/rigid_bodies.c (formulation RB_R3XSO3, analytic tangents)
 ! written as bind(C) Fortran functions for sparse matrices.
 !
 ! N identical rods (solid cylinders, length 1 m, mass 1 kg, radius 0.02 m,
@@ -24,7 +24,7 @@
 ! exactly the patterns of the C model.
 !
 ! The arithmetic follows the C model operation by operation, so that both
-! produce the same numbers (the tests example_fortran_chain_* compare).
+! produce the same numbers (the tests tool_fortran_chain_* compare).
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 module chain_model

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: a whipping chain, where error control pays.
+ * Lignum study tool: a whipping chain, where error control pays.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  *   whipping_chain [--n N] [--taper F] [--t-end T] [--rtol R] [--atol A]
@@ -15,7 +15,7 @@
  * magnitude for a short while. A fixed step must be small enough for that
  * moment everywhere; error control takes large steps before and after it.
  *
- * The example
+ * The tool
  *   1. integrates with error control (LGN_STEP_ADAPTIVE, rtol = atol = R,
  *      default 1e-5) step by step (LGN_ONE_STEP to the stop time t_end) and
  *      prints the step size history (t, h) (every step into --csv, a sample

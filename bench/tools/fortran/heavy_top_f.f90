@@ -1,6 +1,6 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
-! the Fortran counterpart of `heavy_top --formulation lie` (examples/heavy_top.c):
+! Lignum Fortran study tool: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
+! the Fortran counterpart of `heavy_top --formulation lie` (bench/tools/heavy_top.c):
 !
 !   heavy_top_f [--formulation lie] [--method newmark|genalpha] [--rho-inf R]
 !               [--beta B --gamma G] [--constraints index3|index2]
@@ -29,7 +29,7 @@ program heavy_top_f
 
   real(c_double), parameter :: compare_tol = 1.0e-12_c_double
 
-  ! options, defaults as heavy_top_default_options (examples/models/heavy_top.c)
+  ! options, defaults as heavy_top_default_options (bench/models/heavy_top.c)
   logical :: newmark = .false., analytic = .true.
   real(c_double) :: rho_inf = 0.9_c_double, beta = 0.25_c_double, gamma = 0.5_c_double
   real(c_double) :: h = 1.0e-3_c_double, t_end = 1.0_c_double

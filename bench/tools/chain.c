@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: the N-body spherical pendulum chain (models/chain.h).
+ * Lignum study tool: the N-body spherical pendulum chain (models/chain.h).
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  *   chain --n N [--solver dense|klu|klu-csr] [method options] [--compare]

@@ -1,6 +1,6 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the N-body spherical pendulum chain with KLU, the
-! Fortran counterpart of `chain` (examples/chain.c; model in chain_model.f90):
+! Lignum Fortran study tool: the N-body spherical pendulum chain with KLU, the
+! Fortran counterpart of `chain` (bench/tools/chain.c; model in chain_model.f90):
 !
 !   chain_f [--n N] [--solver klu|klu-csr] [--formulation r3so3]
 !           [--method newmark|genalpha] [--rho-inf R] [--beta B --gamma G]
@@ -11,7 +11,7 @@
 ! Same options, same defaults (N = 10, KLU CSC, generalized-alpha
 ! rho_inf = 0.9, simplified kinematics, index 3, analytic tangents,
 ! h = 1e-3, t_end = 1, 100 outputs), same calls in the same order as the C
-! program (rigid_run of examples/models/rigid_bodies.c) on the product group
+! program (rigid_run of bench/models/rigid_bodies.c) on the product group
 ! (R^3 x SO(3))^N, with the joints of flignum_joints_mod and the sparse
 ! matrices written through flignum_klu_mod. Reports, like the C program,
 ! the work counters, the energy drift max |E(t) - E(0)| and the largest
@@ -71,7 +71,7 @@ program chain_f
     trim(merge("exact     ", "simplified", kinematics == LGN_KINEMATICS_EXACT)), &
     " kinematics, index ", constraints, ", h = ", h, ", t in [0, ", fixed(t_end, 3), "]"
 
-  ! --- the run of rigid_run (examples/models/rigid_bodies.c), call by call -------
+  ! --- the run of rigid_run (bench/models/rigid_bodies.c), call by call -------
   mem = LGNCreate(ctx)
   qv = N_VNew_Serial(nq, ctx)
   vv = N_VNew_Serial(nv, ctx)
@@ -79,7 +79,7 @@ program chain_f
   y = N_VNew_Serial(nsys, ctx)      ! template of the (nv + m) unknowns
   A = SUNSparseMatrix(nsys, nsys, 30 * nsys, merge(CSR_MAT, CSC_MAT, csr), ctx)
   LS = SUNLinSol_KLU(y, A, ctx)
-  ! AMD ordering, as the C example: the iteration matrix's pattern is symmetric
+  ! AMD ordering, as the C tool: the iteration matrix's pattern is symmetric
   if (c_associated(LS)) then
     if (SUNLinSol_KLUSetOrdering(LS, 0_c_int) /= 0) call check(LGN_MEM_FAIL, "KLU ordering")
   end if

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum examples: a system of rigid bodies joined by joints, under gravity.
+ * Lignum study models: a system of rigid bodies joined by joints, under gravity.
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Every body is a leaf R^3 x SO(3) (v = (u inertial, Omega body)) or SE(3)
@@ -7,7 +7,7 @@
  * diagonal (mass, principal moments along the body axes), the forces are
  * gravity and the gyroscopic terms, and the joints come from lignum_joints.h.
  * The model gives every callback of Lignum, analytic (K_t, C_t, Z) or not,
- * for dense and sparse (CSC/CSR) matrices, so the examples on top of it
+ * for dense and sparse (CSC/CSR) matrices, so the tools on top of it
  * (chain.c, four_bar.c) only describe geometry.
  * ---------------------------------------------------------------------------*/
 
@@ -30,7 +30,7 @@ typedef struct {
   double gravity[3];        /* acceleration of gravity                      */
   LGNGroup body, G;         /* the leaf and the product                     */
   LGNJoints joints;
-  N_Vector q0, v0;          /* initial state (filled by the example)        */
+  N_Vector q0, v0;          /* initial state (filled by the tool)           */
 } RigidSystem;
 
 /* A system of n bodies with unit masses and inertias, no joints yet. */
@@ -57,7 +57,7 @@ typedef struct {
 } RigidCallbacks;
 void rigid_get_callbacks(RigidCallbacks *cb);
 
-/* Run options and results shared by the multibody examples. */
+/* Run options and results shared by the multibody tools. */
 typedef struct {
   RigidSolver solver;
   int method;               /* 0: Newmark, 1: generalized-alpha             */
@@ -123,7 +123,7 @@ void rigid_default_run_options(RigidRunOptions *opt);
 int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res);
 void rigid_result_free(RigidRunResult *res);
 
-/* Parse the options common to the examples (--solver, --method, ...);
+/* Parse the options common to the tools (--solver, --method, ...);
  * returns 1 if argv[*i] was one of them (consuming its value; the flag
  * --adaptive has none), 0 if not,
  * -1 on a bad value. */

@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * Lignum example: the heavy top (Brüls and Cardona 2010) from the command line.
+ * Lignum study tool: the heavy top (Brüls and Cardona 2010) from the command line.
  *
  *   heavy_top [--formulation lie|se3|ep] [--method newmark|genalpha] [--rho-inf R]
  *             [--beta B --gamma G] [--constraints index3|index2]

@@ -1,6 +1,6 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran examples: command-line parsing and the comparison with the
-! output of the C counterpart of an example. The test scripts run the C
+! Lignum Fortran study tools: command-line parsing and the comparison with the
+! output of the C counterpart of a tool. The test scripts run the C
 ! program first and pass its output file with --compare FILE; the Fortran
 ! program then checks its own final values against the lines
 ! "<key> v1 v2 ..." of that file (printed by C with %.17g).
@@ -55,7 +55,7 @@ contains
 
   !> Values that follow the text marker in the first line containing it,
   !! e.g. marker "E(t_end) =" in "energy E0 = -196.1  E(t_end) = -196.2  ...".
-  !! @param path   file written by the C example
+  !! @param path   file written by the C tool
   !! @param marker text in the line, right before the values
   !! @param vals   on return, as many values as vals holds
   !! @param found  .true. if the marker was found and all values read
@@ -84,7 +84,7 @@ contains
   end subroutine reference_after
 
   !> Values of the first line "<key> v1 v2 ..." of a text file.
-  !! @param path  file written by the C example
+  !! @param path  file written by the C tool
   !! @param key   first word of the line, e.g. "com_final"
   !! @param vals  on return, as many values as vals holds
   !! @param found .true. if the line was found and all values read

@@ -1,6 +1,6 @@
 ! -----------------------------------------------------------------------------
-! Lignum Fortran example: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
-! the callbacks of examples/models/heavy_top.c (formulation HT_LIE) written
+! Lignum Fortran study tool: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
+! the callbacks of bench/models/heavy_top.c (formulation HT_LIE) written
 ! as bind(C) Fortran functions. The model data reach them as user data:
 ! LGNSetUserData(mem, c_loc(model)), c_f_pointer(user_data, model) inside.
 !
@@ -11,7 +11,7 @@
 !     Z(q)(v, v) = Omega x (R^T u).
 !
 ! The arithmetic follows the C model operation by operation, so that both
-! produce the same numbers (the test example_fortran_heavy_top_* compares).
+! produce the same numbers (the test tool_fortran_heavy_top_* compares).
 ! SPDX-License-Identifier: BSD-3-Clause
 ! ---------------------------------------------------------------------------
 module heavy_top_model
