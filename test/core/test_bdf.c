@@ -1,0 +1,407 @@
+/* -----------------------------------------------------------------------------
+ * The BDF family (LGNSetBDF) on the heavy top in R^3 x SO(3) (m = 15,
+ * J = diag(0.234375, 0.46875, 0.234375), centre of mass at X = e_y from the
+ * fixed point, Omega0 = (0, 150, -4.61538)), modelled with the body and
+ * joint helpers, against the ARKODE reference (lgn_reference, Fehlberg 8,
+ * about 1e-13):
+ *  (a) fixed steps, orders 1 ... 5: the error of the centre of mass at
+ *      t = 0.3 over four step sizes, fitted order k +- 0.2. The history is
+ *      started under error control at tolerance 1e-13 up to t = 0.02 (a BDF
+ *      of order k needs k accurate past points), then LGN_STEP_FIXED;
+ *  (b) error control, tol = 1e-6 ... 1e-9, maxord 4 and 5, full and
+ *      modified Newton: every order up to maxord is used; with maxord 4 the
+ *      error follows the tolerance (fitted exponent in (0.8, 1.2)) and at
+ *      tol 1e-9 it is below generalized-alpha's (exact kinematics, same
+ *      tolerance) with at most a third of its steps; with maxord 5 the
+ *      error at 1e-9 is 10 times below the one at 1e-6 (order 5 gains less
+ *      at tight tolerances on this problem: the fitted exponent is 0.5);
+ *  (d) on R^n the step is the textbook BDF: a linear oscillator
+ *      x'' = -w^2 x on R^1 with fixed step and order k, started from the
+ *      exact history, agrees with the classical constant-coefficient BDF
+ *      recursion written out here to round-off (1e-13);
+ *  (e) bad input: LGNSetBDF(0) and (6) refused; LGNSetGenAlpha returns to
+ *      the Newmark family (the same run as before LGNSetBDF, bit for bit).
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <lignum/lignum.h>
+#include <lignum/lignum_bodies.h>
+#include <lignum/lignum_group.h>
+#include <lignum/lignum_joints.h>
+#include <lignum/lignum_ls.h>
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "lgn_reference.h"
+#include "test_util.h"
+
+typedef struct {
+  LGNBodies bodies;
+  LGNJoints joints;
+} Top;
+
+static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  return LGNBodies_MassFn(t, q, M, ((Top *)ud)->bodies);
+}
+
+static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  return LGNBodies_ForceFn(t, q, v, g, ((Top *)ud)->bodies);
+}
+
+static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot, N_Vector lambda,
+                     SUNMatrix K, void *ud)
+{
+  Top *top = (Top *)ud;
+  if (LGNBodies_StiffnessFn(t, q, v, vdot, lambda, K, top->bodies)) return -1;
+  return LGNJoints_Stiffness(top->joints, t, q, lambda, K) ? -1 : 0;
+}
+
+static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  return LGNBodies_DampingFn(t, q, v, C, ((Top *)ud)->bodies);
+}
+
+static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  return LGNJoints_Residual(((Top *)ud)->joints, t, q, phi) ? -1 : 0;
+}
+
+static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  return LGNJoints_Jacobian(((Top *)ud)->joints, t, q, B) ? -1 : 0;
+}
+
+static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
+{
+  return LGNJoints_Curvature(((Top *)ud)->joints, t, q, v, z) ? -1 : 0;
+}
+
+/* A heavy top run. */
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  Top top;
+  N_Vector q, v, y;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  void *mem;
+} Run;
+
+static int RunCreate(Run *r, SUNContext ctx)
+{
+  const sunrealtype J[3] = {0.234375, 0.46875, 0.234375}, grav[3] = {0, 0, -9.81};
+  const sunrealtype s[3] = {0, -1, 0}, o[3] = {0, 0, 0};
+  const sunrealtype Om[3] = {0, 150, -4.61538}, X[3] = {0, 1, 0};
+  sunrealtype *q, *v;
+  int flag;
+  memset(r, 0, sizeof *r);
+  r->ctx = ctx;
+  r->G   = LGNGroup_R3xSO3();
+  r->top.bodies = LGNBodies_Create(r->G);
+  r->top.joints = LGNJoints_Create(r->G);
+  LGNBodies_SetPrincipalInertia(r->top.bodies, 0, 15.0, J);
+  LGNBodies_SetGravity(r->top.bodies, grav);
+  LGNJoints_AddSpherical(r->top.joints, 0, s, LGN_GROUND, o); /* x - R X = 0 */
+  r->q = N_VNew_Serial(7, ctx);
+  r->v = N_VNew_Serial(6, ctx);
+  q = N_VGetArrayPointer(r->q);
+  v = N_VGetArrayPointer(r->v);
+  /* R0 = I, x0 = X, u0 = Omega0 x X, Omega0 */
+  q[0] = X[0]; q[1] = X[1]; q[2] = X[2];
+  q[3] = 1; q[4] = q[5] = q[6] = 0;
+  v[0] = Om[1] * X[2] - Om[2] * X[1];
+  v[1] = Om[2] * X[0] - Om[0] * X[2];
+  v[2] = Om[0] * X[1] - Om[1] * X[0];
+  v[3] = Om[0]; v[4] = Om[1]; v[5] = Om[2];
+  r->y   = N_VNew_Serial(9, ctx);
+  r->A   = SUNDenseMatrix(9, 9, ctx);
+  r->LS  = LGNLinSol_Dense(r->y, r->A, ctx);
+  r->mem = LGNCreate(ctx);
+  flag = LGNSetGroup(r->mem, r->G);
+  if (!flag) flag = LGNSetUserData(r->mem, &r->top);
+  if (!flag) flag = LGNSetMassFn(r->mem, Mass);
+  if (!flag) flag = LGNSetForceFn(r->mem, Force);
+  if (!flag) flag = LGNSetMassConstant(r->mem, SUNTRUE);
+  if (!flag) flag = LGNSetConstraints(r->mem, 3, Constr, ConstrJac);
+  if (!flag) flag = LGNSetStiffnessFn(r->mem, Stiffness);
+  if (!flag) flag = LGNSetDampingFn(r->mem, Damping);
+  if (!flag) flag = LGNSetCurvatureFn(r->mem, Curvature);
+  if (!flag) flag = LGNInit(r->mem, 0.0, r->q, r->v);
+  if (!flag) flag = LGNSetLinearSolver(r->mem, r->LS, r->A);
+  return flag;
+}
+
+static void RunFree(Run *r)
+{
+  LGNFree(&r->mem);
+  SUNLinSolFree(r->LS);
+  SUNMatDestroy(r->A);
+  N_VDestroy(r->y);
+  N_VDestroy(r->q);
+  N_VDestroy(r->v);
+  LGNJoints_Destroy(&r->top.joints);
+  LGNBodies_Destroy(&r->top.bodies);
+  LGNGroup_Destroy(r->G);
+}
+
+/* |x - x_ref|_inf of the centre of mass. */
+static double ComError(const Run *r, const LGNRefHeavyTop *ref)
+{
+  const sunrealtype *q = N_VGetArrayPointer(r->q);
+  double e = 0;
+  int i;
+  for (i = 0; i < 3; i++) e = fmax(e, fabs(q[i] - ref->x[i]));
+  return e;
+}
+
+/* Slope of log(y) against log(x). */
+static double Fit(const double *x, const double *y, int n)
+{
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int i;
+  for (i = 0; i < n; i++) {
+    const double a = log(x[i]), b = log(y[i]);
+    sx += a; sy += b; sxx += a * a; sxy += a * b;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+/* (a) fixed steps of order k, history started under error control. */
+static double FixedStepError(SUNContext ctx, int k, double h, double t_end,
+                             const LGNRefHeavyTop *ref)
+{
+  const double t_start = 0.02;
+  Run r;
+  sunrealtype t;
+  double e = HUGE_VAL;
+  int flag = RunCreate(&r, ctx);
+  if (!flag) flag = LGNSetBDF(r.mem, k);
+  if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+  if (!flag) flag = LGNSStolerances(r.mem, 1e-13, 1e-13);
+  if (!flag) flag = LGNSetStopTime(r.mem, t_start);
+  if (!flag) flag = LGNSolve(r.mem, t_start, &t, r.q, r.v, LGN_NORMAL);
+  if (flag == LGN_TSTOP_RETURN) flag = LGN_SUCCESS;
+  if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_FIXED);
+  if (!flag) flag = LGNSetStepSize(r.mem, h);
+  if (!flag) flag = LGNSolve(r.mem, t_end, &t, r.q, r.v, LGN_NORMAL);
+  if (!flag) e = ComError(&r, ref);
+  else printf("order %d, h %g: flag %d\n", k, h, flag);
+  RunFree(&r);
+  return e;
+}
+
+/* (b) one error-controlled run to t = 1 (maxord 0: generalized-alpha,
+ * exact kinematics): error, steps, steps per order. */
+static double AdaptiveRun(SUNContext ctx, int maxord, int newton, double tol,
+                          const LGNRefHeavyTop *ref, long int *nst, long int nord[6])
+{
+  Run r;
+  sunrealtype t;
+  double e = HUGE_VAL;
+  int flag = RunCreate(&r, ctx), i;
+  if (!flag) flag = maxord > 0 ? LGNSetBDF(r.mem, maxord) : LGNSetGenAlpha(r.mem, 0.9);
+  if (!flag && maxord == 0) flag = LGNSetKinematics(r.mem, LGN_KINEMATICS_EXACT);
+  if (!flag) flag = LGNSetNewtonMode(r.mem, newton);
+  if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+  if (!flag) flag = LGNSStolerances(r.mem, tol, tol);
+  if (!flag) flag = LGNSetStopTime(r.mem, 1.0);
+  if (!flag) flag = LGNSolve(r.mem, 1.0, &t, r.q, r.v, LGN_NORMAL);
+  if (flag == LGN_TSTOP_RETURN) flag = LGN_SUCCESS;
+  if (!flag) e = ComError(&r, ref);
+  else printf("adaptive run: flag %d\n", flag);
+  LGNGetNumSteps(r.mem, nst);
+  if (nord != NULL) LGNGetNumStepsAtOrder(r.mem, nord);
+  for (i = 0; nord != NULL && maxord == 0 && i < 6; i++) CHECK(nord[i] == 0, "no BDF orders");
+  RunFree(&r);
+  return e;
+}
+
+/* (d) x'' = -w^2 x on R^1, BDF of fixed step h and order k (ramping 1, 2,
+ * ... as Lignum's fixed-step start does), written out: the constant-
+ * coefficient formulas sum_j a_j y_{n+1-j} = h y'_{n+1} for y = (x, v),
+ * solved exactly (2 x 2). Returns |x_N - x_lignum|, |v_N - v_lignum|. */
+static int KStiff(sunrealtype t, N_Vector q, N_Vector v, N_Vector vd, N_Vector l,
+                  SUNMatrix K, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)vd; (void)l; (void)ud;
+  SM_ELEMENT_D(K, 0, 0) = 4.0;
+  return 0;
+}
+static int KMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  (void)t; (void)q; (void)ud;
+  SM_ELEMENT_D(M, 0, 0) = 1.0;
+  return 0;
+}
+static int KForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  (void)t; (void)v; (void)ud;
+  NV_Ith_S(g, 0) = 4.0 * NV_Ith_S(q, 0); /* w = 2 */
+  return 0;
+}
+static int KDamp(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)C; (void)ud;
+  return 0;
+}
+
+static double Textbook(SUNContext ctx, int k, double h, int nsteps)
+{
+  /* classical BDF coefficients a_j (sum_j a_j y_{n+1-j} = h y'_{n+1}) */
+  static const double a[6][6] = {{0},
+                                 {1, -1},
+                                 {1.5, -2, 0.5},
+                                 {11.0 / 6, -3, 1.5, -1.0 / 3},
+                                 {25.0 / 12, -4, 3, -4.0 / 3, 0.25},
+                                 {137.0 / 60, -5, 5, -10.0 / 3, 1.25, -0.2}};
+  double x[64], v[64], rx, rv, det, diff;
+  LGNGroup G = LGNGroup_Rn(1);
+  N_Vector q = N_VNew_Serial(1, ctx), vv = N_VNew_Serial(1, ctx), y = N_VNew_Serial(1, ctx);
+  SUNMatrix A = SUNDenseMatrix(1, 1, ctx);
+  SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
+  void *mem = LGNCreate(ctx);
+  sunrealtype t;
+  int n, j, kk, flag;
+  x[0] = 1.0;
+  v[0] = 0.5;
+  for (n = 0; n < nsteps; n++) {
+    kk = n + 1 < k ? n + 1 : k;
+    /* a0 x_{n+1} - h v_{n+1} = -rx,  a0 v_{n+1} + h w^2 x_{n+1} = -rv */
+    rx = rv = 0;
+    for (j = 1; j <= kk; j++) {
+      rx += a[kk][j] * x[n + 1 - j];
+      rv += a[kk][j] * v[n + 1 - j];
+    }
+    det = a[kk][0] * a[kk][0] + 4.0 * h * h;
+    x[n + 1] = (-rx * a[kk][0] - h * rv) / det;
+    v[n + 1] = (-rv * a[kk][0] + 4.0 * h * rx) / det;
+  }
+  NV_Ith_S(q, 0) = x[0];
+  NV_Ith_S(vv, 0) = v[0];
+  flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetMassFn(mem, KMass);
+  if (!flag) flag = LGNSetForceFn(mem, KForce);
+  if (!flag) flag = LGNSetStiffnessFn(mem, KStiff);
+  if (!flag) flag = LGNSetDampingFn(mem, KDamp);
+  if (!flag) flag = LGNInit(mem, 0.0, q, vv);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  if (!flag) flag = LGNSetBDF(mem, k);
+  if (!flag) flag = LGNSetStepSize(mem, h);
+  if (!flag) flag = LGNSStolerances(mem, 1e-14, 1e-14);
+  for (n = 0; !flag && n < nsteps; n++) flag = LGNSolve(mem, 1e9, &t, q, vv, LGN_ONE_STEP);
+  diff = flag ? HUGE_VAL : fmax(fabs(NV_Ith_S(q, 0) - x[nsteps]), fabs(NV_Ith_S(vv, 0) - v[nsteps]));
+  LGNFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(q);
+  N_VDestroy(vv);
+  N_VDestroy(y);
+  LGNGroup_Destroy(G);
+  return diff;
+}
+
+int main(void)
+{
+  SUNContext ctx;
+  LGNRefHeavyTop ref03, ref1;
+  const double t03 = 0.3, t1 = 1.0;
+  int k, i;
+
+  SUNContext_Create(NULL, &ctx);
+  CHECK(lgnref_heavy_top(&t03, 1, &ref03, LGNREF_FEHLBERG_8) == 0, "reference");
+  CHECK(lgnref_heavy_top(&t1, 1, &ref1, LGNREF_FEHLBERG_8) == 0, "reference");
+
+  /* (a) orders of the fixed-step formulas: the fit over the four smallest
+   * steps (the largest is outside the asymptotic range for order 1) */
+  printf("(a) fixed steps: |x - x_ref| at t = 0.3\n");
+  for (k = 1; k <= 5; k++) {
+    double hs[5] = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, err[5], p;
+    for (i = 0; i < 5; i++) err[i] = FixedStepError(ctx, k, hs[i], t03, &ref03);
+    p = Fit(hs + 1, err + 1, 4);
+    printf("  order %d: %.3e %.3e %.3e %.3e %.3e, fitted order %.3f\n", k, err[0], err[1],
+           err[2], err[3], err[4], p);
+    CHECK(fabs(p - k) <= 0.2, "fixed-step order %d: fitted %.3f", k, p);
+  }
+
+  /* (b) error control: maxord 4 and 5, full and modified Newton */
+  {
+    const double tols[4] = {1e-6, 1e-7, 1e-8, 1e-9};
+    int mode;
+    for (mode = 0; mode < 4; mode++) {
+      const int newton = mode % 2 == 0 ? LGN_NEWTON_FULL : LGN_NEWTON_MODIFIED;
+      const int maxord = mode < 2 ? 4 : 5;
+      double err[4], p, err_nm;
+      long int nst[4], nst_nm, nord[6], used = 0;
+      printf("(b) error control, maxord %d, %s Newton\n", maxord,
+             newton == LGN_NEWTON_FULL ? "full" : "modified");
+      for (i = 0; i < 4; i++) {
+        err[i] = AdaptiveRun(ctx, maxord, newton, tols[i], &ref1, &nst[i], nord);
+        for (k = 1; k <= 5; k++) used |= nord[k] > 0 ? 1L << k : 0;
+        printf("  tol %.0e: error %.3e, %5ld steps (orders 1-5: %ld %ld %ld %ld %ld)\n",
+               tols[i], err[i], nst[i], nord[1], nord[2], nord[3], nord[4], nord[5]);
+      }
+      p = Fit(tols, err, 4);
+      printf("  error ~ tol^%.3f\n", p);
+      CHECK(used == (maxord == 4 ? 0x1eL : 0x3eL), "every order 1 ... %d used (mask %lx)",
+            maxord, used);
+      if (maxord == 5) /* order 5 does not follow the tolerance as well (the note) */
+        CHECK(err[3] < 0.1 * err[0], "maxord 5: tol 1e-9 gains a factor 10 over 1e-6");
+      if (maxord == 4) {
+        CHECK(p > 0.8 && p < 1.2, "tolerance proportionality: exponent %.3f", p);
+        /* against generalized-alpha (exact kinematics) at tol 1e-9: a
+         * smaller error with at most a third of the steps */
+        err_nm = AdaptiveRun(ctx, 0, newton, 1e-9, &ref1, &nst_nm, NULL);
+        printf("  generalized-alpha at tol 1e-9: error %.3e, %ld steps\n", err_nm, nst_nm);
+        CHECK(err[3] < err_nm && 3 * nst[3] <= nst_nm,
+              "BDF4 %.2e in %ld steps against generalized-alpha %.2e in %ld", err[3], nst[3],
+              err_nm, nst_nm);
+      }
+    }
+  }
+
+  /* (d) R^1: the textbook recursion */
+  for (k = 1; k <= 5; k++) {
+    const double d = Textbook(ctx, k, 0.05, 40);
+    printf("(d) order %d on R^1: |Lignum - textbook BDF| after 40 steps = %.2e\n", k, d);
+    CHECK(d <= 1e-13, "order %d: textbook difference %.2e", k, d);
+  }
+
+  /* (e) bad input and the way back to the Newmark family */
+  {
+    Run r;
+    long int n1, n2;
+    double e1, e2;
+    RunCreate(&r, ctx);
+    LGNSetErrFile(r.mem, NULL);
+    CHECK(LGNSetBDF(r.mem, 0) == LGN_ILL_INPUT, "maxord 0 refused");
+    CHECK(LGNSetBDF(r.mem, 6) == LGN_ILL_INPUT, "maxord 6 refused");
+    CHECK(LGNSetBDF(NULL, 3) == LGN_MEM_NULL, "NULL memory");
+    RunFree(&r);
+    e1 = AdaptiveRun(ctx, 0, LGN_NEWTON_FULL, 1e-6, &ref1, &n1, NULL);
+    RunCreate(&r, ctx);
+    LGNSetBDF(r.mem, 4);
+    LGNSetGenAlpha(r.mem, 0.9); /* back to the Newmark family */
+    LGNSetKinematics(r.mem, LGN_KINEMATICS_EXACT);
+    LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+    LGNSStolerances(r.mem, 1e-6, 1e-6);
+    LGNSetStopTime(r.mem, 1.0);
+    {
+      sunrealtype t;
+      int flag = LGNSolve(r.mem, 1.0, &t, r.q, r.v, LGN_NORMAL);
+      CHECK(flag == LGN_TSTOP_RETURN || flag == LGN_SUCCESS, "Newmark after BDF: flag %d", flag);
+    }
+    e2 = ComError(&r, &ref1);
+    LGNGetNumSteps(r.mem, &n2);
+    RunFree(&r);
+    CHECK(e1 == e2 && n1 == n2, "LGNSetGenAlpha after LGNSetBDF: the Newmark run (%ld vs %ld steps)",
+          n1, n2);
+  }
+  SUNContext_Free(&ctx);
+  return test_summary("test_bdf");
+}
