@@ -22,6 +22,7 @@
 #include <time.h>
 
 #include <lignum/lignum_config.h> /* LGN_HAVE_KLU */
+#include <lignum/lignum_ls.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -474,7 +475,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     N_Vector y = N_VNew_Serial(n, ctx); /* template of the (nv + m) unknowns */
     if (opt->solver == RB_DENSE) {
       A  = SUNDenseMatrix(n, n, ctx);
-      LS = SUNLinSol_Dense(y, A, ctx);
+      LS = opt->own_dense_lu ? LGNLinSol_Dense(y, A, ctx) : SUNLinSol_Dense(y, A, ctx);
     } else {
       A  = SUNSparseMatrix(n, n, 30 * n, opt->solver == RB_KLU_CSC ? CSC_MAT : CSR_MAT, ctx);
 #if defined(LGN_HAVE_KLU)
@@ -525,6 +526,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     flag = opt->method == 1 ? LGNSetGenAlpha(mem, opt->rho_inf)
                             : LGNSetNewmark(mem, opt->beta, opt->gamma);
   if (flag == 0) flag = LGNSetKinematics(mem, opt->kinematics);
+  if (flag == 0 && opt->bdf_maxord > 0) flag = LGNSetBDF(mem, opt->bdf_maxord);
   if (flag == 0) flag = LGNSetNewtonMode(mem, opt->newton);
   if (flag == 0) flag = LGNSetLSetupFrequency(mem, opt->msbp);
   if (flag == 0) flag = LGNSetPredictor(mem, opt->predictor);
