@@ -553,12 +553,14 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
     /* every accepted step: LGN_ONE_STEP up to the stop time t_end */
     const double t0 = CpuSeconds();
     sunrealtype hlast = 0.0;
-    fprintf(opt->step_log, "t,h\n");
+    fprintf(opt->step_log, "t,h,order\n");
     while (flag == 0 && t < opt->t_end) {
       flag = LGNSolve(mem, opt->t_end, &t, q, v, LGN_ONE_STEP);
       if (flag == 0 || flag == LGN_TSTOP_RETURN) {
+        int order = 2;
         LGNGetLastStep(mem, &hlast);
-        fprintf(opt->step_log, "%.10g,%.6e\n", t, hlast);
+        LGNGetLastOrder(mem, &order);
+        fprintf(opt->step_log, "%.10g,%.6e,%d\n", t, hlast, order);
       }
       if (flag == LGN_TSTOP_RETURN) flag = 0;
     }
@@ -633,6 +635,7 @@ void rigid_print_usage(FILE *out)
   fprintf(out,
           "          [--solver dense|klu|klu-csr] [--formulation r3so3|se3]\n"
           "          [--method newmark|genalpha] [--rho-inf R] [--beta B --gamma G]\n"
+          "          [--bdf MAXORD (1..5: the BDF family instead of --method)]\n"
           "          [--kinematics simplified|exact] [--constraints index3|index2]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
           "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
@@ -682,6 +685,9 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     if (VAL("newmark")) opt->method = 0;
     else if (VAL("genalpha")) opt->method = 1;
     else return -1;
+  } else if (IS("--bdf")) { /* the BDF family of this highest order */
+    opt->bdf_maxord = atoi(val);
+    if (opt->bdf_maxord < 1 || opt->bdf_maxord > 5) return -1;
   } else if (IS("--kinematics")) {
     if (VAL("simplified")) opt->kinematics = LGN_KINEMATICS_SIMPLIFIED;
     else if (VAL("exact")) opt->kinematics = LGN_KINEMATICS_EXACT;

@@ -92,7 +92,7 @@ typedef struct {
   double hmax;              /* error control: largest step (0: none)       */
   int bdf_maxord;           /* > 0: the BDF family (LGNSetBDF) instead of method */
   int own_dense_lu;         /* 1: LGNLinSol_Dense instead of SUNLinSol_Dense */
-  FILE *step_log;           /* error control: "t,h" per accepted step
+  FILE *step_log;           /* error control: "t,h,order" per accepted step
                                (LGN_ONE_STEP; NULL: none)                  */
 } RigidRunOptions;
 

@@ -273,8 +273,11 @@ int main(int argc, char **argv)
               "set title 'Whipping chain, %d rods: step size of error control "
               "(rtol = atol = %.0e, %ld steps)'\n"
               "set xlabel 't [s]'\nset ylabel 'h [s]'\nset logscale y\nset grid\n"
+              "set y2label 'order'\nset y2range [0:6]\nset y2tics 1\n"
               "plot '%s' using 1:2 with linespoints pt 7 ps 0.4 lw 1.5 title 'h(t), adaptive'",
               png_path, n, tol, res.nsteps, csv_path);
+      if (opt.bdf_maxord > 0) /* the order of every step on the right axis */
+        fprintf(gp, ", '%s' using 1:3 axes x1y2 with steps lw 1.5 title 'BDF order'", csv_path);
       if (hi > 0)
         fprintf(gp, ", %.10g with lines dt 2 lw 2 title 'fixed h of the same error (%ld steps)'",
                 opt.t_end / hi, hi);
