@@ -206,30 +206,48 @@ int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
 }
 
 /* Y = X T for a dense nrow x nv block X (leading dimension ldx) and a block
- * diagonal T in packed storage (NULL: T = I), into Y (leading dimension ldy). */
+ * diagonal T in packed storage (NULL: T = I), into Y (leading dimension ldy).
+ * Column j of Y combines only the columns of X that column j of T can
+ * have nonzero (lgnTangentColumnRange: one in an R^3 x SO(3) leaf's
+ * translation part, three in its rotation part). One and three columns
+ * (R^3 x SO(3), SO(3)) are straight-line code: loops with trip counts of 3
+ * or 6 cost more in loop overhead than in arithmetic. */
 void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
                           sunindextype nrow, const sunrealtype *T,
                           sunrealtype *Y, sunindextype ldy)
 {
-  sunindextype i, j, k, o, n;
+  sunindextype i, j, k, k0, k1, o, n;
   int b;
-  sunrealtype tkj;
   for (b = 0; b < mem->nblk; b++) {
     /* T == NULL stands for T = I: no offset into it */
     const sunrealtype *Tb = T != NULL ? T + mem->blk_toff[b] : NULL;
+    const sunbooleantype ident = T == NULL || lgnBlockIsIdentity(mem, b);
     o = mem->blk_voff[b];
     n = mem->blk_voff[b + 1] - o;
     for (j = o; j < o + n; j++) {
-      sunrealtype *y = Y + j * ldy;
-      if (T == NULL || lgnBlockIsIdentity(mem, b)) {
+      sunrealtype *restrict y = Y + j * ldy;
+      const sunrealtype *restrict tj;
+      if (ident) {
         for (i = 0; i < nrow; i++) y[i] = X[i + j * ldx];
         continue;
       }
-      for (i = 0; i < nrow; i++) y[i] = SUN_RCONST(0.0);
-      for (k = 0; k < n; k++) {
-        tkj = Tb[k + (j - o) * n];
-        if (tkj == SUN_RCONST(0.0)) continue;
-        for (i = 0; i < nrow; i++) y[i] += X[i + (o + k) * ldx] * tkj;
+      tj = Tb + (j - o) * n - o; /* tj[k] = T(k, j) */
+      lgnTangentColumnRange(mem, j, &k0, &k1);
+      if (k1 - k0 == 1) {
+        const sunrealtype *restrict x0 = X + k0 * ldx, t0 = tj[k0];
+        for (i = 0; i < nrow; i++) y[i] = x0[i] * t0;
+      } else if (k1 - k0 == 3) { /* a rotation: straight-line code */
+        const sunrealtype *restrict x0 = X + k0 * ldx, *restrict x1 = x0 + ldx;
+        const sunrealtype *restrict x2 = x1 + ldx;
+        const sunrealtype t0 = tj[k0], t1 = tj[k0 + 1], t2 = tj[k0 + 2];
+        for (i = 0; i < nrow; i++) y[i] = x0[i] * t0 + x1[i] * t1 + x2[i] * t2;
+      } else {
+        for (i = 0; i < nrow; i++) {
+          const sunrealtype *restrict x = X + i;
+          sunrealtype s = SUN_RCONST(0.0);
+          for (k = k0; k < k1; k++) s += x[k * ldx] * tj[k];
+          y[i] = s;
+        }
       }
     }
   }
