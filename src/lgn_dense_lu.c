@@ -217,7 +217,7 @@ static int CheckMatrix(const DenseLUContent *c, SUNMatrix A)
 /* Factor A in place. Returns SUNLS_SUCCESS; SUNLS_LUFACT_FAIL on a zero
  * pivot, the last flag then 1 + its column (as SUNLinSol_Dense);
  * SUNLS_MEM_NULL, or SUNLS_ILL_INPUT for a matrix that is not dense N x N. */
-static int Setup(SUNLinearSolver S, SUNMatrix A)
+static int DenseLUSetup(SUNLinearSolver S, SUNMatrix A)
 {
   DenseLUContent *c;
   int flag;
@@ -239,7 +239,7 @@ static int Setup(SUNLinearSolver S, SUNMatrix A)
  * SUNLS_SUCCESS; SUNLS_MEM_NULL; SUNLS_ILL_INPUT without valid factors
  * (no setup, or the last one failed) or for a matrix or vectors of
  * another size; SUNLS_MEM_FAIL if a vector has no data array. */
-static int Solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
+static int DenseLUSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
                  sunrealtype tol)
 {
   DenseLUContent *c;
@@ -348,8 +348,8 @@ SUNLinearSolver LGNLinSol_Dense(N_Vector y, SUNMatrix A, SUNContext sunctx)
   S->ops->gettype    = GetType;
   S->ops->getid      = GetID;
   S->ops->initialize = Initialize;
-  S->ops->setup      = Setup;
-  S->ops->solve      = Solve;
+  S->ops->setup      = DenseLUSetup;
+  S->ops->solve      = DenseLUSolve;
   S->ops->lastflag   = LastFlag;
   S->ops->space      = Space;
   S->ops->free       = Free;
@@ -371,7 +371,7 @@ SUNLinearSolver LGNLinSol_Dense(N_Vector y, SUNMatrix A, SUNContext sunctx)
 
 sunindextype lgnDenseLUSize(SUNLinearSolver LS)
 {
-  if (LS == NULL || LS->ops == NULL || LS->ops->setup != Setup ||
+  if (LS == NULL || LS->ops == NULL || LS->ops->setup != DenseLUSetup ||
       LS->content == NULL)
     return -1;
   return CONTENT(LS)->N;

@@ -377,6 +377,7 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
 /* ---- lgn_tangent.c: T(sigma) and the exact kinematics' derivatives ------ */
 
 int lgnTangentMatrices(LGNMem mem);
+int lgnExactKinematicsMap(LGNMem mem, sunbooleantype with_tangent);
 int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
                                   sunrealtype beta_p);
 void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,

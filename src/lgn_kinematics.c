@@ -175,22 +175,11 @@ static int ExactPredict(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
   return LGN_SUCCESS;
 }
 
+/* q1, v1, vdot1 (and Tm) leaf by leaf, one fused evaluation per built-in
+ * leaf (lgn_tangent.c). */
 static int ExactIterate(LGNMem mem, sunbooleantype with_tangent)
 {
-  LGNGroup G = mem->G;
-  sunindextype i, nv = mem->nv;
-  sunrealtype *v1 = lgnData(mem->v1), *vdot1 = lgnData(mem->vdot1);
-  int ret = Configuration(mem, with_tangent);
-  if (ret != LGN_SUCCESS) return ret;
-  /* v = T sigma_dot, vdot = T sigma_ddot + Tdot(sigma, sigma_dot) sigma_dot */
-  ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
-  if (ret == 0) ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_ddot, vdot1);
-  if (ret == 0)
-    ret = G->ops.tangent_dot_apply(G, mem->sigma, mem->sigma_dot,
-                                   mem->sigma_dot, mem->work_nv);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
-  for (i = 0; i < nv; i++) vdot1[i] += mem->work_nv[i];
-  return LGN_SUCCESS;
+  return lgnExactKinematicsMap(mem, with_tangent);
 }
 
 /* cM M Ta + cC C Tv + cK K T; B T (index 3) or B Tv + (1/gamma') D_q(B v) T

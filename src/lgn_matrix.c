@@ -32,7 +32,88 @@
 
 #include "lgn_impl.h"
 
-/* A = the dense iteration matrix (header comment). */
+/* Column j of a block diagonal T-like factor in packed storage: the rows
+ * k0 <= k < k1 it can have nonzero and tj with tj[k] = T(k, j); tj = NULL
+ * when the column is e_j (T = NULL standing for I, or an R^n leaf). */
+typedef struct {
+  const sunrealtype *tj;
+  sunindextype k0, k1;
+} TangentColumn;
+
+static inline TangentColumn ColumnOf(LGNMem mem, const sunrealtype *T,
+                                     sunindextype j)
+{
+  TangentColumn c = {NULL, j, j + 1};
+  const int b = (int)mem->blk_of[j];
+  sunindextype o, n;
+  if (T == NULL || lgnBlockIsIdentity(mem, b)) return c;
+  o    = mem->blk_voff[b];
+  n    = mem->blk_voff[b + 1] - o;
+  c.tj = T + mem->blk_toff[b] + (j - o) * n - o;
+  lgnTangentColumnRange(mem, j, &c.k0, &c.k1);
+  return c;
+}
+
+/* (X T)(i, j) = sum_k X(i, k) T(k, j) over the column's range, in the
+ * order of k; one and three terms (R^3 x SO(3)'s translation and any
+ * rotation) as straight-line code. */
+static inline sunrealtype RowTimesColumn(const sunrealtype *X, sunindextype ldx,
+                                         sunindextype i, sunindextype j,
+                                         const TangentColumn *c)
+{
+  const sunrealtype *x = X + i, *t = c->tj;
+  sunrealtype s;
+  sunindextype k;
+  if (t == NULL) return x[j * ldx];
+  switch (c->k1 - c->k0) {
+  case 1: return x[c->k0 * ldx] * t[c->k0];
+  case 3:
+    k = c->k0;
+    return x[k * ldx] * t[k] + x[(k + 1) * ldx] * t[k + 1] + x[(k + 2) * ldx] * t[k + 2];
+  default:
+    s = SUN_RCONST(0.0);
+    for (k = c->k0; k < c->k1; k++) s += x[k * ldx] * t[k];
+    return s;
+  }
+}
+
+/* Column j of X T as three column pointers and weights, y = (x0 t0 + x1 t1)
+ * + x2 t2, when the column has at most three rows in its range (a column
+ * of I or of an R^3 x SO(3) leaf's translation part: x0 = X e_j, t0 = 1 or
+ * T(j, j), the other weights 0; a rotation: its three columns). Returns
+ * SUNFALSE for a longer range (a user-supplied or SE(3) leaf). */
+static inline sunbooleantype ThreeColumns(const sunrealtype *X, sunindextype ldx,
+                                          sunindextype j, const TangentColumn *c,
+                                          const sunrealtype *x[3], sunrealtype t[3])
+{
+  sunindextype k;
+  if (c->tj == NULL) {
+    x[0] = x[1] = x[2] = X + j * ldx;
+    t[0] = SUN_RCONST(1.0);
+    t[1] = t[2] = SUN_RCONST(0.0);
+    return SUNTRUE;
+  }
+  if (c->k1 - c->k0 == 1) {
+    x[0] = x[1] = x[2] = X + c->k0 * ldx;
+    t[0] = c->tj[c->k0];
+    t[1] = t[2] = SUN_RCONST(0.0);
+    return SUNTRUE;
+  }
+  if (c->k1 - c->k0 != 3) return SUNFALSE;
+  for (k = 0; k < 3; k++) {
+    x[k] = X + (c->k0 + k) * ldx;
+    t[k] = c->tj[c->k0 + k];
+  }
+  return SUNTRUE;
+}
+
+/* A = the dense iteration matrix (header comment), column by column in one
+ * pass: each entry of the top left is cM (M TM)_ij + cC (C TC)_ij +
+ * cK (K TK)_ij formed in a register from the few columns of M, C, K that
+ * the block structure of the T-like factors lets in (no products with the
+ * zeros of T, no scratch matrices, no second pass to scale and add). With
+ * at most three columns per factor (R^n, SO(3), R^3 x SO(3) leaves) the
+ * loop over the rows is branch-free; otherwise entry by entry. */
 static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
 {
   sunindextype i, j, nv = mem->nv, m = mem->m, n = nv + m;
@@ -40,46 +121,63 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
   const sunrealtype *M = SUNDenseMatrix_Data(mem->Mmat);
   const sunrealtype *C = SUNDenseMatrix_Data(mem->Cmat);
   const sunrealtype *K = SUNDenseMatrix_Data(mem->Kmat);
-  const sunrealtype cM = x->cM, cC = x->cC, cK = x->cK;
-  sunrealtype *W = SUNDenseMatrix_Data(mem->Mdq); /* nv x nv scratch */
+  const sunrealtype *B = m > 0 ? SUNDenseMatrix_Data(mem->Bmat) : NULL;
+  const sunrealtype cM = x->cM, cC = x->cC, cK = x->cK, cBv = x->cBv;
   int flag;
 
   flag = lgnEvalTangents(mem, t, cC, cK);
   if (flag != LGN_SUCCESS) return flag;
   mem->nje++;
-
-  /* top left: cM M TM + cC C TC + cK K TK */
-  lgnDenseTimesTangent(mem, M, nv, nv, x->TM, W, nv);
-  for (j = 0; j < nv; j++)
-    for (i = 0; i < nv; i++) A[i + j * n] = cM * W[i + j * nv];
-  if (cC != SUN_RCONST(0.0)) {
-    lgnDenseTimesTangent(mem, C, nv, nv, x->TC, W, nv);
-    for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) A[i + j * n] += cC * W[i + j * nv];
+  if (m > 0 && cBv != SUN_RCONST(0.0)) {
+    flag = lgnConstraintVelocityDQ(mem, t);
+    if (flag != LGN_SUCCESS) return flag;
   }
-  if (cK != SUN_RCONST(0.0)) {
-    lgnDenseTimesTangent(mem, K, nv, nv, x->TK, W, nv);
-    for (j = 0; j < nv; j++)
-      for (i = 0; i < nv; i++) A[i + j * n] += cK * W[i + j * nv];
-  }
-  for (j = nv; j < n; j++)
-    for (i = 0; i < n; i++) A[i + j * n] = SUN_RCONST(0.0);
 
-  if (m > 0) {
-    const sunrealtype *B = SUNDenseMatrix_Data(mem->Bmat);
-    /* top right: B^T */
-    for (j = 0; j < m; j++)
-      for (i = 0; i < nv; i++) A[i + (nv + j) * n] = B[j + i * m];
-    /* bottom left: B TB */
-    lgnDenseTimesTangent(mem, B, m, m, x->TB, A + nv, n);
-    /* index 2: + cBv D_q(B v) TK */
-    if (x->cBv != SUN_RCONST(0.0)) {
-      flag = lgnConstraintVelocityDQ(mem, t);
-      if (flag != LGN_SUCCESS) return flag;
-      lgnDenseTimesTangent(mem, mem->Bvq, m, m, x->TK, W, m);
-      for (j = 0; j < nv; j++)
-        for (i = 0; i < m; i++) A[nv + i + j * n] += x->cBv * W[i + j * m];
+  for (j = 0; j < nv; j++) {
+    const TangentColumn tm = ColumnOf(mem, x->TM, j), tc = ColumnOf(mem, x->TC, j);
+    const TangentColumn tk = ColumnOf(mem, x->TK, j), tb = ColumnOf(mem, x->TB, j);
+    const sunrealtype *pm[3], *pc[3], *pk[3], *pb[3], *pq[3];
+    sunrealtype wm[3], wc[3], wk[3], wb[3], wq[3];
+    sunrealtype *restrict a = A + j * n, s;
+    /* top left: cM M TM + cC C TC + cK K TK */
+    if (cC != SUN_RCONST(0.0) && cK != SUN_RCONST(0.0) &&
+        ThreeColumns(M, nv, j, &tm, pm, wm) && ThreeColumns(C, nv, j, &tc, pc, wc) &&
+        ThreeColumns(K, nv, j, &tk, pk, wk)) {
+      for (i = 0; i < nv; i++)
+        a[i] = cM * ((pm[0][i] * wm[0] + pm[1][i] * wm[1]) + pm[2][i] * wm[2])
+             + cC * ((pc[0][i] * wc[0] + pc[1][i] * wc[1]) + pc[2][i] * wc[2])
+             + cK * ((pk[0][i] * wk[0] + pk[1][i] * wk[1]) + pk[2][i] * wk[2]);
+    } else {
+      for (i = 0; i < nv; i++) {
+        s = cM * RowTimesColumn(M, nv, i, j, &tm);
+        if (cC != SUN_RCONST(0.0)) s += cC * RowTimesColumn(C, nv, i, j, &tc);
+        if (cK != SUN_RCONST(0.0)) s += cK * RowTimesColumn(K, nv, i, j, &tk);
+        a[i] = s;
+      }
     }
+    /* bottom left: B TB (+ cBv D_q(B v) TK at index 2) */
+    if (m == 0) continue;
+    if (cBv == SUN_RCONST(0.0) && ThreeColumns(B, m, j, &tb, pb, wb)) {
+      for (i = 0; i < m; i++)
+        a[nv + i] = (pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2];
+    } else if (cBv != SUN_RCONST(0.0) && ThreeColumns(B, m, j, &tb, pb, wb) &&
+               ThreeColumns(mem->Bvq, m, j, &tk, pq, wq)) {
+      for (i = 0; i < m; i++)
+        a[nv + i] = ((pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2])
+                  + cBv * ((pq[0][i] * wq[0] + pq[1][i] * wq[1]) + pq[2][i] * wq[2]);
+    } else {
+      for (i = 0; i < m; i++) {
+        s = RowTimesColumn(B, m, i, j, &tb);
+        if (cBv != SUN_RCONST(0.0)) s += cBv * RowTimesColumn(mem->Bvq, m, i, j, &tk);
+        a[nv + i] = s;
+      }
+    }
+  }
+  /* right: B^T over zeros */
+  for (j = 0; j < m; j++) {
+    sunrealtype *a = A + (nv + j) * n;
+    for (i = 0; i < nv; i++) a[i] = B[j + i * m];
+    for (i = nv; i < n; i++) a[i] = SUN_RCONST(0.0);
   }
   return LGN_SUCCESS;
 }

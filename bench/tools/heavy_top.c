@@ -7,6 +7,7 @@
  *             [--h H] [--t-end T] [--a0 consistent|zero]
  *             [--predictor zero|extrapolate] [--newton full|modified] [--msbp N]
  *             [--rtol R] [--atol A] [--adaptive] [--csv FILE]
+ *             [--linsol sundials|lignum] [--single-solve]
  *             [--reference-h H [--bound B]]
  *
  * Prints the final state, one line "com_final <x> <y> <z>" with 17
@@ -16,6 +17,11 @@
  * the error test's tolerances (default 1e-6 both here), --h is the output
  * interval (LGN_NORMAL interpolates there), and the run lands on t_end
  * exactly (LGNSetStopTime). Without it they are the Newton tolerances.
+ *
+ * --linsol: the dense linear solver, SUNLinSol_Dense (default) or Lignum's
+ * LGNLinSol_Dense (bench/heavy_top_profile measures the floor with both).
+ * --single-solve: one LGNSolve call to t_end, no per-step output (max_phi
+ * is then not measured), so that cpu_seconds is the integration only.
  *
  * --reference-h H: also run the same method with the fixed step H (Newton
  * tolerances 1e-10) and print |com_final - com_ref|_max; with --bound B the
@@ -43,7 +49,7 @@ static void Usage(const char *prog)
           "          [--rtol R] [--atol A] (Newton tolerances; with --adaptive\n"
           "          the error test's, default 1e-6)\n"
           "          [--adaptive] (error control; --h is then the output interval)\n"
-          "          [--csv FILE]\n"
+          "          [--csv FILE] [--linsol sundials|lignum] [--single-solve]\n"
           "          [--reference-h H [--bound B]] (compare com_final with a\n"
           "          fixed-step run of step H; fail unless within B)\n", prog);
 }
@@ -66,6 +72,11 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     /* flags without a value */
     if (!strcmp(key, "--adaptive")) {
       opt->adaptive = 1;
+      i++;
+      continue;
+    }
+    if (!strcmp(key, "--single-solve")) {
+      opt->single_solve = 1;
       i++;
       continue;
     }
@@ -101,6 +112,10 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     } else if (!strcmp(key, "--newton")) {
       if (!strcmp(val, "full")) opt->newton = LGN_NEWTON_FULL;
       else if (!strcmp(val, "modified")) opt->newton = LGN_NEWTON_MODIFIED;
+      else bad = 1;
+    } else if (!strcmp(key, "--linsol")) {
+      if (!strcmp(val, "sundials")) opt->make_ls = NULL;
+      else if (!strcmp(val, "lignum")) opt->make_ls = LGNLinSol_Dense;
       else bad = 1;
     } else if (!strcmp(key, "--msbp")) {
       double msbp;

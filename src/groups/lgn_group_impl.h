@@ -24,4 +24,48 @@ int lgnGroupProductFactors(LGNGroup G, int *nf, const LGNGroup **factors,
 int lgnGroupRigidBodies(LGNGroup G, sunindextype *qoff, sunindextype *voff,
                         sunbooleantype *se3);
 
+/* Fused operations of the built-in leaves for the exact kinematics
+ * (lgn_tangent.c), one sine and cosine per rotation for all of them
+ * (lgnSO3_CoefsExp). Each returns 1, doing nothing, when G is not that
+ * built-in group with its own ops (a user replaced one): the caller then
+ * uses the public ops.
+ *
+ * ExactMap: q1 = q o exp(w), v = T(w) wd, vdot = T(w) wdd + Tdot(w, wd) wd
+ * and, with Tm not NULL, Tm = T(w) (nv x nv, leading dimension nv): bit for
+ * bit what compose_exp, tangent_apply, tangent_dot_apply and
+ * tangent_matrix give.
+ *
+ * ExactDerivatives: the normalised derivatives of v and vdot with respect
+ * to the correction of w (lgnExactKinematicsDerivatives), in closed form,
+ * with Tm = T(w) given: Tv = Tm + (D_w[T(w) wd])/gamma',
+ * Ta = Tm + (gamma'/beta') (D_w[T(w) wd] + Tdot(w, wd))
+ *         + (D_w[T(w) wdd] + D_w[Tdot(w, wd) wd])/beta'. */
+int lgnGroupSO3ExactMap(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                        const sunrealtype *wd, const sunrealtype *wdd,
+                        sunrealtype *q1, sunrealtype *v, sunrealtype *vdot,
+                        sunrealtype *Tm);
+int lgnGroupSO3ExactDerivatives(LGNGroup G, const sunrealtype *w,
+                                const sunrealtype *wd, const sunrealtype *wdd,
+                                sunrealtype gamma_p, sunrealtype beta_p,
+                                const sunrealtype *Tm, sunrealtype *Tv,
+                                sunrealtype *Ta);
+int lgnGroupR3xSO3ExactMap(LGNGroup G, const sunrealtype *q,
+                           const sunrealtype *w, const sunrealtype *wd,
+                           const sunrealtype *wdd, sunrealtype *q1,
+                           sunrealtype *v, sunrealtype *vdot, sunrealtype *Tm);
+int lgnGroupR3xSO3ExactDerivatives(LGNGroup G, const sunrealtype *w,
+                                   const sunrealtype *wd,
+                                   const sunrealtype *wdd, sunrealtype gamma_p,
+                                   sunrealtype beta_p, const sunrealtype *Tm,
+                                   sunrealtype *Tv, sunrealtype *Ta);
+int lgnGroupSE3ExactMap(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                        const sunrealtype *wd, const sunrealtype *wdd,
+                        sunrealtype *q1, sunrealtype *v, sunrealtype *vdot,
+                        sunrealtype *Tm);
+int lgnGroupSE3ExactDerivatives(LGNGroup G, const sunrealtype *w,
+                                const sunrealtype *wd, const sunrealtype *wdd,
+                                sunrealtype gamma_p, sunrealtype beta_p,
+                                const sunrealtype *Tm, sunrealtype *Tv,
+                                sunrealtype *Ta);
+
 #endif

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "lgn_so3.h"
+#include "lgn_group_impl.h"
 
 static int R3SO3ComposeExp(LGNGroup G, const sunrealtype *q,
                            const sunrealtype *w, sunrealtype *q_out)
@@ -91,6 +92,64 @@ static int R3SO3Normalize(LGNGroup G, sunrealtype *q)
 {
   (void)G;
   return lgnSO3_QuatNormalize(q + 3);
+}
+
+/* The library's own R^3 x SO(3) ops (not replaced by the user)? */
+static sunbooleantype OwnOps(LGNGroup G)
+{
+  return G->kind == LGN_GROUP_R3XSO3 && G->ops.compose_exp == R3SO3ComposeExp &&
+         G->ops.tangent_apply == R3SO3TangentApply &&
+         G->ops.tangent_dot_apply == R3SO3TangentDotApply &&
+         G->ops.tangent_matrix == R3SO3TangentMatrix;
+}
+
+int lgnGroupR3xSO3ExactMap(LGNGroup G, const sunrealtype *q,
+                           const sunrealtype *w, const sunrealtype *wd,
+                           const sunrealtype *wdd, sunrealtype *q1,
+                           sunrealtype *v, sunrealtype *vdot, sunrealtype *Tm)
+{
+  lgnSO3_Coef c;
+  sunrealtype e[4], t[3];
+  int i, j;
+  if (!OwnOps(G)) return 1;
+  lgnSO3_CoefsExp(w + 3, LGN_SO3_A | LGN_SO3_B | LGN_SO3_C1 | LGN_SO3_C2, &c, e);
+  for (i = 0; i < 3; i++) {
+    q1[i]   = q[i] + w[i];
+    v[i]    = wd[i];  /* T = diag(I3, T_SO3), Tdot = diag(0, Tdot_SO3) */
+    vdot[i] = wdd[i];
+  }
+  lgnSO3_QuatComposeQuat(q + 3, e, q1 + 3);
+  if (Tm != NULL) {
+    for (j = 0; j < 6; j++)
+      for (i = 0; i < 6; i++) Tm[i + j * 6] = (i == j && i < 3) ? 1 : 0;
+    lgnSO3_TMatrixC(&c, w + 3, Tm + 3 + 3 * 6, 6);
+  }
+  lgnSO3_TApplyC(&c, w + 3, wd + 3, v + 3);
+  lgnSO3_TApplyC(&c, w + 3, wdd + 3, vdot + 3);
+  lgnSO3_TDotApplyC(&c, w + 3, wd + 3, wd + 3, t);
+  vdot[3] += t[0];
+  vdot[4] += t[1];
+  vdot[5] += t[2];
+  return 0;
+}
+
+int lgnGroupR3xSO3ExactDerivatives(LGNGroup G, const sunrealtype *w,
+                                   const sunrealtype *wd,
+                                   const sunrealtype *wdd, sunrealtype gamma_p,
+                                   sunrealtype beta_p, const sunrealtype *Tm,
+                                   sunrealtype *Tv, sunrealtype *Ta)
+{
+  /* diag(I3, rotation blocks): the translation's kinematics are exact */
+  lgnSO3_Coef c;
+  int i, j;
+  if (!OwnOps(G)) return 1;
+  for (j = 0; j < 6; j++)
+    for (i = 0; i < 6; i++)
+      if (i < 3 || j < 3) Tv[i + j * 6] = Ta[i + j * 6] = (i == j) ? 1 : 0;
+  lgnSO3_Coefs(lgnSO3_Norm(w + 3), LGN_SO3_D2T, &c);
+  lgnSO3_ExactBlocks(&c, w + 3, wd + 3, wdd + 3, gamma_p, beta_p,
+                     Tm + 3 + 3 * 6, Tv + 3 + 3 * 6, Ta + 3 + 3 * 6, 6);
+  return 0;
 }
 
 LGNGroup LGNGroup_R3xSO3(void)

@@ -11,6 +11,7 @@
 #include <stddef.h>
 
 #include "lgn_so3.h"
+#include "lgn_group_impl.h"
 
 static int SO3ComposeExp(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
                          sunrealtype *q_out)
@@ -73,6 +74,48 @@ static int SO3Normalize(LGNGroup G, sunrealtype *q)
 {
   (void)G;
   return lgnSO3_QuatNormalize(q);
+}
+
+/* The library's own SO(3) ops (not replaced by the user)? */
+static sunbooleantype OwnOps(LGNGroup G)
+{
+  return G->kind == LGN_GROUP_SO3 && G->ops.compose_exp == SO3ComposeExp &&
+         G->ops.tangent_apply == SO3TangentApply &&
+         G->ops.tangent_dot_apply == SO3TangentDotApply &&
+         G->ops.tangent_matrix == SO3TangentMatrix;
+}
+
+int lgnGroupSO3ExactMap(LGNGroup G, const sunrealtype *q, const sunrealtype *w,
+                        const sunrealtype *wd, const sunrealtype *wdd,
+                        sunrealtype *q1, sunrealtype *v, sunrealtype *vdot,
+                        sunrealtype *Tm)
+{
+  lgnSO3_Coef c;
+  sunrealtype e[4], t[3];
+  if (!OwnOps(G)) return 1;
+  lgnSO3_CoefsExp(w, LGN_SO3_A | LGN_SO3_B | LGN_SO3_C1 | LGN_SO3_C2, &c, e);
+  lgnSO3_QuatComposeQuat(q, e, q1);
+  if (Tm != NULL) lgnSO3_TMatrixC(&c, w, Tm, 3);
+  lgnSO3_TApplyC(&c, w, wd, v);
+  lgnSO3_TApplyC(&c, w, wdd, vdot);
+  lgnSO3_TDotApplyC(&c, w, wd, wd, t);
+  vdot[0] += t[0];
+  vdot[1] += t[1];
+  vdot[2] += t[2];
+  return 0;
+}
+
+int lgnGroupSO3ExactDerivatives(LGNGroup G, const sunrealtype *w,
+                                const sunrealtype *wd, const sunrealtype *wdd,
+                                sunrealtype gamma_p, sunrealtype beta_p,
+                                const sunrealtype *Tm, sunrealtype *Tv,
+                                sunrealtype *Ta)
+{
+  lgnSO3_Coef c;
+  if (!OwnOps(G)) return 1;
+  lgnSO3_Coefs(lgnSO3_Norm(w), LGN_SO3_D2T, &c);
+  lgnSO3_ExactBlocks(&c, w, wd, wdd, gamma_p, beta_p, Tm, Tv, Ta, 3);
+  return 0;
 }
 
 LGNGroup LGNGroup_SO3(void)

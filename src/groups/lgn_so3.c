@@ -8,8 +8,10 @@
  *
  * Functions: lgnSO3_Coefs, lgnSO3_Norm, lgnSO3_Tilde, lgnSO3_TApply[C],
  * lgnSO3_TInvApply[C], lgnSO3_TDotApply[C], lgnSO3_D2TApplyC,
- * lgnSO3_TMatrix[C], lgnSO3_TDotMatrixC, lgnSO3_ExpQuat,
- * lgnSO3_QuatComposeExp, lgnSO3_QuatNormalize, lgnSO3_QuatRotate,
+ * lgnSO3_D3TApplyC, lgnSO3_TMatrix[C], lgnSO3_TDotMatrixC,
+ * lgnSO3_DTMatrixC, lgnSO3_D2TMatrixC, lgnSO3_D3TMatrixC, lgnSO3_ExactBlocks,
+ * lgnSO3_CoefsExp,
+ * lgnSO3_ExpQuat, lgnSO3_QuatComposeQuat, lgnSO3_QuatComposeExp, lgnSO3_QuatNormalize, lgnSO3_QuatRotate,
  * lgnSO3_LogQuat, lgnSO3_QuatComposeLog.
  * None of them allocates.
  * ---------------------------------------------------------------------------*/
@@ -45,14 +47,15 @@ void lgnSO3_Tilde(const sunrealtype x[3], sunrealtype M[9])
  * which removes one cancellation.
  * ===========================================================================*/
 
-void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
+/* The coefficients from sh = sin(phi/2), ch = cos(phi/2) (used only for
+ * phi >= LGN_SO3_THR_SINC, where every closed form is taken). */
+static void CoefsSC(sunrealtype phi, unsigned need, lgnSO3_Coef *c,
+                    sunrealtype sh, sunrealtype ch)
 {
   const sunrealtype p2 = phi * phi;
-  sunrealtype sh = 0, ch = ONE, s = 0, omc = 0, cs = ONE;
+  sunrealtype s = 0, omc = 0, cs = ONE;
 
   if (phi >= LGN_SO3_THR_SINC) {
-    sh  = sin(HALF * phi);
-    ch  = cos(HALF * phi);
     s   = TWO * sh * ch;       /* sin(phi)     */
     omc = TWO * sh * sh;       /* 1 - cos(phi) */
     cs  = ONE - omc;           /* cos(phi)     */
@@ -111,6 +114,43 @@ void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
             -ONE / 77837760 + p2 * (ONE / SUN_RCONST(10897286400.0)))))
       : (p2 * s + 7 * phi * cs + 8 * phi - 15 * s) / (p2 * p2 * p2 * phi);
   }
+  /* c5, c6: only the third derivative of T (SE(3)'s iteration matrix). The
+   * closed forms cancel like phi^-6 and phi^-8, so the series (to phi^14,
+   * coefficients 8 (m+1)(m+2)(m+3) (-1)^m / (2m+8)! and -../(2m+9)!) run
+   * to larger angles; both are within ~1.5e-12 relative everywhere. */
+  if (need & LGN_SO3_C5) {
+    /* c5 = (48 (1 - cos) - 33 phi sin + 9 phi^2 cos + phi^3 sin)/phi^8 */
+    c->c5 = (phi < LGN_SO3_THR_C5)
+      ? ONE / 840 + p2 * (-ONE / 18900 + p2 * (ONE / 997920 + p2 * (
+            -ONE / 90810720 + p2 * (ONE / SUN_RCONST(12454041600.0) + p2 * (
+            -ONE / SUN_RCONST(2381835456000.0) + p2 * (
+            ONE / SUN_RCONST(603398315520000.0) - p2 * (
+            ONE / SUN_RCONST(1.95139015239168e17))))))))
+      : (48 * omc - 33 * phi * s + 9 * p2 * cs + p2 * phi * s)
+            / (p2 * p2 * p2 * p2);
+  }
+  if (need & LGN_SO3_C6) {
+    /* c6 = (phi^3 cos - 12 phi^2 sin - 57 phi cos - 48 phi + 105 sin)/phi^9 */
+    c->c6 = (phi < LGN_SO3_THR_C6)
+      ? -ONE / 7560 + p2 * (ONE / 207900 + p2 * (-ONE / 12972960 + p2 * (
+            ONE / SUN_RCONST(1362160800.0) + p2 * (
+            -ONE / SUN_RCONST(211718707200.0) + p2 * (
+            ONE / SUN_RCONST(45254873664000.0) + p2 * (
+            -ONE / SUN_RCONST(1.267136462592e16) + p2 * (
+            ONE / SUN_RCONST(4.48819735050086e18))))))))
+      : (p2 * phi * cs - 12 * p2 * s - 57 * phi * cs - 48 * phi + 105 * s)
+            / (p2 * p2 * p2 * p2 * phi);
+  }
+}
+
+void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c)
+{
+  sunrealtype sh = 0, ch = ONE;
+  if (phi >= LGN_SO3_THR_SINC) {
+    sh = sin(HALF * phi);
+    ch = cos(HALF * phi);
+  }
+  CoefsSC(phi, need, c, sh, ch);
 }
 
 /* =============================================================================
@@ -212,6 +252,51 @@ void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
          + c->b * (UWv[i] + WUv[i]);
 }
 
+void lgnSO3_D3TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype U[3], const sunrealtype W[3],
+                      const sunrealtype V[3], const sunrealtype v[3],
+                      sunrealtype y[3])
+{
+  /* D^3T(x)[U,W,V] v, the derivative of D^2T[U,W] along V (d/dx of a
+   * coefficient f(|x|) is (f'/phi) x^T: c1 -> c3 -> c5, c2 -> c4 -> c6):
+   *   k1 x~v + k2 x~x~v  with k1 = c3 ((x.U)(W.V) + (x.W)(U.V) + (x.V)(U.W))
+   *                            + c5 (x.U)(x.W)(x.V), k2 likewise (c4, c6)
+   * + sum over the three directions Y of U, W, V, (Z, Z') the other two:
+   *     (c1 (Z.Z') + c3 (x.Z)(x.Z')) Y~v
+   *   + (c2 (Z.Z') + c4 (x.Z)(x.Z')) (Y~x~ + x~Y~) v
+   *   + c2 (x.Y) (Z~Z'~ + Z'~Z~) v                                         */
+  const sunrealtype *Y[3] = {U, W, V};
+  sunrealtype ox[3], dd[3], xv[3], xxv[3], t1[3], t2[3], t3[3], t4[3];
+  sunrealtype k1, k2, al, be;
+  int i, k;
+  for (k = 0; k < 3; k++) ox[k] = lgnVec3Dot(x, Y[k]);
+  dd[0] = lgnVec3Dot(W, V); /* pairs opposite U, W, V */
+  dd[1] = lgnVec3Dot(U, V);
+  dd[2] = lgnVec3Dot(U, W);
+  k1 = c->c3 * (ox[0] * dd[0] + ox[1] * dd[1] + ox[2] * dd[2])
+     + c->c5 * ox[0] * ox[1] * ox[2];
+  k2 = c->c4 * (ox[0] * dd[0] + ox[1] * dd[1] + ox[2] * dd[2])
+     + c->c6 * ox[0] * ox[1] * ox[2];
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
+  for (i = 0; i < 3; i++) y[i] = k1 * xv[i] + k2 * xxv[i];
+  for (k = 0; k < 3; k++) {
+    const sunrealtype *Z = Y[(k + 1) % 3], *Zp = Y[(k + 2) % 3];
+    const sunrealtype oo = ox[(k + 1) % 3] * ox[(k + 2) % 3];
+    al = c->c1 * dd[k] + c->c3 * oo;
+    be = c->c2 * dd[k] + c->c4 * oo;
+    lgnVec3Cross(Y[k], v, t1);  /* Y~v      */
+    lgnVec3Cross(Y[k], xv, t2); /* Y~x~v    */
+    lgnVec3Cross(x, t1, t3);    /* x~Y~v    */
+    for (i = 0; i < 3; i++) y[i] += al * t1[i] + be * (t2[i] + t3[i]);
+    lgnVec3Cross(Zp, v, t1);    /* Z'~v     */
+    lgnVec3Cross(Z, t1, t2);    /* Z~Z'~v   */
+    lgnVec3Cross(Z, v, t3);     /* Z~v      */
+    lgnVec3Cross(Zp, t3, t4);   /* Z'~Z~v   */
+    for (i = 0; i < 3; i++) y[i] += c->c2 * ox[k] * (t2[i] + t4[i]);
+  }
+}
+
 /* =============================================================================
  * Dense blocks (column-major, leading dimension ld)
  * ===========================================================================*/
@@ -255,6 +340,100 @@ void lgnSO3_TDotMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
                     + c->b * (x[i] * xd[j] + xd[i] * x[j])
                     + s * (c->c1 * X[3 * i + j] + c->c2 * x[i] * x[j])
                     - (i == j ? TWO * c->b * s + s * c->c2 * p2 : 0);
+}
+
+/* J with J u = DT(x)[u] v = a u~v + b (u~x~ + x~u~) v + (x.u)(c1 x~v + c2 x~x~v):
+ * with u~y = -y~u, x~v~ = v x^T - (x.v) I and (x~v)~ = v x^T - x v^T,
+ *   J = -a v~ - b (2 v x^T - x v^T - (x.v) I) + (c1 x~v + c2 x~x~v) x^T. */
+void lgnSO3_DTMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype v[3], sunrealtype *M, sunindextype ld,
+                      sunbooleantype add)
+{
+  sunrealtype V[9], xv[3], xxv[3], g[3], m;
+  const sunrealtype s = lgnVec3Dot(x, v);
+  int i, j;
+  lgnSO3_Tilde(v, V);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
+  for (i = 0; i < 3; i++) g[i] = c->c1 * xv[i] + c->c2 * xxv[i];
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++) {
+      m = -c->a * V[3 * i + j]
+        - c->b * (TWO * v[i] * x[j] - x[i] * v[j] - (i == j ? s : 0))
+        + g[i] * x[j];
+      M[i + j * ld] = add ? M[i + j * ld] + m : m;
+    }
+}
+
+/* K with K u = D^2T(x)[u, w] v (lgnSO3_D2TApplyC with U = u, W = w):
+ *   K = x~v (c3 (x.w) x + c1 w)^T + x~x~v (c4 (x.w) x + c2 w)^T
+ *     + (c1 w~v + c2 (w~x~ + x~w~) v) x^T
+ *     - c1 (x.w) v~ - c2 (x.w) (2 v x^T - x v^T - (x.v) I)
+ *     - b (2 v w^T - w v^T - (w.v) I)                                      */
+void lgnSO3_D2TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype w[3], const sunrealtype v[3],
+                       sunrealtype *M, sunindextype ld, sunbooleantype add)
+{
+  sunrealtype V[9], xv[3], xxv[3], wv[3], wxv[3], xwv[3], f1[3], f2[3], g[3], m;
+  const sunrealtype ow = lgnVec3Dot(x, w), xv_ = lgnVec3Dot(x, v);
+  const sunrealtype wv_ = lgnVec3Dot(w, v);
+  int i, j;
+  lgnSO3_Tilde(v, V);
+  lgnVec3Cross(x, v, xv);
+  lgnVec3Cross(x, xv, xxv);
+  lgnVec3Cross(w, v, wv);
+  lgnVec3Cross(w, xv, wxv);
+  lgnVec3Cross(x, wv, xwv);
+  for (i = 0; i < 3; i++) {
+    f1[i] = c->c3 * ow * x[i] + c->c1 * w[i];
+    f2[i] = c->c4 * ow * x[i] + c->c2 * w[i];
+    g[i]  = c->c1 * wv[i] + c->c2 * (wxv[i] + xwv[i]);
+  }
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++) {
+      m = xv[i] * f1[j] + xxv[i] * f2[j] + g[i] * x[j]
+        - c->c1 * ow * V[3 * i + j]
+        - c->c2 * ow * (TWO * v[i] * x[j] - x[i] * v[j] - (i == j ? xv_ : 0))
+        - c->b * (TWO * v[i] * w[j] - w[i] * v[j] - (i == j ? wv_ : 0));
+      M[i + j * ld] = add ? M[i + j * ld] + m : m;
+    }
+}
+
+/* L with L u = D^3T(x)[u, U, W] v, column by column (SE(3) only). */
+void lgnSO3_D3TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype U[3], const sunrealtype W[3],
+                       const sunrealtype v[3], sunrealtype *M, sunindextype ld,
+                       sunbooleantype add)
+{
+  sunrealtype e[3] = {0, 0, 0}, y[3];
+  int i, j;
+  for (j = 0; j < 3; j++) {
+    e[j] = ONE;
+    lgnSO3_D3TApplyC(c, x, e, U, W, v, y);
+    e[j] = 0;
+    for (i = 0; i < 3; i++) M[i + j * ld] = add ? M[i + j * ld] + y[i] : y[i];
+  }
+}
+
+void lgnSO3_ExactBlocks(const lgnSO3_Coef *c, const sunrealtype x[3],
+                        const sunrealtype xd[3], const sunrealtype xdd[3],
+                        sunrealtype gamma_p, sunrealtype beta_p,
+                        const sunrealtype *T, sunrealtype *Tv, sunrealtype *Ta,
+                        sunindextype ld)
+{
+  sunrealtype P[9], D[9], Q[9];
+  const sunrealtype ratio = gamma_p / beta_p;
+  int i, j;
+  lgnSO3_DTMatrixC(c, x, xd, P, 3, SUNFALSE);        /* DT[.] xd       */
+  lgnSO3_TDotMatrixC(c, x, xd, D, 3);                /* Tdot(x, xd)    */
+  lgnSO3_DTMatrixC(c, x, xdd, Q, 3, SUNFALSE);       /* DT[.] xdd      */
+  lgnSO3_D2TMatrixC(c, x, xd, xd, Q, 3, SUNTRUE);    /* + D^2T[., xd] xd */
+  for (j = 0; j < 3; j++)
+    for (i = 0; i < 3; i++) {
+      const sunrealtype t = T[i + j * ld], p = P[i + 3 * j];
+      Tv[i + j * ld] = t + p / gamma_p;
+      Ta[i + j * ld] = t + ratio * (p + D[i + 3 * j]) + Q[i + 3 * j] / beta_p;
+    }
 }
 
 /* =============================================================================
@@ -308,18 +487,58 @@ int lgnSO3_QuatNormalize(sunrealtype p[4])
   return 0;
 }
 
-void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
-                           sunrealtype p_out[4])
+void lgnSO3_QuatComposeQuat(const sunrealtype p[4], const sunrealtype e[4],
+                            sunrealtype p_out[4])
 {
-  /* p_out = p (x) expq(w), renormalised to stop drift; computed in locals
-   * and stored once (storing, then reloading to normalise, stalls on
+  /* p_out = p (x) e, renormalised to stop drift; computed in locals and
+   * stored once (storing, then reloading to normalise, stalls on
    * store-to-load forwarding) */
-  sunrealtype e[4], r[4], s;
-  ExpQuat(w, e);
+  sunrealtype r[4], s;
   lgnSO3_QuatMultiply(p, e, r);
   s = InverseNorm(r);
   if (s == 0) s = ONE;
   p_out[0] = s * r[0]; p_out[1] = s * r[1]; p_out[2] = s * r[2]; p_out[3] = s * r[3];
+}
+
+void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
+                           sunrealtype p_out[4])
+{
+  sunrealtype e[4];
+  ExpQuat(w, e);
+  lgnSO3_QuatComposeQuat(p, e, p_out);
+}
+
+void lgnSO3_CoefsExp(const sunrealtype x[3], unsigned need, lgnSO3_Coef *c,
+                     sunrealtype p[4])
+{
+  /* one sine and cosine of h = phi/2 for both: sqrt(|x|^2/4) = sqrt(|x|^2)/2
+   * exactly, so h, sin(h) and cos(h) are ExpQuat's and lgnSO3_Coefs' own;
+   * the branches are theirs too (ExpQuat's closed form, h^2 >= THR^2, lies
+   * inside Coefs' phi >= THR) */
+  const sunrealtype x2 = lgnVec3Dot(x, x), phi = sqrt(x2);
+  sunrealtype sh = 0, ch = ONE;
+  if (phi >= LGN_SO3_THR_SINC) {
+    sh = sin(HALF * phi);
+    ch = cos(HALF * phi);
+  }
+  CoefsSC(phi, need, c, sh, ch);
+  if (p == NULL) return;
+  {
+    const sunrealtype h2 = x2 / 4;
+    sunrealtype k, cq;
+    if (h2 < LGN_SO3_THR_SINC * LGN_SO3_THR_SINC) {
+      k  = HALF * (ONE + h2 * (-ONE / 6 + h2 * (ONE / 120 - h2 * (ONE / 5040))));
+      cq = ONE + h2 * (-HALF + h2 * (ONE / 24 + h2 * (-ONE / 720 + h2 * (ONE / 40320))));
+    } else {
+      const sunrealtype h = sqrt(h2);
+      k  = sh / (2 * h);
+      cq = ch;
+    }
+    p[0] = cq;
+    p[1] = k * x[0];
+    p[2] = k * x[1];
+    p[3] = k * x[2];
+  }
 }
 
 void lgnSO3_QuatRotate(const sunrealtype p[4], const sunrealtype v[3],

@@ -31,6 +31,8 @@
 #define LGN_SO3_THR_C2   SUN_RCONST(0.3)
 #define LGN_SO3_THR_C3   SUN_RCONST(0.4)
 #define LGN_SO3_THR_C4   SUN_RCONST(0.5)
+#define LGN_SO3_THR_C5   SUN_RCONST(1.5) /* series to phi^14: both forms */
+#define LGN_SO3_THR_C6   SUN_RCONST(1.8) /* within ~1e-12 relative       */
 
 /* Bits selecting which coefficients lgnSO3_Coefs computes. */
 #define LGN_SO3_SINC (1u << 0)
@@ -42,7 +44,13 @@
 #define LGN_SO3_C2   (1u << 6)
 #define LGN_SO3_C3   (1u << 7)
 #define LGN_SO3_C4   (1u << 8)
-#define LGN_SO3_ALL  (0x1FFu)
+#define LGN_SO3_C5   (1u << 9)
+#define LGN_SO3_C6   (1u << 10)
+#define LGN_SO3_ALL  (0x7FFu)
+/* what T, Tdot and D^2T need; with C5, C6 also D^3T */
+#define LGN_SO3_D2T  (LGN_SO3_A | LGN_SO3_B | LGN_SO3_C1 | LGN_SO3_C2 | \
+                      LGN_SO3_C3 | LGN_SO3_C4)
+#define LGN_SO3_D3T  (LGN_SO3_D2T | LGN_SO3_C5 | LGN_SO3_C6)
 
 /* Coefficients at one angle phi (doc/theory.md §1.1; those not requested are
  * left unset):
@@ -51,13 +59,24 @@
  *   d    = (1 - (phi/2)cot(phi/2))/phi^2
  *   c1   = (2 - 2cos phi - phi sin phi)/phi^4
  *   c2   = (3 sin phi - 2 phi - phi cos phi)/phi^5
- *   c3   = c1'(phi)/phi          c4 = c2'(phi)/phi                          */
+ *   c3   = c1'(phi)/phi          c4 = c2'(phi)/phi
+ *   c5   = c3'(phi)/phi          c6 = c4'(phi)/phi   (D^3T only)
+ * (c1 = a'/phi, c2 = b'/phi: each derivative of T with respect to x
+ * brings one such step, d/dx f(|x|) = (f'/phi) x^T.)                       */
 typedef struct {
-  sunrealtype sinc, cc, a, b, d, c1, c2, c3, c4;
+  sunrealtype sinc, cc, a, b, d, c1, c2, c3, c4, c5, c6;
 } lgnSO3_Coef;
 
 /* Fill the coefficients selected by the bit mask `need` at angle phi >= 0. */
 void lgnSO3_Coefs(sunrealtype phi, unsigned need, lgnSO3_Coef *c);
+
+/* The coefficients `need` at phi = |x| and p = expq(x) (as lgnSO3_ExpQuat)
+ * from one sine and cosine of phi/2: what one iterate of the exact
+ * kinematics needs (exp, T, Tdot, and for the iteration matrix their
+ * derivatives), bit for bit what lgnSO3_Coefs(lgnSO3_Norm(x), ..) and
+ * lgnSO3_ExpQuat give separately. p may be NULL. */
+void lgnSO3_CoefsExp(const sunrealtype x[3], unsigned need, lgnSO3_Coef *c,
+                     sunrealtype p[4]);
 
 /* Euclidean norm of a 3-vector. */
 sunrealtype lgnSO3_Norm(const sunrealtype x[3]);
@@ -86,6 +105,44 @@ void lgnSO3_TDotApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
 void lgnSO3_D2TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
                       const sunrealtype U[3], const sunrealtype W[3],
                       const sunrealtype v[3], sunrealtype y[3]);
+
+/* y = D^3T(x)[U,W,V] v (the third derivative of T(x), symmetric in U, W,
+ * V), coefficients LGN_SO3_D3T at |x|. */
+void lgnSO3_D3TApplyC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype U[3], const sunrealtype W[3],
+                      const sunrealtype V[3], const sunrealtype v[3],
+                      sunrealtype y[3]);
+
+/* The derivatives of the exact kinematics as 3x3 column-major blocks
+ * (leading dimension ld), linear in the direction u of x:
+ *   lgnSO3_DTMatrixC:  M u = DT(x)[u] v        = Tdot(x, u) v
+ *                      (coefficients A|B|C1|C2)
+ *   lgnSO3_D2TMatrixC: M u = D^2T(x)[u, w] v   (coefficients LGN_SO3_D2T)
+ *   lgnSO3_D3TMatrixC: M u = D^3T(x)[u, U, W] v (coefficients LGN_SO3_D3T)
+ * With add, M += instead of M =. */
+void lgnSO3_DTMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                      const sunrealtype v[3], sunrealtype *M, sunindextype ld,
+                      sunbooleantype add);
+void lgnSO3_D2TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype w[3], const sunrealtype v[3],
+                       sunrealtype *M, sunindextype ld, sunbooleantype add);
+void lgnSO3_D3TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
+                       const sunrealtype U[3], const sunrealtype W[3],
+                       const sunrealtype v[3], sunrealtype *M, sunindextype ld,
+                       sunbooleantype add);
+
+/* The rotation blocks of the exact kinematics' derivatives (lgn_tangent.c)
+ * at x with xd = sigma_dot, xdd = sigma_ddot of that rotation and T = T(x)
+ * (leading dimension ld for T, Tv and Ta):
+ *   Tv = T + DT[.] xd / gamma'
+ *   Ta = T + (gamma'/beta') (DT[.] xd + Tdot(x, xd))
+ *          + (DT[.] xdd + D^2T[., xd] xd) / beta'
+ * (DT[u] y = Tdot(x, u) y). Coefficients LGN_SO3_D2T at |x|. */
+void lgnSO3_ExactBlocks(const lgnSO3_Coef *c, const sunrealtype x[3],
+                        const sunrealtype xd[3], const sunrealtype xdd[3],
+                        sunrealtype gamma_p, sunrealtype beta_p,
+                        const sunrealtype *T, sunrealtype *Tv, sunrealtype *Ta,
+                        sunindextype ld);
 
 /* M = T(x) as a 3x3 column-major block with leading dimension ld. */
 void lgnSO3_TMatrixC(const lgnSO3_Coef *c, const sunrealtype x[3],
@@ -149,6 +206,11 @@ static inline void lgnSO3_QuatMultiply(const sunrealtype p1[4],
 
 /* p = (cos(phi/2), sin(phi/2) x/phi), the unit quaternion of exp(x~). */
 void lgnSO3_ExpQuat(const sunrealtype x[3], sunrealtype p[4]);
+
+/* p_out = p (x) e for a unit quaternion e (lgnSO3_CoefsExp's), renormalised
+ * as lgnSO3_QuatComposeExp does; p_out may alias p. */
+void lgnSO3_QuatComposeQuat(const sunrealtype p[4], const sunrealtype e[4],
+                            sunrealtype p_out[4]);
 
 /* p_out = p (x) expq(w), renormalised; p_out may alias p. */
 void lgnSO3_QuatComposeExp(const sunrealtype p[4], const sunrealtype w[3],
