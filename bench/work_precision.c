@@ -131,7 +131,7 @@ static const IdaSpec IDA[] = {
 #define RTOL0   1e-3 /* rtol_k = RTOL0 * 10^-k       */
 #define NRTOL   8
 #define TOL0    1e-3 /* error control: rtol = atol = TOL0 * 10^-(k/2) */
-#define NTOL    11   /* 1e-3 .. 1e-8 */
+#define NTOL    17   /* 1e-3 .. 1e-11 (BDF reaches 1e-6 near 1e-10) */
 
 static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
 #define NLEVELS 5
@@ -156,7 +156,8 @@ static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
 static const char *const CHAIN_ROWS[] = {
   "LGGalpha idx3 lie", "LGGalpha idx2 lie", "mod. LGGalpha idx3 lie", "mod. LGGalpha idx2 lie",
   "mod. LGNM idx2 lie", "LGGalpha idx3 lie mN", "mod. LGGalpha idx3 lie mN",
-  "mod. LGGalpha idx3 lie mN h2",
+  "mod. LGGalpha idx3 lie mN h2", "BDF4 idx3 lie mN EC", "BDF5 idx3 lie mN EC",
+  "BDF4 idx3 lie EC",
 };
 #define NCHAIN_ROWS ((int)(sizeof CHAIN_ROWS / sizeof CHAIN_ROWS[0]))
 /* Reference tip position at t = 1 (see ChainReference(), --chain-reference) */
@@ -297,7 +298,7 @@ static void ChainLignum(const LignumSpec *s, double h, double t_end, RigidRunRes
     if (s->adaptive) { /* h is the tolerance */
       opt.adaptive = 1;
       opt.rtol = opt.atol = h;
-      opt.h = 0.0;
+      opt.h = 1e-4; /* the first step tried */
     }
     rigid_run(sys, &opt, res);
     if (res->q != NULL) ida_chain_tip(CHAIN_N, res->q, tip);
@@ -968,6 +969,7 @@ static int QuickChecks(const LGNRefHeavyTop *ref)
       memset(&a, 0, sizeof a);
       a.problem = 1;
       a.spec = LignumRow(CHAIN_ROWS[k]);
+      if (LIGNUM[a.spec].adaptive) continue; /* (a tolerance, not a step) */
       a.setting = 1e-3;
       b = a;
       b.setting = 5e-4;
@@ -1056,7 +1058,8 @@ static const char *DetectSundials(int verbose)
 
 #define MAXCURVES (NLIGNUM + NIDA + NCHAIN_ROWS + NIDA)
 #define MAXRUNS                                                                  \
-  (NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL + NCHAIN_ROWS * CHAIN_NH + \
+  (NLIGNUM * (NH > NTOL ? NH : NTOL) + NIDA * NRTOL +                         \
+   NCHAIN_ROWS * (CHAIN_NH > NTOL ? CHAIN_NH : NTOL) +                         \
    NIDA * CHAIN_NRTOL)
 
 static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
@@ -1099,7 +1102,8 @@ static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
     const int ida = c >= NCHAIN_ROWS, spec = ida ? c - NCHAIN_ROWS : LignumRow(CHAIN_ROWS[c]);
     Curve *v = &cv[(*ncv)++];
     v->first = nruns;
-    v->n = quick ? 3 : ida ? CHAIN_NRTOL : CHAIN_NH;
+    const int tolsweep = !ida && LIGNUM[spec].adaptive;
+    v->n = quick ? 3 : ida ? CHAIN_NRTOL : tolsweep ? NTOL : CHAIN_NH;
     v->ida = ida;
     v->spec = spec;
     for (k = 0; k < v->n; k++) {
@@ -1108,7 +1112,9 @@ static int BuildRuns(int quick, Run *runs, Curve *cv, int *ncv, int *ncv_top)
       r->problem = 1;
       r->ida = ida;
       r->spec = spec;
-      r->setting = ida ? CHAIN_RTOL0 * pow(10.0, -k) : CHAIN_H0 / (double)(1L << k);
+      r->setting = ida        ? CHAIN_RTOL0 * pow(10.0, -k)
+                   : tolsweep ? TOL0 * pow(10.0, -0.5 * (quick ? 2 * k : k))
+                              : CHAIN_H0 / (double)(1L << k);
     }
   }
   return nruns;

@@ -91,6 +91,7 @@ static void StartHistory(LGNMem mem)
   mem->bdf_t[0] = mem->tn;
   memcpy(mem->bdf_q, lgnData(mem->q), (size_t)mem->nq * sizeof(sunrealtype));
   memcpy(mem->bdf_v, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
+  if (mem->m > 0) memcpy(mem->bdf_l, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
   mem->bdf_nhist        = 1;
   mem->bdf_order        = 1;
   mem->bdf_nsteps_order = 0;
@@ -101,7 +102,7 @@ static void StartHistory(LGNMem mem)
 /* The accepted state at t_n becomes the newest point. */
 static void PushHistory(LGNMem mem)
 {
-  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv;
+  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
   const int n = SUNMIN(mem->bdf_nhist, LGN_BDF_MAXHIST - 1);
   memmove(mem->bdf_t + 1, mem->bdf_t, (size_t)n * sizeof(sunrealtype));
   memmove(mem->bdf_q + nq, mem->bdf_q, (size_t)n * nq * sizeof(sunrealtype));
@@ -109,6 +110,10 @@ static void PushHistory(LGNMem mem)
   mem->bdf_t[0] = mem->tn;
   memcpy(mem->bdf_q, lgnData(mem->q), nq * sizeof(sunrealtype));
   memcpy(mem->bdf_v, lgnData(mem->v), nv * sizeof(sunrealtype));
+  if (m > 0) {
+    memmove(mem->bdf_l + m, mem->bdf_l, (size_t)n * m * sizeof(sunrealtype));
+    memcpy(mem->bdf_l, lgnData(mem->lambda), m * sizeof(sunrealtype));
+  }
   mem->bdf_nhist   = n + 1;
   mem->bdf_chart_t = NAN;
 }
@@ -132,6 +137,26 @@ static int ChartCoordinates(LGNMem mem)
 /* =============================================================================
  * One attempt
  * ===========================================================================*/
+
+/* lambda1 = the polynomial of degree kp through the last kp + 1
+ * multipliers at t_{n+1} (weights p from the predictor), or lambda_n. */
+static void PredictMultipliers(LGNMem mem, int kp, const sunrealtype *p)
+{
+  const sunindextype m = mem->m;
+  sunrealtype *l1 = m > 0 ? lgnData(mem->lambda1) : NULL;
+  sunindextype i;
+  int j;
+  if (m == 0) return;
+  if (kp == 0) {
+    memcpy(l1, lgnData(mem->lambda), (size_t)m * sizeof(sunrealtype));
+    return;
+  }
+  for (i = 0; i < m; i++) {
+    sunrealtype l = SUN_RCONST(0.0);
+    for (j = 0; j <= kp; j++) l += p[j] * mem->bdf_l[j * m + i];
+    l1[i] = l;
+  }
+}
 
 /* The coefficients of order k and size h, the predictor, and Newton. The
  * state at t_n is not touched. */
@@ -183,8 +208,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     }
   }
   memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
-  if (mem->m > 0)
-    memcpy(lgnData(mem->lambda1), lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+  PredictMultipliers(mem, nh > 1 ? SUNMIN(k, nh - 1) : 0, d);
 
   /* Newton on (x, lambda): d xdot / dx = c0, d vdot / dx ~ c0^2 (T aside) */
   c->h       = h;
@@ -202,8 +226,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   if (flag == LGN_CONV_FAILURE && used_old) {
     mem->nrestart++;
     memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
-    if (mem->m > 0)
-      memcpy(lgnData(mem->lambda1), lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+    PredictMultipliers(mem, nh > 1 ? SUNMIN(k, nh - 1) : 0, d);
     flag = lgnNewton(mem, c, SUNTRUE, &used_old);
   }
   if (flag != LGN_SUCCESS) mem->nfails++;

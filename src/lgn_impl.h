@@ -115,6 +115,7 @@ typedef struct LGNMemRec {
   sunrealtype bdf_t[LGN_BDF_MAXHIST];
   sunrealtype *bdf_q;       /* LGN_BDF_MAXHIST x nq: q_{n-j}               */
   sunrealtype *bdf_v;       /* LGN_BDF_MAXHIST x nv: v_{n-j}               */
+  sunrealtype *bdf_l;       /* LGN_BDF_MAXHIST x m: lambda_{n-j}           */
   sunrealtype *bdf_x;       /* LGN_BDF_MAXHIST x nv: log(q_n^{-1} q_{n-j}) */
   sunrealtype *bdf_rx, *bdf_rv; /* the known parts of xdot, vdot (nv each) */
   sunrealtype *bdf_xpred, *bdf_vpred; /* the predictor (nv each)           */

@@ -406,7 +406,7 @@ void lgnFreeWork(LGNMem mem)
   free(mem->Tm);
   mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
   free(mem->bdf_q);
-  mem->bdf_q = mem->bdf_v = mem->bdf_x = mem->bdf_rx = mem->bdf_rv = NULL;
+  mem->bdf_q = mem->bdf_v = mem->bdf_x = mem->bdf_rx = mem->bdf_rv = mem->bdf_l = NULL;
   mem->bdf_xpred = mem->bdf_vpred = mem->bdf_dd = NULL;
   mem->bdf_nhist = 0;
   BlocksFree(mem);
@@ -591,9 +591,10 @@ int lgnAllocWork(LGNMem mem)
  * (4 nv) and the divided differences ((LGN_BDF_MAXHIST + 1) nv). */
 int lgnAllocBDF(LGNMem mem)
 {
-  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, H = LGN_BDF_MAXHIST;
+  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
+  const size_t H = LGN_BDF_MAXHIST;
   if (mem->bdf_q != NULL) return LGN_SUCCESS;
-  mem->bdf_q = (sunrealtype *)calloc(H * nq + (3 * H + 5) * nv, sizeof(sunrealtype));
+  mem->bdf_q = (sunrealtype *)calloc(H * (nq + m) + (3 * H + 5) * nv, sizeof(sunrealtype));
   if (mem->bdf_q == NULL) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -605,6 +606,7 @@ int lgnAllocBDF(LGNMem mem)
   mem->bdf_xpred = mem->bdf_rv + nv;
   mem->bdf_vpred = mem->bdf_xpred + nv;
   mem->bdf_dd    = mem->bdf_vpred + nv;
+  mem->bdf_l     = mem->bdf_dd + (H + 1) * nv;
   mem->bdf_nhist = 0;
   return LGN_SUCCESS;
 }
