@@ -138,11 +138,18 @@ int main(int argc, char **argv)
   sys = chain_create(n, formulation, ctx);
   if (sys == NULL) return 1;
 
-  printf("chain of %d rods on %s, %s, %s kinematics, index %d, %s = %g, t in [0, %g]\n",
-         n, formulation == RB_SE3 ? "SE(3)^N" : "(R^3 x SO(3))^N",
-         opt.method == 1 ? "generalized-alpha" : "Newmark",
-         opt.kinematics == LGN_KINEMATICS_EXACT ? "exact" : "simplified",
-         opt.constraints, opt.adaptive ? "error control, h0" : "h", opt.h, opt.t_end);
+  if (opt.bdf_maxord > 0)
+    printf("chain of %d rods on %s, BDF of orders 1 ... %d, index %d, %s = %g, t in [0, %g]\n",
+           n, formulation == RB_SE3 ? "SE(3)^N" : "(R^3 x SO(3))^N", opt.bdf_maxord,
+           opt.constraints == LGN_CONSTR_INDEX3 ? 3 : 2,
+           opt.adaptive ? "error control, h0" : "h", opt.h, opt.t_end);
+  else
+    printf("chain of %d rods on %s, %s, %s kinematics, index %d, %s = %g, t in [0, %g]\n",
+           n, formulation == RB_SE3 ? "SE(3)^N" : "(R^3 x SO(3))^N",
+           opt.method == 1 ? "generalized-alpha" : "Newmark",
+           opt.kinematics == LGN_KINEMATICS_EXACT ? "exact" : "simplified",
+           opt.constraints == LGN_CONSTR_INDEX3 ? 3 : 2,
+           opt.adaptive ? "error control, h0" : "h", opt.h, opt.t_end);
   if (opt.adaptive)
     printf("error control: rtol = %g, atol = %g\n", opt.rtol > 0 ? opt.rtol : 1e-6,
            opt.atol > 0 ? opt.atol : 1e-6);
