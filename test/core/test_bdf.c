@@ -15,6 +15,9 @@
  *      tolerance) with at most a third of its steps; with maxord 5 the
  *      error at 1e-9 is 10 times below the one at 1e-6 (order 5 gains less
  *      at tight tolerances on this problem: the fitted exponent is 0.5);
+ *  (f) index 2 (maxord 4, tol 1e-8) reaches t = 1 with an error below 1e-3;
+ *  (g) events on the dense output: the first time the centre of mass is
+ *      5 cm below the fixed point agrees at tol 1e-8 and 1e-10 to 1e-5 s;
  *  (d) on R^n the step is the textbook BDF: a linear oscillator
  *      x'' = -w^2 x on R^1 with fixed step and order k, started from the
  *      exact history, agrees with the classical constant-coefficient BDF
@@ -80,6 +83,14 @@ static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
   return LGNJoints_Curvature(((Top *)ud)->joints, t, q, v, z) ? -1 : 0;
+}
+
+/* (g) the height of the centre of mass against -0.05 m */
+static int CentreHeight(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *g, void *ud)
+{
+  (void)t; (void)v; (void)ud;
+  g[0] = NV_Ith_S(q, 2) + 0.05;
+  return 0;
 }
 
 /* A heavy top run. */
@@ -363,6 +374,44 @@ int main(void)
               err_nm, nst_nm);
       }
     }
+  }
+
+  /* (f) index 2 and (g) events on the dense output, maxord 4 */
+  {
+    double t_root[2];
+    for (i = 0; i < 2; i++) {
+      Run r;
+      sunrealtype t = 0.0;
+      long int nst;
+      int flag = RunCreate(&r, ctx);
+      if (!flag) flag = LGNSetBDF(r.mem, 4);
+      if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+      if (!flag) flag = LGNSStolerances(r.mem, i == 0 ? 1e-8 : 1e-10, i == 0 ? 1e-8 : 1e-10);
+      if (!flag) flag = LGNRootInit(r.mem, 1, CentreHeight);
+      if (!flag) flag = LGNSolve(r.mem, 1.0, &t, r.q, r.v, LGN_NORMAL);
+      t_root[i] = t;
+      CHECK(flag == LGN_ROOT_RETURN, "(g) event: flag %d", flag);
+      RunFree(&r);
+      /* (f) index 2 to t = 1 */
+      flag = RunCreate(&r, ctx);
+      if (!flag) flag = LGNSetBDF(r.mem, 4);
+      if (!flag) flag = LGNSetConstraintIndex(r.mem, LGN_CONSTR_INDEX2);
+      if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+      if (!flag) flag = LGNSStolerances(r.mem, 1e-8, 1e-8);
+      if (!flag) flag = LGNSetStopTime(r.mem, 1.0);
+      if (!flag) flag = LGNSolve(r.mem, 1.0, &t, r.q, r.v, LGN_NORMAL);
+      LGNGetNumSteps(r.mem, &nst);
+      if (i == 0) {
+        const double e = ComError(&r, &ref1);
+        printf("(f) index 2, tol 1e-8: error %.3e in %ld steps (flag %d)\n", e, nst, flag);
+        CHECK(flag == LGN_TSTOP_RETURN && e < 1e-3, "index 2: flag %d, error %.3e", flag, e);
+      }
+      RunFree(&r);
+    }
+    printf("(g) the centre of mass first at z = -0.05: t = %.10f (tol 1e-8), %.10f (1e-10)\n",
+           t_root[0], t_root[1]);
+    CHECK(t_root[0] > 0.0 && fabs(t_root[0] - t_root[1]) < 1e-5,
+          "(g) event times %.10f %.10f", t_root[0], t_root[1]);
   }
 
   /* (d) R^1: the textbook recursion */
