@@ -30,7 +30,6 @@
 #include <lignum/lignum_bodies.h> /* rigid bodies: M, g, K_t, C_t, energy */
 #include <lignum/lignum_joints.h> /* joints: Phi, B, curvature, K_t       */
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 /* ---- Step 5: the model callbacks --------------------------------------------
@@ -180,7 +179,7 @@ int main(void)
   /* Step 8: the linear solver for the (nv + m) x (nv + m) iteration matrix */
   tmpl = N_VNew_Serial(nv + m, ctx);
   A    = SUNDenseMatrix(nv + m, nv + m, ctx);
-  LS   = SUNLinSol_Dense(tmpl, A, ctx);
+  LS   = LGNLinSol_Dense(tmpl, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
 
   /* Step 9: the method, mod. LGGalpha at index 3, with error control */

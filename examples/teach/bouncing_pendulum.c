@@ -52,7 +52,6 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_joints.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #define MASS  1.0
@@ -219,7 +218,7 @@ int main(int argc, char **argv)
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   tmpl = N_VNew_Serial(6 + m, ctx);
   A    = SUNDenseMatrix(6 + m, 6 + m, ctx);
-  LS   = SUNLinSol_Dense(tmpl, A, ctx);
+  LS   = LGNLinSol_Dense(tmpl, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, tol, tol);

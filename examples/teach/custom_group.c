@@ -34,7 +34,6 @@
 
 #include <lignum/lignum.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 /* ---------------------------------------------------------------------------
@@ -234,7 +233,7 @@ int main(void)
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   y = N_VNew_Serial(G->nv + 2, ctx);
   A = SUNDenseMatrix(G->nv + 2, G->nv + 2, ctx);
-  LS = SUNLinSol_Dense(y, A, ctx);
+  LS = LGNLinSol_Dense(y, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = LGNSetGenAlpha(mem, 0.9);
   if (!flag) flag = LGNSetStepSize(mem, h);

@@ -29,7 +29,6 @@
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 /* The model: the body set and the joint set, passed as user_data. */
@@ -147,7 +146,7 @@ int main(void)
   /* dense linear solver on the (nv + m) x (nv + m) iteration matrix */
   y = N_VNew_Serial(G->nv + m, ctx);
   A = SUNDenseMatrix(G->nv + m, G->nv + m, ctx);
-  LS = SUNLinSol_Dense(y, A, ctx);
+  LS = LGNLinSol_Dense(y, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
 
   /* generalized-alpha with error control: LGNSetStepSize is the first

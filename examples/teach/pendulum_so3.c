@@ -24,7 +24,6 @@
 
 #include <lignum/lignum.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 /* Model data: mass, centre of mass, inertia about the pivot, gravity. */
@@ -117,7 +116,7 @@ int main(void)
 
   /* 4. linear solver: dense, (nv + m) x (nv + m) with m = 0 */
   A = SUNDenseMatrix(G->nv, G->nv, ctx);
-  LS = SUNLinSol_Dense(v, A, ctx);
+  LS = LGNLinSol_Dense(v, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
 
   /* 5. method: generalized-alpha, fixed step; stiffness and damping by

@@ -31,7 +31,6 @@
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 typedef struct {
@@ -171,7 +170,7 @@ int main(void)
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   y = N_VNew_Serial(n, ctx);
   A = SUNDenseMatrix(n, n, ctx);
-  LS = SUNLinSol_Dense(y, A, ctx);
+  LS = LGNLinSol_Dense(y, A, ctx);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = LGNSetGenAlpha(mem, 0.9);
   if (!flag) flag = LGNSetStepSize(mem, h);

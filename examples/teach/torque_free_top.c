@@ -31,7 +31,6 @@
 
 #include <lignum/lignum.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 static const double J[3]      = {0.234375, 0.234375, 0.46875};
@@ -98,7 +97,7 @@ static int Run(int kinematics, double h, double t_end, double *err_rot,
   q = N_VNew_Serial(4, ctx);
   v = N_VNew_Serial(3, ctx);
   A = SUNDenseMatrix(3, 3, ctx);
-  LS = SUNLinSol_Dense(v, A, ctx);
+  LS = LGNLinSol_Dense(v, A, ctx);
   mem = LGNCreate(ctx);
   LGNQuaternionFromRotationVector(PSI0, N_VGetArrayPointer(q));
   memcpy(N_VGetArrayPointer(v), OMEGA0, sizeof OMEGA0);

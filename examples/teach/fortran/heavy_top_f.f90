@@ -160,7 +160,7 @@ program heavy_top_f
   ! dense linear solver on the (nv + m) x (nv + m) iteration matrix
   y = N_VNew_Serial(6_c_int64_t + m, ctx)
   A = SUNDenseMatrix(6_c_int64_t + m, 6_c_int64_t + m, ctx)
-  LS = SUNLinSol_Dense(y, A, ctx)
+  LS = LGNLinSol_Dense(y, A, ctx)
   if (flag == LGN_SUCCESS) flag = LGNSetLinearSolver(mem, LS, A)
 
   ! generalized-alpha with error control (the step size is the first tried)

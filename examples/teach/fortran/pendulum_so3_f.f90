@@ -129,7 +129,7 @@ program pendulum_so3_f
 
   ! dense linear solver, nv x nv (no constraints)
   A = SUNDenseMatrix(3_c_int64_t, 3_c_int64_t, ctx)
-  LS = SUNLinSol_Dense(v, A, ctx)
+  LS = LGNLinSol_Dense(v, A, ctx)
   if (flag == LGN_SUCCESS) flag = LGNSetLinearSolver(mem, LS, A)
 
   ! generalized-alpha, fixed step
