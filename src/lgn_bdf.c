@@ -125,6 +125,7 @@ static int ChartCoordinates(LGNMem mem)
   const sunindextype nq = mem->nq, nv = mem->nv;
   int j, ret;
   if (mem->bdf_chart_t == mem->tn) return LGN_SUCCESS;
+  mem->dense_valid = SUNFALSE; /* the dense output reads the old chart */
   memset(mem->bdf_x, 0, (size_t)nv * sizeof(sunrealtype));
   for (j = 1; j < mem->bdf_nhist; j++) {
     ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, mem->bdf_x + j * nv);

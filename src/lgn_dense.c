@@ -15,11 +15,62 @@
  * the interpolated solution keeps the order of the method. v and vdot come
  * from its derivatives, with v = T(s) s' / h and
  * vdot = Tdot(s, s'/h) s'/h + T(s) s'' / h^2 (vdot is first order).
+ * The BDF family interpolates with its own polynomials instead, of the
+ * order of its last step (BDFDenseOutput).
  * ---------------------------------------------------------------------------*/
 
 #include <string.h>
 
 #include "lgn_impl.h"
+
+/* The BDF family: the interpolating polynomials of the last step's order
+ * k through the newest k + 1 points, x in the chart of the step's start
+ * (x_{n+1} = sigma, x_n = 0, x_{n-j} = log(q_n^{-1} q_{n-j})) and v:
+ *   q(t) = q_n o exp(P_x(t)),  v(t) = P_v(t),  vdot(t) = P_v'(t),
+ * of the method's order (doc/theory.md §8). */
+static int BDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
+{
+  LGNGroup G = mem->G;
+  const sunindextype nv = mem->nv;
+  const int kk = SUNMIN(mem->bdf_last_order, mem->bdf_nhist - 1);
+  sunrealtype tau[LGN_BDF_MAXHIST], l[LGN_BDF_MAXHIST], dl[LGN_BDF_MAXHIST];
+  sunrealtype *x = mem->dense_work;
+  sunindextype i;
+  int j, m, r, ret;
+
+  tau[0] = mem->tn;
+  for (j = 1; j <= kk; j++) tau[j] = mem->bdf_t[j];
+  /* l_j(t) and l_j'(t) = sum_{m != j} 1/(tau_j - tau_m) prod_{r != j, m} (t - tau_r)/(tau_j - tau_r) */
+  for (j = 0; j <= kk; j++) {
+    l[j]  = SUN_RCONST(1.0);
+    dl[j] = SUN_RCONST(0.0);
+    for (m = 0; m <= kk; m++) {
+      sunrealtype p;
+      if (m == j) continue;
+      l[j] *= (t - tau[m]) / (tau[j] - tau[m]);
+      p = SUN_RCONST(1.0) / (tau[j] - tau[m]);
+      for (r = 0; r <= kk; r++)
+        if (r != j && r != m) p *= (t - tau[r]) / (tau[j] - tau[r]);
+      dl[j] += p;
+    }
+  }
+  if (k == 0) {
+    for (i = 0; i < nv; i++) {
+      sunrealtype s = l[0] * mem->sigma[i];
+      for (j = 2; j <= kk; j++) s += l[j] * mem->bdf_x[(j - 1) * nv + i];
+      x[i] = s; /* (x_n = 0: the j = 1 term vanishes) */
+    }
+    ret = G->ops.compose_exp(G, lgnData(mem->q1), x, out);
+    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");
+    return LGN_SUCCESS;
+  }
+  for (i = 0; i < nv; i++) {
+    sunrealtype s = SUN_RCONST(0.0);
+    for (j = 0; j <= kk; j++) s += (k == 1 ? l[j] : dl[j]) * mem->bdf_v[j * nv + i];
+    out[i] = s;
+  }
+  return LGN_SUCCESS;
+}
 
 /* k = 0: q (nq), 1: v (nv), 2: vdot (nv) at t, tprev <= t <= tn. */
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
@@ -43,6 +94,7 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
     memcpy(out, lgnData(x), (size_t)(k == 0 ? mem->nq : nv) * sizeof(sunrealtype));
     return LGN_SUCCESS;
   }
+  if (mem->family == LGN_FAMILY_BDF && mem->bdf_nhist >= 2) return BDFDenseOutput(mem, t, k, out);
   /* m1 = h T(s_1)^{-1} v_{n+1} */
   ret = G->ops.tangent_inverse_apply(G, s1, lgnData(mem->v), m1);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");

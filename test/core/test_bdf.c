@@ -18,6 +18,9 @@
  *  (f) index 2 (maxord 4, tol 1e-8) reaches t = 1 with an error below 1e-3;
  *  (g) events on the dense output: the first time the centre of mass is
  *      5 cm below the fixed point agrees at tol 1e-8 and 1e-10 to 1e-5 s;
+ *  (h) output between steps (the BDF interpolating polynomials): the
+ *      error at interpolated output times is within 3 times the error
+ *      when the steps land on them (maxord 4, tol 1e-10);
  *  (d) on R^n the step is the textbook BDF: a linear oscillator
  *      x'' = -w^2 x on R^1 with fixed step and order k, started from the
  *      exact history, agrees with the classical constant-coefficient BDF
@@ -412,6 +415,40 @@ int main(void)
            t_root[0], t_root[1]);
     CHECK(t_root[0] > 0.0 && fabs(t_root[0] - t_root[1]) < 1e-5,
           "(g) event times %.10f %.10f", t_root[0], t_root[1]);
+  }
+
+  /* (h) output between steps: LGN_NORMAL interpolates at t_k, against
+   * landing on t_k (LGNSetStopTime), maxord 4, tol 1e-10 */
+  {
+    const double tk[6] = {0.05, 0.1, 0.15, 0.2, 0.25, 0.3};
+    LGNRefHeavyTop refk[6];
+    double e_interp = 0.0, e_land = 0.0;
+    int mode;
+    CHECK(lgnref_heavy_top(tk, 6, refk, LGNREF_FEHLBERG_8) == 0, "reference at t_k");
+    for (mode = 0; mode < 2; mode++) {
+      Run r;
+      sunrealtype t;
+      int flag = RunCreate(&r, ctx);
+      if (!flag) flag = LGNSetBDF(r.mem, 4);
+      if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+      if (!flag) flag = LGNSStolerances(r.mem, 1e-10, 1e-10);
+      for (i = 0; i < 6 && !flag; i++) {
+        if (mode == 1) flag = LGNSetStopTime(r.mem, tk[i]);
+        if (!flag) flag = LGNSolve(r.mem, tk[i], &t, r.q, r.v, LGN_NORMAL);
+        if (flag == LGN_TSTOP_RETURN) flag = LGN_SUCCESS;
+        if (!flag) {
+          const double e = ComError(&r, &refk[i]);
+          if (mode == 0) e_interp = fmax(e_interp, e);
+          else e_land = fmax(e_land, e);
+        }
+      }
+      CHECK(flag == LGN_SUCCESS, "(h) mode %d: flag %d", mode, flag);
+      RunFree(&r);
+    }
+    printf("(h) max error at t = 0.05 ... 0.3: interpolated %.3e, landed %.3e\n", e_interp,
+           e_land);
+    CHECK(e_interp <= 3.0 * e_land, "(h) interpolated %.3e against landed %.3e", e_interp,
+          e_land);
   }
 
   /* (d) R^1: the textbook recursion */
