@@ -15,7 +15,7 @@
  *   3. mem = LGNCreate(ctx);
  *   4. LGNSetGroup, LGNSetMassFn, LGNSetForceFn, LGNSetConstraints, ...
  *   5. LGNInit(mem, t0, q0, v0);
- *   6. A = SUNDenseMatrix(nv+m, nv+m, ctx); LS = SUNLinSol_Dense(tmp, A, ctx);
+ *   6. A = SUNDenseMatrix(nv+m, nv+m, ctx); LS = LGNLinSol_Dense(tmp, A, ctx);
  *      LGNSetLinearSolver(mem, LS, A);
  *   7. LGNSetGenAlpha(mem, 0.9); LGNSetStepSize(mem, 1e-3);
  *   8. loop: LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
@@ -229,8 +229,10 @@ LGN_EXPORT int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0,
  *  @param tret    on return, the time reached
  *  @param q       on return, the configuration at tret (length nq)
  *  @param v       on return, the velocity at tret (length nv)
- *  @param itask   LGN_NORMAL: steps of the fixed size h until tout, the last
- *                 one shortened to land on tout; LGN_ONE_STEP: one step
+ *  @param itask   LGN_NORMAL: steps until tout (fixed steps: of size h, the
+ *                 last one shortened to land on tout; error control: past
+ *                 tout, which is then interpolated, unless a stop time is
+ *                 set); LGN_ONE_STEP: one step
  *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
  *          last accepted state (tret, q, v are that state), so it can continue
  *          after the cause has been fixed (e.g. a smaller step size). */
@@ -314,7 +316,9 @@ LGN_EXPORT int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
  * Method and solver settings (zero restores a default where stated)
  * ===========================================================================*/
 
-/** Fixed step size h > 0 (required). */
+/** Fixed step size h > 0: required with LGN_STEP_FIXED (the default step
+ *  control); with error control not used (LGNSetInitStep sets the first
+ *  step tried). */
 LGN_EXPORT int LGNSetStepSize(void *lgn_mem, sunrealtype h);
 
 /** Newmark method (alpha_m = alpha_f = 0) with parameters beta, gamma.

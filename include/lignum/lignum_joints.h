@@ -203,6 +203,9 @@ LGN_EXPORT int LGNJoints_AddPrismaticFrames(LGNJoints J, int a,
  * with n = axis_a, r = ref_a (its part perpendicular to n) and c = ref_b,
  * all normalised: Phi = sin(theta - f(t)) when c is perpendicular to the
  * axis. Use it with a revolute joint about the same axis (a motor).
+ * Phi also vanishes at theta = f + pi: start within a quarter turn of
+ * f(t0) (Newton then stays on theta = f as long as the steps do not turn
+ * the body by a quarter turn, which error control ensures).
  * @param J      the joint set
  * @param a, b   the bodies (0-based leaves of G, or LGN_GROUND), a != b
  * @param axis_a the axis in body a, nonzero
