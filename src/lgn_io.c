@@ -986,6 +986,17 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
     fprintf(outfile, fmt_r, "Current step size", (double)mem->hnext);
     fprintf(outfile, fmt_r, "Last error norm", (double)mem->err_norm);
   }
+  if (mem->family == LGN_FAMILY_BDF) {
+    int k;
+    fprintf(outfile, fmt_l, "BDF maximum order", (long int)mem->bdf_maxord);
+    fprintf(outfile, fmt_l, "BDF last order", (long int)mem->bdf_last_order);
+    fprintf(outfile, fmt_l, "BDF current order", (long int)mem->bdf_order);
+    for (k = 1; k <= LGN_BDF_MAXORD; k++) {
+      char label[32];
+      snprintf(label, sizeof label, "BDF steps at order %d", k);
+      fprintf(outfile, fmt_l, label, mem->bdf_nord[k]);
+    }
+  }
   if (mem->nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->nge);
   if (mem->sp != NULL) {
     fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);

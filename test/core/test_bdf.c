@@ -469,6 +469,28 @@ int main(void)
     CHECK(LGNSetBDF(r.mem, 6) == LGN_ILL_INPUT, "maxord 6 refused");
     CHECK(LGNSetBDF(NULL, 3) == LGN_MEM_NULL, "NULL memory");
     RunFree(&r);
+    /* the statistics name the orders */
+    {
+      FILE *fp = tmpfile();
+      char text[4096];
+      size_t n = 0;
+      sunrealtype t;
+      RunCreate(&r, ctx);
+      LGNSetBDF(r.mem, 4);
+      LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+      LGNSStolerances(r.mem, 1e-6, 1e-6);
+      LGNSolve(r.mem, 0.1, &t, r.q, r.v, LGN_NORMAL);
+      if (fp != NULL) {
+        LGNPrintAllStats(r.mem, fp, SUN_OUTPUTFORMAT_TABLE);
+        rewind(fp);
+        n = fread(text, 1, sizeof text - 1, fp);
+        fclose(fp);
+      }
+      text[n] = '\0';
+      CHECK(strstr(text, "BDF steps at order 4") != NULL && strstr(text, "BDF last order") != NULL,
+            "LGNPrintAllStats shows the BDF orders");
+      RunFree(&r);
+    }
     e1 = AdaptiveRun(ctx, 0, LGN_NEWTON_FULL, 1e-6, &ref1, &n1, NULL);
     RunCreate(&r, ctx);
     LGNSetBDF(r.mem, 4);
