@@ -272,6 +272,27 @@ module flignum_mod
       import :: c_ptr
       type(c_ptr), value :: G
     end subroutine LGNGroupFreeContentFn
+
+    !> Preconditioner setup (LGNSetPreconditioner): prepare P ~ the scaled
+    !! iteration matrix [[cM M + cC C_t + cK K_t, B^T], [B, 0]] at (t, q, v).
+    integer(c_int) function LGNPrecSetupFn(t, q, v, cM, cC, cK, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v
+      real(c_double), value :: cM, cC, cK
+      type(c_ptr), value :: user_data
+    end function LGNPrecSetupFn
+
+    !> Preconditioner solve: z ~ P^{-1} r (N_Vectors of length nv + m),
+    !! delta: the Krylov solver's tolerance for this solve.
+    integer(c_int) function LGNPrecSolveFn(t, q, v, r, z, cM, cC, cK, delta, &
+        user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, v, r, z
+      real(c_double), value :: cM, cC, cK, delta
+      type(c_ptr), value :: user_data
+    end function LGNPrecSolveFn
   end interface
 
   ! ===========================================================================
@@ -1054,6 +1075,69 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_long), intent(out) :: flag
     end function LGNGetLastLinFlag
+
+    !> Attach a user preconditioner for a matrix-free Krylov solver
+    !! (c_funloc of LGNPrecSetupFn / LGNPrecSolveFn procedures; c_null_funptr
+    !! for both: none).
+    integer(c_int) function LGNSetPreconditioner(lgn_mem, psetup, psolve) &
+        bind(c, name="LGNSetPreconditioner")
+      import :: c_int, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      type(c_funptr), value :: psetup, psolve
+    end function LGNSetPreconditioner
+
+    !> Lignum's block-Jacobi preconditioner: nblocks blocks of bodies;
+    !! body_start (nblocks + 1 body indices from 0) or c_null_ptr for equal
+    !! blocks (pass c_loc of an integer(c_long) array).
+    integer(c_int) function LGNSetBlockPreconditioner(lgn_mem, nblocks, body_start) &
+        bind(c, name="LGNSetBlockPreconditioner")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: nblocks
+      type(c_ptr), value :: body_start
+    end function LGNSetBlockPreconditioner
+
+    !> The linear tolerance as a fraction of Newton's (0: default 0.05).
+    integer(c_int) function LGNSetEpsLin(lgn_mem, eplifac) bind(c, name="LGNSetEpsLin")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      real(c_double), value :: eplifac
+    end function LGNSetEpsLin
+
+    !> Krylov iterations.
+    integer(c_int) function LGNGetNumLinIters(lgn_mem, nliters) bind(c, name="LGNGetNumLinIters")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nliters
+    end function LGNGetNumLinIters
+
+    !> Preconditioner setups.
+    integer(c_int) function LGNGetNumPrecEvals(lgn_mem, npevals) bind(c, name="LGNGetNumPrecEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: npevals
+    end function LGNGetNumPrecEvals
+
+    !> Preconditioner solves.
+    integer(c_int) function LGNGetNumPrecSolves(lgn_mem, npsolves) bind(c, name="LGNGetNumPrecSolves")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: npsolves
+    end function LGNGetNumPrecSolves
+
+    !> Products with the iteration matrix (ATimes).
+    integer(c_int) function LGNGetNumJtimesEvals(lgn_mem, njvevals) bind(c, name="LGNGetNumJtimesEvals")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: njvevals
+    end function LGNGetNumJtimesEvals
+
+    !> Linear solves short of their tolerance.
+    integer(c_int) function LGNGetNumLinConvFails(lgn_mem, nlcfails) bind(c, name="LGNGetNumLinConvFails")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nlcfails
+    end function LGNGetNumLinConvFails
 
     !> Print all counters to a C stream (FLGNStdout(), FLGNFopen(...)); fmt is
     !! SUN_OUTPUTFORMAT_TABLE or SUN_OUTPUTFORMAT_CSV (flignum_sundials_mod).

@@ -48,6 +48,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->epcon        = LGN_EPCON_DEFAULT;
   mem->maxnef       = LGN_MAXNEF_DEFAULT;
   mem->maxncf       = LGN_MAXNCF_DEFAULT;
+  mem->eplifac      = LGN_EPLIFAC_DEFAULT;
   lgnErrSinkInit(&mem->err);
   return mem;
 }
@@ -77,6 +78,7 @@ static void ResetCounters(LGNMem mem)
   mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
   mem->nklu_refactor = mem->nklu_solve = 0;
   mem->nklu_newpattern = mem->nklu_nocopy = 0;
+  mem->nli = mem->npe = mem->nps = mem->njtimes = mem->nlcf = 0;
   mem->lambda_noise = mem->lambda_noise_h = SUN_RCONST(0.0);
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;
@@ -242,7 +244,7 @@ static int CheckReadyToSolve(LGNMem mem)
       return LGN_ILL_INPUT;
     }
   }
-  if (mem->LS == NULL || mem->A == NULL) {
+  if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;
   }

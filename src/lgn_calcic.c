@@ -32,7 +32,7 @@ static int PrepareModel(LGNMem mem, const char *func)
                     "The Lie group lacks compose_exp.");
     return LGN_ILL_INPUT;
   }
-  if (mem->LS == NULL || mem->A == NULL) {
+  if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     lgnProcessError(mem, LGN_NO_LINSOL, __LINE__, func, __FILE__,
                     "No linear solver: call LGNSetLinearSolver first.");
     return LGN_NO_LINSOL;

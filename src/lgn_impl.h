@@ -197,6 +197,29 @@ typedef struct LGNMemRec {
   sunbooleantype ls_restart; /* the next setup starts clean (lgn_ls.c): the
                                 last one failed, or A's pattern was dropped */
 
+  /* ---- Krylov solvers (lgn_krylov.c; allocated by lgn_mem.c) ---- */
+  sunbooleantype krylov;    /* LS is a matrix-free iterative solver: A is
+                               Lignum's own CSC matrix (own_A)             */
+  sunbooleantype own_A;     /* A created by Lignum (lgnAllocKrylov)        */
+  int kry_pretype;          /* LS's preconditioning side (PREC_*; -1: unknown) */
+  LGNPrecSetupFn psetup;    /* LGNSetPreconditioner (NULL: none)           */
+  LGNPrecSolveFn psolve;
+  int bp_nblocks;           /* LGNSetBlockPreconditioner (0: off)          */
+  long int *bp_bodies;      /* its partition of the bodies (NULL: equal)   */
+  struct LGNBlockPrecRec *bp; /* the block preconditioner (lgn_blockprec.c) */
+  N_Vector kry_w;           /* the solve's weights (nv + m)                */
+  N_Vector kry_tmp;         /* scratch (nv + m)                            */
+  sunrealtype eplifac;      /* LGNSetEpsLin: linear / Newton tolerance     */
+  sunbooleantype kry_newton;/* the next solve is Newton's: kry_w holds its
+                               correction weights (lgnKrylovNewtonWeights) */
+  sunrealtype asm_t;        /* the time and scalings of the last assembly  */
+  sunrealtype asm_cM, asm_cC, asm_cK; /* (handed to LGNPrecSetupFn)        */
+  long int nli;             /* Krylov iterations                           */
+  long int npe;             /* preconditioner setups                       */
+  long int nps;             /* preconditioner solves                       */
+  long int njtimes;         /* products with the iteration matrix          */
+  long int nlcf;            /* linear solves that missed their tolerance   */
+
   /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
   sunindextype *diag_red;   /* redundant constraints (m; work space)       */
   sunindextype diag_nred;   /* their number (0: none found)                */
@@ -354,6 +377,8 @@ void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
 long int lgnIterationMatrixNnz(LGNMem mem);
 void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw);
 
+int lgnAllocKrylov(LGNMem mem);
+void lgnFreeKrylov(LGNMem mem, sunbooleantype settings);
 int lgnAllocRoots(LGNMem mem, int nrtfn);
 int lgnAllocRootVectors(LGNMem mem);
 void lgnFreeRoots(LGNMem mem);
@@ -460,6 +485,16 @@ void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len);
 int lgnLsCheck(LGNMem mem);
 int lgnLsSetup(LGNMem mem);
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
+
+/* ---- lgn_krylov.c: Krylov solvers, preconditioners ---------------------- */
+
+#define LGN_EPLIFAC_DEFAULT SUN_RCONST(0.05) /* as IDA's epslin factor */
+
+int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS);
+int lgnKrylovCheck(LGNMem mem);
+int lgnKrylovSetup(LGNMem mem);
+int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b);
+void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c);
 
 /* ---- lgn_ic.c: consistent initial values -------------------------------- */
 

@@ -980,6 +980,15 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
   fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
   fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
+  if (mem->krylov) { /* a matrix-free Krylov solver (lgn_krylov.c) */
+    fprintf(outfile, fmt_l, "Krylov iterations", mem->nli);
+    fprintf(outfile, fmt_r, "Krylov iters per Newton iter",
+            mem->nni > 0 ? (double)mem->nli / (double)mem->nni : 0.0);
+    fprintf(outfile, fmt_l, "Linear convergence fails", mem->nlcf);
+    fprintf(outfile, fmt_l, "Preconditioner setups", mem->npe);
+    fprintf(outfile, fmt_l, "Preconditioner solves", mem->nps);
+    fprintf(outfile, fmt_l, "Jac-times evals", mem->njtimes);
+  }
   if (mem->step_control == LGN_STEP_ADAPTIVE) {
     fprintf(outfile, fmt_l, "Error test fails", mem->netf);
     fprintf(outfile, fmt_r, "Initial step size", (double)mem->h0_actual);

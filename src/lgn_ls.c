@@ -39,15 +39,29 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
     LGN_ERROR(mem, LGN_ILL_INPUT, "LS = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  if (A == NULL) {
-    LGN_ERROR(mem, LGN_ILL_INPUT,
-              "A = NULL illegal: Lignum needs a matrix-based (direct) solver.");
-    return LGN_ILL_INPUT;
+  if (SUNLinSolGetType(LS) == SUNLINEARSOLVER_ITERATIVE) {
+    if (A != NULL) {
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "A matrix-free iterative solver takes A = NULL: Lignum applies "
+                "the iteration matrix itself (its own assembled copy).");
+      return LGN_ILL_INPUT;
+    }
+    return lgnKrylovAttach(mem, LS);
   }
   if (SUNLinSolGetType(LS) != SUNLINEARSOLVER_DIRECT) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "The linear solver is not a direct (matrix-based) solver.");
+              "The linear solver is neither direct (matrix-based) nor "
+              "matrix-free iterative (SUNLINEARSOLVER_ITERATIVE: SPGMR, "
+              "SPFGMR, SPBCGS, SPTFQMR); matrix-embedded and matrix-based "
+              "iterative solvers are not supported.");
     return LGN_LS_MISMATCH;
+  }
+  if (A == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "A = NULL illegal with a direct linear solver: pass the "
+              "SUNDenseMatrix or SUNSparseMatrix it factors (only matrix-free "
+              "iterative solvers such as SUNLinSol_SPGMR take A = NULL).");
+    return LGN_ILL_INPUT;
   }
   if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
 #if defined(LGN_HAVE_KLU)
@@ -72,6 +86,8 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
               "SUNLinSol_KLU needs a SUNSparseMatrix, not a dense one.");
     return LGN_LS_MISMATCH;
   }
+  if (mem->krylov) lgnFreeKrylov(mem, SUNFALSE); /* Lignum's A, vectors */
+  mem->krylov = SUNFALSE;
   mem->LS = LS;
   mem->A  = A;
   /* the model matrices are reallocated for A's type at the next solve; the
@@ -237,10 +253,16 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
 int lgnLsCheck(LGNMem mem)
 {
   const sunindextype n = mem->nv + mem->m;
-  const sunbooleantype sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
-  const sunindextype rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
-  const sunindextype cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
+  sunbooleantype sparse;
+  sunindextype rows, cols;
   int ret;
+  if (mem->krylov) { /* Lignum's own A, made for the sizes */
+    ret = lgnKrylovCheck(mem);
+    if (ret != LGN_SUCCESS) return ret;
+  }
+  sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
+  cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
   if (rows != n || cols != n) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The matrix A is %lld x %lld but the problem needs %lld x %lld "
@@ -399,6 +421,7 @@ int lgnLsSetup(LGNMem mem)
 {
   int ret;
   mem->nlsetup++;
+  if (mem->krylov) return lgnKrylovSetup(mem);
   if (OwnRefactor(mem)) return LGN_SUCCESS;
   mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
   mem->klu_nsolve = 0;
@@ -425,6 +448,10 @@ int lgnLsSetup(LGNMem mem)
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
   int ret;
+  if (mem->krylov) {
+    mem->nlsolve++;
+    return lgnKrylovSolve(mem, x, b);
+  }
   if (!mem->klu_valid) CopyKLUFactors(mem);
   mem->klu_nsolve++;
   mem->nlsolve++;

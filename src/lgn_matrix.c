@@ -195,6 +195,10 @@ int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
   int flag = mem->sparse ? lgnAssembleSparse(mem, t, terms)
                          : AssembleDense(mem, t, terms);
   if (flag != LGN_SUCCESS) return flag;
+  mem->asm_t  = t; /* for a preconditioner's setup (lgn_krylov.c) */
+  mem->asm_cM = terms->cM;
+  mem->asm_cC = terms->cC;
+  mem->asm_cK = terms->cK;
   if (mem->sparse) {
     data = SUNSparseMatrix_Data(mem->A);
     len  = SUNSparseMatrix_IndexPointers(mem->A)[SUNSparseMatrix_NP(mem->A)];

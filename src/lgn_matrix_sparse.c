@@ -207,7 +207,8 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   sp->npattern++;
   if (sp->analysed) {
 #if defined(LGN_HAVE_KLU)
-    SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
+    if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) /* not a Krylov one */
+      SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
 #endif
     sp->analysed = SUNFALSE;
   }

@@ -24,6 +24,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
+#include "lgn_blockprec.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
@@ -420,9 +421,63 @@ void lgnFreeWork(LGNMem mem)
 void lgnFreeAll(LGNMem mem)
 {
   lgnFreeWork(mem);
+  lgnFreeKrylov(mem, SUNTRUE);
   lgnFreeState(mem);
   DestroyVector(&mem->atol_vec);
   lgnFreeRoots(mem);
+}
+
+/* =============================================================================
+ * The Krylov solvers' matrix and vectors (lgn_krylov.c)
+ * ===========================================================================*/
+
+/* Lignum's own iteration matrix A (CSC, nv + m square: the products of
+ * ATimes and the block preconditioner's blocks), the weights and a scratch
+ * vector, (re)made for the current sizes; a new A drops the model matrices
+ * and the block preconditioner built for the old one. */
+int lgnAllocKrylov(LGNMem mem)
+{
+  const sunindextype n = mem->nv + mem->m;
+  if (mem->own_A && mem->A != NULL && SUNSparseMatrix_Rows(mem->A) != n) {
+    lgnFreeMatrices(mem);
+    DestroyMatrix(&mem->A);
+  }
+  if (mem->kry_w != NULL && N_VGetLength(mem->kry_w) != n) {
+    DestroyVector(&mem->kry_w);
+    DestroyVector(&mem->kry_tmp);
+  }
+  if (mem->A == NULL) {
+    lgnFreeMatrices(mem);
+    lgnBlockPrecFree(&mem->bp);
+    mem->A     = SUNSparseMatrix(n, n, SUNMAX(10 * n, 1), CSC_MAT, mem->sunctx);
+    mem->own_A = mem->A != NULL ? SUNTRUE : SUNFALSE;
+  }
+  if (mem->kry_w == NULL) mem->kry_w = N_VNew_Serial(n, mem->sunctx);
+  if (mem->kry_tmp == NULL) mem->kry_tmp = N_VNew_Serial(n, mem->sunctx);
+  if (mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL) {
+    lgnFreeKrylov(mem, SUNFALSE);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  return LGN_SUCCESS;
+}
+
+/* Lignum's A (the model matrices made for it go too), the vectors and the
+ * block preconditioner; settings: its partition as well (LGNFree). */
+void lgnFreeKrylov(LGNMem mem, sunbooleantype settings)
+{
+  if (mem->own_A) {
+    lgnFreeMatrices(mem);
+    DestroyMatrix(&mem->A);
+    mem->own_A = SUNFALSE;
+  }
+  DestroyVector(&mem->kry_w);
+  DestroyVector(&mem->kry_tmp);
+  lgnBlockPrecFree(&mem->bp);
+  if (settings) {
+    free(mem->bp_bodies);
+    mem->bp_bodies = NULL;
+  }
 }
 
 /* =============================================================================
@@ -706,6 +761,9 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     lgnSparseWorkSpace(mem, &rw, &iw);
     lgnKluCopySpace(mem->klu, &rw, &iw);
   }
+  if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
+  if (mem->kry_w != NULL) rw += 2 * (long int)N_VGetLength(mem->kry_w);
+  lgnBlockPrecSpace(mem->bp, &rw, &iw);
   *lenrw = rw;
   *leniw = iw;
 }

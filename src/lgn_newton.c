@@ -251,6 +251,7 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
       mem->lu_nst   = mem->nst;
     }
   }
+  if (flag == LGN_SUCCESS && mem->krylov) lgnKrylovNewtonWeights(mem, c);
   if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
   return flag;
 }

@@ -25,6 +25,7 @@
 #include <lignum/lignum_ls.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 #if defined(LGN_HAVE_KLU)
@@ -393,20 +394,24 @@ void rigid_default_run_options(RigidRunOptions *opt)
   opt->h           = 1e-3;
   opt->t_end       = 1.0;
   opt->outputs     = 100;
+  opt->krylov_restarts = 2;
 }
 
 int rigid_solver_available(RigidSolver s)
 {
 #if defined(LGN_HAVE_KLU)
-  return s == RB_DENSE || s == RB_KLU_CSC || s == RB_KLU_CSR;
+  return s == RB_DENSE || s == RB_KLU_CSC || s == RB_KLU_CSR || s == RB_SPGMR;
 #else
-  return s == RB_DENSE;
+  return s == RB_DENSE || s == RB_SPGMR;
 #endif
 }
 
 const char *rigid_solver_name(RigidSolver s)
 {
-  return s == RB_DENSE ? "dense" : (s == RB_KLU_CSC ? "klu" : "klu-csr");
+  return s == RB_DENSE ? "dense"
+       : s == RB_KLU_CSC ? "klu"
+       : s == RB_KLU_CSR ? "klu-csr"
+                         : "spgmr";
 }
 
 static double CpuSeconds(void)
@@ -473,7 +478,12 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   phi = N_VNew_Serial(m, ctx);
   {
     N_Vector y = N_VNew_Serial(n, ctx); /* template of the (nv + m) unknowns */
-    if (opt->solver == RB_DENSE) {
+    if (opt->solver == RB_SPGMR) { /* matrix-free: Lignum applies A */
+      A  = NULL;
+      LS = SUNLinSol_SPGMR(y, opt->krylov_blocks > 0 ? SUN_PREC_LEFT : SUN_PREC_NONE,
+                           opt->krylov_maxl > 0 ? opt->krylov_maxl : 30, ctx);
+      if (LS != NULL) SUNLinSol_SPGMRSetMaxRestarts(LS, opt->krylov_restarts);
+    } else if (opt->solver == RB_DENSE) {
       A  = SUNDenseMatrix(n, n, ctx);
       LS = opt->own_dense_lu ? LGNLinSol_Dense(y, A, ctx) : SUNLinSol_Dense(y, A, ctx);
     } else {
@@ -517,7 +527,10 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
    * library: the tools opt in (--klu-solve lignum) unless the versions
    * of KLU and SUNDIALS are not those the copy accepts (LGN_ILL_INPUT, with
    * a message naming them: KLU's own solves then) */
-  if (flag == 0 && opt->solver != RB_DENSE) {
+  if (flag == 0 && opt->solver == RB_SPGMR && opt->krylov_blocks > 0)
+    flag = LGNSetBlockPreconditioner(mem, opt->krylov_blocks, NULL);
+  if (flag == 0 && opt->solver == RB_SPGMR) flag = LGNSetEpsLin(mem, opt->krylov_eplifac);
+  if (flag == 0 && opt->solver != RB_DENSE && opt->solver != RB_SPGMR) {
     flag = LGNSetOwnKLUSolves(mem, !opt->klu_solve_sundials);
     if (flag == LGN_ILL_INPUT) flag = 0;
   }
@@ -608,10 +621,15 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   LGNGetIterationMatrixNnz(mem, &res->nnz);
   LGNGetWorkSpace(mem, &res->lenrw, &res->leniw);
 #if defined(LGN_HAVE_KLU)
-  if (opt->solver != RB_DENSE && LS != NULL)
+  LGNGetNumLinIters(mem, &res->nli);
+  LGNGetNumPrecEvals(mem, &res->npe);
+  LGNGetNumPrecSolves(mem, &res->nps);
+  LGNGetNumJtimesEvals(mem, &res->njtimes);
+  LGNGetNumLinConvFails(mem, &res->nlcf);
+  if ((opt->solver == RB_KLU_CSC || opt->solver == RB_KLU_CSR) && LS != NULL)
     res->klu_peak_bytes = (double)SUNLinSol_KLUGetCommon(LS)->mempeak;
 #endif
-  if (flag == 0 && opt->time_linear_algebra) TimeLinearAlgebra(LS, A, n, ctx, res);
+  if (flag == 0 && opt->time_linear_algebra && A != NULL) TimeLinearAlgebra(LS, A, n, ctx, res);
   res->q = (double *)malloc((size_t)nq * sizeof(double));
   res->v = (double *)malloc((size_t)nv * sizeof(double));
   if (res->q != NULL) memcpy(res->q, N_VGetArrayPointer(q), (size_t)nq * sizeof(double));
@@ -619,7 +637,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
 
   LGNFree(&mem);
   SUNLinSolFree(LS);
-  SUNMatDestroy(A);
+  if (A != NULL) SUNMatDestroy(A);
   N_VDestroy(q);
   N_VDestroy(v);
   N_VDestroy(phi);
@@ -633,14 +651,14 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
 void rigid_print_usage(FILE *out)
 {
   fprintf(out,
-          "          [--solver dense|klu|klu-csr] [--formulation r3so3|se3]\n"
+          "          [--solver dense|klu|klu-csr|spgmr] [--formulation r3so3|se3]\n"
           "          [--method newmark|genalpha] [--rho-inf R] [--beta B --gamma G]\n"
           "          [--bdf MAXORD (1..5: the BDF family instead of --method)]\n"
           "          [--kinematics simplified|exact] [--constraints index3|index2]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T] [--outputs K]\n"
           "          [--rtol R] [--atol A] [--newton full|modified] [--msbp N]\n"
           "          [--predictor zero|extrapolate] [--ordering amd|colamd|natural]\n"
-          "          [--klu-solve lignum|klu]\n"
+          "          [--klu-solve lignum|klu] [--blocks NB] [--maxl L]\n"
           "          [--residual shortcuts|plain]\n"
           "          [--csv FILE] [--adaptive] [--hmax H]\n"
           "          (--adaptive: error control, --rtol/--atol the error test's\n"
@@ -672,11 +690,18 @@ int rigid_parse_option(int argc, char **argv, int *i, RigidRunOptions *opt,
     if (VAL("dense")) opt->solver = RB_DENSE;
     else if (VAL("klu")) opt->solver = RB_KLU_CSC;
     else if (VAL("klu-csr")) opt->solver = RB_KLU_CSR;
+    else if (VAL("spgmr")) opt->solver = RB_SPGMR;
     else return -1;
     if (!rigid_solver_available(opt->solver)) {
       fprintf(stderr, "--solver %s: Lignum was built without KLU (LGN_ENABLE_KLU=OFF)\n", val);
       return -1;
     }
+  } else if (IS("--blocks")) { /* --solver spgmr: the block preconditioner */
+    opt->krylov_blocks = atoi(val);
+    if (opt->krylov_blocks < 0) return -1;
+  } else if (IS("--maxl")) {
+    opt->krylov_maxl = atoi(val);
+    if (opt->krylov_maxl < 0) return -1;
   } else if (IS("--formulation")) {
     if (VAL("r3so3")) *formulation = RB_R3XSO3;
     else if (VAL("se3")) *formulation = RB_SE3;

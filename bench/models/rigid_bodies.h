@@ -20,7 +20,10 @@
 #include <lignum/lignum_joints.h>
 
 typedef enum { RB_R3XSO3 = 0, RB_SE3 = 1 } RigidFormulation;
-typedef enum { RB_DENSE = 0, RB_KLU_CSC = 1, RB_KLU_CSR = 2 } RigidSolver;
+typedef enum {
+  RB_DENSE = 0, RB_KLU_CSC = 1, RB_KLU_CSR = 2,
+  RB_SPGMR = 3 /* matrix-free SPGMR (krylov_* options below) */
+} RigidSolver;
 
 typedef struct {
   int n;                    /* bodies                                       */
@@ -94,6 +97,11 @@ typedef struct {
   int own_dense_lu;         /* 1: LGNLinSol_Dense instead of SUNLinSol_Dense */
   FILE *step_log;           /* error control: "t,h,order" per accepted step
                                (LGN_ONE_STEP; NULL: none)                  */
+  int krylov_blocks;        /* RB_SPGMR: block preconditioner with this many
+                               equal blocks of bodies (0: none)            */
+  int krylov_maxl;          /* RB_SPGMR: Krylov dimension (0: 30)          */
+  int krylov_restarts;      /* RB_SPGMR: GMRES restarts (default 2)        */
+  double krylov_eplifac;    /* RB_SPGMR: LGNSetEpsLin (0: Lignum's 0.05)  */
 } RigidRunOptions;
 
 typedef struct {
@@ -117,6 +125,7 @@ typedef struct {
   long int nni_first;                /* Newton iterations of that first call */
   double solve_seconds;              /* one linear solve with the last matrix */
   double setup_seconds;              /* one factorisation of the last matrix  */
+  long int nli, npe, nps, njtimes, nlcf; /* RB_SPGMR: Krylov counters      */
   double *q, *v;                     /* final state (nq, nv), malloc'ed      */
 } RigidRunResult;
 

@@ -17,12 +17,30 @@
 extern "C" {
 #endif
 
-/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)):
- *  a SUNDenseMatrix with SUNLinSol_Dense (or another direct solver on a
- *  dense matrix), or a SUNSparseMatrix (CSC or CSR; any initial nnz, Lignum
- *  sizes it) with SUNLinSol_KLU when Lignum was built with KLU
- *  (LGN_ENABLE_KLU). The model's matrices handed to the callbacks are then
- *  of the same type and format. Lignum does not take ownership. */
+/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)).
+ *  - Direct (SUNLINEARSOLVER_DIRECT): a SUNDenseMatrix with SUNLinSol_Dense
+ *    (or another direct solver on a dense matrix), or a SUNSparseMatrix
+ *    (CSC or CSR; any initial nnz, Lignum sizes it) with SUNLinSol_KLU when
+ *    Lignum was built with KLU (LGN_ENABLE_KLU). The model's matrices handed
+ *    to the callbacks are then of the same type and format.
+ *  - Matrix-free iterative (SUNLINEARSOLVER_ITERATIVE: SUNLinSol_SPGMR,
+ *    SUNLinSol_SPFGMR, SUNLinSol_SPBCGS, SUNLinSol_SPTFQMR) with A = NULL.
+ *    Lignum supplies the products with the scaled iteration matrix
+ *    (SUNLinSolSetATimes): it assembles the matrix from the model's
+ *    matrices (M, K_t, C_t, B: callbacks or difference quotients) into a
+ *    compressed-column matrix of its own, at the same points where a
+ *    direct solver would factor it, and multiplies with it. The model's
+ *    matrices handed to the callbacks are then SUNSparseMatrix CSC, as with
+ *    KLU. A preconditioner is optional (LGNSetPreconditioner,
+ *    LGNSetBlockPreconditioner); with one, create SPGMR, SPBCGS or SPTFQMR
+ *    with PREC_LEFT (SPFGMR: PREC_RIGHT). The linear tolerance is tied to
+ *    Newton's (LGNSetEpsLin). SUNLinSol_PCG is refused: the saddle-point
+ *    matrix is indefinite.
+ *  Lignum does not take ownership.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (LS = NULL; A = NULL
+ *          with a direct solver; A given with a matrix-free one), or
+ *          LGN_LS_MISMATCH (matrix and solver do not fit: the message says
+ *          which combinations work). */
 LGN_EXPORT int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS,
                                   SUNMatrix A);
 
@@ -169,6 +187,107 @@ LGN_EXPORT int LGNGetIterationMatrixNnz(void *lgn_mem, long int *nnz);
  *  the number of column colours (sparse) or nv (dense); 0 before the first
  *  assembly of a sparse matrix. */
 LGN_EXPORT int LGNGetNumDQColors(void *lgn_mem, long int *ncolors);
+
+/* =============================================================================
+ * Krylov solvers and preconditioners (doc/user-guide.md, section 7)
+ * ===========================================================================*/
+
+/** Preconditioner setup: prepare P ~ the scaled iteration matrix
+ *
+ *    A = [[ cM M + cC C_t + cK K_t ,  B^T ],
+ *         [ B                      ,  0   ]]
+ *
+ *  at the iterate (t, q, v) (Lignum's A carries besides the tangent
+ *  factors T of the kinematics variant, close to I for small steps; the
+ *  index-2 row has a term cK/cC D_q(B v)). cM, cC, cK are the scalings of
+ *  the current matrix: (beta h^2 beta', beta h^2 gamma', beta h^2) in a
+ *  step, (1, 0, 0) for the consistent initial values. Called where a
+ *  direct solver would factor A: every Newton iteration (full Newton), or
+ *  when the matrix is rebuilt (modified Newton).
+ *  @return 0 on success, > 0 for a recoverable failure (the step is
+ *          retried smaller with error control), < 0 unrecoverable. */
+typedef int (*LGNPrecSetupFn)(sunrealtype t, N_Vector q, N_Vector v,
+                              sunrealtype cM, sunrealtype cC, sunrealtype cK,
+                              void *user_data);
+
+/** Preconditioner solve: z ~ A^{-1} r (r, z of length nv + m: the velocity
+ *  part, then the constraint rows), with the arguments of the last setup
+ *  and the Krylov solver's tolerance delta for this solve.
+ *  @return 0 on success, > 0 recoverable, < 0 unrecoverable. */
+typedef int (*LGNPrecSolveFn)(sunrealtype t, N_Vector q, N_Vector v,
+                              N_Vector r, N_Vector z, sunrealtype cM,
+                              sunrealtype cC, sunrealtype cK,
+                              sunrealtype delta, void *user_data);
+
+/** Attach a user preconditioner for a matrix-free Krylov solver (as
+ *  IDASetPreconditioner). It takes the place of a block preconditioner.
+ *  @param lgn_mem memory block
+ *  @param psetup  the setup (may be NULL when psolve needs none)
+ *  @param psolve  the solve; psetup = psolve = NULL switches the
+ *                 preconditioner off
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (psolve = NULL with
+ *          psetup given).
+ *  Notes: the solver must be created with PREC_LEFT (SPFGMR: PREC_RIGHT);
+ *  LGNSolve refuses PREC_NONE with a preconditioner (LGN_LS_MISMATCH).
+ *  user_data is the one of LGNSetUserData. */
+LGN_EXPORT int LGNSetPreconditioner(void *lgn_mem, LGNPrecSetupFn psetup,
+                                    LGNPrecSolveFn psolve);
+
+/** Attach Lignum's block-Jacobi preconditioner for a matrix-free Krylov
+ *  solver. The bodies (the leaves of the Lie group, in order) are split
+ *  into nblocks contiguous blocks; block b holds the velocities of its
+ *  bodies and the constraint rows whose first body (the lowest velocity
+ *  column of the row in B) lies in it. Each block's restriction of the
+ *  scaled iteration matrix (a saddle-point matrix itself) is factored with
+ *  KLU at each matrix setup; the coupling between blocks (the joints at the
+ *  block boundaries) is left to the Krylov iteration. nblocks = 1 is the
+ *  whole matrix: the Krylov solver then converges in one or two
+ *  iterations. This is the per-process block of the distributed design,
+ *  with several blocks on one process.
+ *  @param lgn_mem    memory block
+ *  @param nblocks    number of blocks (>= 1); 0 switches it off
+ *  @param body_start nblocks + 1 increasing body indices, body_start[0] = 0
+ *                    and body_start[nblocks] = the number of bodies: block
+ *                    b holds the bodies body_start[b] ... body_start[b+1]-1.
+ *                    NULL: nblocks blocks of (nearly) equal numbers of
+ *                    bodies. Copied.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_MEM_FAIL, or LGN_ILL_INPUT
+ *          (nblocks < 0, a partition not increasing or not starting at 0,
+ *          or Lignum built without KLU). A partition that does not end at
+ *          the number of bodies, or more blocks than bodies, is refused by
+ *          LGNSolve (LGN_ILL_INPUT).
+ *  Notes: it takes the place of a user preconditioner (LGNSetPreconditioner).
+ *  The solver must be created with PREC_LEFT (SPFGMR: PREC_RIGHT). */
+LGN_EXPORT int LGNSetBlockPreconditioner(void *lgn_mem, int nblocks,
+                                         const long int *body_start);
+
+/** The linear tolerance as a fraction of Newton's (IDASetEpsLin). A Newton
+ *  correction has converged when its weighted RMS norm (weights 1/(atol +
+ *  rtol |x|) on (sigma/h, h lambda), LGNSStolerances) is <= 1; the Krylov
+ *  solver stops when the weighted 2-norm of its (left-preconditioned)
+ *  residual is <= eplifac sqrt(nv + m), i.e. its weighted RMS norm is
+ *  <= eplifac. With a left preconditioner close to A this residual is the
+ *  error of the correction, so the linear error stays eplifac of Newton's
+ *  tolerance. 0 restores the default 0.05.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (eplifac < 0). */
+LGN_EXPORT int LGNSetEpsLin(void *lgn_mem, sunrealtype eplifac);
+
+/** Number of Krylov iterations (all linear solves). */
+LGN_EXPORT int LGNGetNumLinIters(void *lgn_mem, long int *nliters);
+
+/** Number of preconditioner setups (user's or block). */
+LGN_EXPORT int LGNGetNumPrecEvals(void *lgn_mem, long int *npevals);
+
+/** Number of preconditioner solves. */
+LGN_EXPORT int LGNGetNumPrecSolves(void *lgn_mem, long int *npsolves);
+
+/** Number of products with the iteration matrix (ATimes). */
+LGN_EXPORT int LGNGetNumJtimesEvals(void *lgn_mem, long int *njvevals);
+
+/** Number of linear solves that stopped short of their tolerance (the
+ *  Krylov solver's SUNLS_RES_REDUCED in a Newton iteration, whose
+ *  correction is used, and its other recoverable failures). */
+LGN_EXPORT int LGNGetNumLinConvFails(void *lgn_mem, long int *nlcfails);
 
 /** Number of linear solver setups (factorisations). */
 LGN_EXPORT int LGNGetNumLinSolvSetups(void *lgn_mem, long int *nlsetups);
