@@ -42,9 +42,14 @@ install(TARGETS ${_lgn_export_targets}
 
 # Public headers (include/lignum/*.h), and the generated ones in the build
 # tree's include/lignum (lignum_config.h, lignum_export.h with LGN_EXPORT).
+# lignum_petsc.h only with PETSc (LGN_ENABLE_PETSC).
+set(_lgn_header_excludes "")
+if(NOT LGN_ENABLE_PETSC)
+  list(APPEND _lgn_header_excludes PATTERN "lignum_petsc.h" EXCLUDE)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lignum
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.h")
+  FILES_MATCHING PATTERN "*.h" ${_lgn_header_excludes})
 install(FILES ${PROJECT_BINARY_DIR}/include/lignum/lignum_config.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lignum)
 install(DIRECTORY ${PROJECT_BINARY_DIR}/include/lignum
@@ -142,6 +147,22 @@ if(LGN_ENABLE_KLU AND TARGET SUNDIALS::KLU)
       string(APPEND LGN_PC_EXTRA_CFLAGS " -I${_lgn_dir}")
     endif()
   endforeach()
+endif()
+
+# PETSc (LGNLinSol_PETSc): <lignum/lignum_petsc.h> includes <mpi.h>; a
+# static liblignum needs PETSc and MPI on the link line.
+if(LGN_ENABLE_PETSC)
+  foreach(_lgn_dir IN LISTS MPI_C_INCLUDE_DIRS)
+    string(APPEND LGN_PC_EXTRA_CFLAGS " -I${_lgn_dir}")
+  endforeach()
+  if(_lgn_type STREQUAL "STATIC_LIBRARY")
+    foreach(_lgn_flag IN LISTS PETSc_LDFLAGS)
+      string(APPEND LGN_PC_SUNDIALS_LIBS " ${_lgn_flag}")
+    endforeach()
+    foreach(_lgn_lib IN LISTS MPI_C_LIBRARIES)
+      string(APPEND LGN_PC_SUNDIALS_LIBS " ${_lgn_lib}")
+    endforeach()
+  endif()
 endif()
 
 configure_file(${PROJECT_SOURCE_DIR}/cmake/lignum.pc.in

@@ -12,7 +12,8 @@
  * lgnKluCopySupported are accepted), the solves use a copy of KLU's
  * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
  * Lignum's own dense LU (LGNLinSol_Dense, lgn_dense_lu.c) is checked
- * against the problem size as SUNLinSol_Dense is.
+ * against the problem size as SUNLinSol_Dense is; LGNLinSol_PETSc
+ * (lgn_petsc.c) is accepted with a sparse matrix, as SUNLinSol_KLU.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -25,6 +26,7 @@
 #include "lgn_dense_lu.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
+#include "lgn_petsc.h"
 #include "lgn_sparse.h"
 #if defined(LGN_HAVE_KLU)
 #include <sunlinsol/sunlinsol_klu.h>
@@ -50,17 +52,25 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
     return LGN_LS_MISMATCH;
   }
   if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    if (lgnPetscLUSize(LS) < 0) { /* LGNLinSol_PETSc takes sparse matrices */
 #if defined(LGN_HAVE_KLU)
-    if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
-      LGN_ERROR(mem, LGN_LS_MISMATCH,
-                "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU).");
-      return LGN_LS_MISMATCH;
-    }
+      if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
+        LGN_ERROR(mem, LGN_LS_MISMATCH,
+                  "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU)"
+                  " or LGNLinSol_PETSc.");
+        return LGN_LS_MISMATCH;
+      }
 #else
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON.");
-    return LGN_LS_MISMATCH;
+      LGN_ERROR(mem, LGN_LS_MISMATCH,
+                "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON "
+                "(SUNLinSol_KLU) or LGN_ENABLE_PETSC=ON (LGNLinSol_PETSc).");
+      return LGN_LS_MISMATCH;
 #endif
+    }
+  } else if (lgnPetscLUSize(LS) >= 0) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "LGNLinSol_PETSc needs a SUNSparseMatrix, not a dense one.");
+    return LGN_LS_MISMATCH;
   } else if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "Matrix type %d not supported: use a SUNDenseMatrix, or a "
@@ -259,6 +269,15 @@ int lgnLsCheck(LGNMem mem)
               "for this A.",
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N,
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N, (long long)n, (long long)n);
+    return LGN_LS_MISMATCH;
+  }
+  if (lgnPetscLUSize(mem->LS) >= 0 && lgnPetscLUSize(mem->LS) != n) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The PETSc linear solver was created for %lld x %lld matrices, "
+              "but A is %lld x %lld: create it with LGNLinSol_PETSc(y, A, comm, "
+              "ctx) for this A.",
+              (long long)lgnPetscLUSize(mem->LS),
+              (long long)lgnPetscLUSize(mem->LS), (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
   if (lgnDenseLUSize(mem->LS) >= 0 && lgnDenseLUSize(mem->LS) != n) {

@@ -207,7 +207,10 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   sp->npattern++;
   if (sp->analysed) {
 #if defined(LGN_HAVE_KLU)
-    SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
+    /* KLU only: another sparse solver (LGNLinSol_PETSc) sees the new
+     * pattern itself */
+    if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU)
+      SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
 #endif
     sp->analysed = SUNFALSE;
   }
