@@ -149,22 +149,8 @@ if(LGN_ENABLE_KLU AND TARGET SUNDIALS::KLU)
   endforeach()
 endif()
 
-# PETSc (LGNLinSol_PETSc): <lignum/lignum_petsc.h> includes <mpi.h>; a
-# static liblignum needs PETSc and MPI on the link line.
-if(LGN_ENABLE_PETSC)
-  foreach(_lgn_dir IN LISTS MPI_C_INCLUDE_DIRS)
-    string(APPEND LGN_PC_EXTRA_CFLAGS " -I${_lgn_dir}")
-  endforeach()
-  if(_lgn_type STREQUAL "STATIC_LIBRARY")
-    foreach(_lgn_flag IN LISTS PETSc_LDFLAGS)
-      string(APPEND LGN_PC_SUNDIALS_LIBS " ${_lgn_flag}")
-    endforeach()
-    foreach(_lgn_lib IN LISTS MPI_C_LIBRARIES)
-      string(APPEND LGN_PC_SUNDIALS_LIBS " ${_lgn_lib}")
-    endforeach()
-  endif()
-endif()
-
+# lignum.pc describes liblignum only: LGNLinSol_PETSc is in the library
+# lignum_petsc (CMake: Lignum::lignum_petsc), which needs PETSc and MPI.
 configure_file(${PROJECT_SOURCE_DIR}/cmake/lignum.pc.in
                ${PROJECT_BINARY_DIR}/lignum.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/lignum.pc

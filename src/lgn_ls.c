@@ -12,8 +12,9 @@
  * lgnKluCopySupported are accepted), the solves use a copy of KLU's
  * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
  * Lignum's own dense LU (LGNLinSol_Dense, lgn_dense_lu.c) is checked
- * against the problem size as SUNLinSol_Dense is; LGNLinSol_PETSc
- * (lgn_petsc.c) is accepted with a sparse matrix, as SUNLinSol_KLU.
+ * against the problem size as SUNLinSol_Dense is. A sparse matrix goes with
+ * SUNLinSol_KLU or a custom direct solver (LGNLinSol_PETSc, lgn_petsc.c in
+ * the library lignum_petsc), which checks the size at its setup.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -26,7 +27,6 @@
 #include "lgn_dense_lu.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
-#include "lgn_petsc.h"
 #include "lgn_sparse.h"
 #if defined(LGN_HAVE_KLU)
 #include <sunlinsol/sunlinsol_klu.h>
@@ -52,25 +52,24 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
     return LGN_LS_MISMATCH;
   }
   if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
-    if (lgnPetscLUSize(LS) < 0) { /* LGNLinSol_PETSc takes sparse matrices */
+    /* another direct solver of sparse matrices, such as LGNLinSol_PETSc
+     * (library lignum_petsc): a custom one that is not Lignum's dense LU */
+    if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_CUSTOM || lgnDenseLUSize(LS) >= 0) {
 #if defined(LGN_HAVE_KLU)
       if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
         LGN_ERROR(mem, LGN_LS_MISMATCH,
                   "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU)"
-                  " or LGNLinSol_PETSc.");
+                  " or a custom direct sparse solver such as LGNLinSol_PETSc.");
         return LGN_LS_MISMATCH;
       }
 #else
       LGN_ERROR(mem, LGN_LS_MISMATCH,
                 "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON "
-                "(SUNLinSol_KLU) or LGN_ENABLE_PETSC=ON (LGNLinSol_PETSc).");
+                "(SUNLinSol_KLU), or a custom direct sparse solver such as "
+                "LGNLinSol_PETSc.");
       return LGN_LS_MISMATCH;
 #endif
     }
-  } else if (lgnPetscLUSize(LS) >= 0) {
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "LGNLinSol_PETSc needs a SUNSparseMatrix, not a dense one.");
-    return LGN_LS_MISMATCH;
   } else if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "Matrix type %d not supported: use a SUNDenseMatrix, or a "
@@ -269,15 +268,6 @@ int lgnLsCheck(LGNMem mem)
               "for this A.",
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N,
               (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N, (long long)n, (long long)n);
-    return LGN_LS_MISMATCH;
-  }
-  if (lgnPetscLUSize(mem->LS) >= 0 && lgnPetscLUSize(mem->LS) != n) {
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "The PETSc linear solver was created for %lld x %lld matrices, "
-              "but A is %lld x %lld: create it with LGNLinSol_PETSc(y, A, comm, "
-              "ctx) for this A.",
-              (long long)lgnPetscLUSize(mem->LS),
-              (long long)lgnPetscLUSize(mem->LS), (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
   if (lgnDenseLUSize(mem->LS) >= 0 && lgnDenseLUSize(mem->LS) != n) {

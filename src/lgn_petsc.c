@@ -34,12 +34,16 @@
  * PETSc's headers are included as system headers (the include directories
  * of the imported target PkgConfig::PETSc), so -Wextra -Wpedantic -Werror
  * apply to this file and not to them.
- * A pure helper: no integrator record.
+ * Built as the library lignum_petsc (Lignum::lignum_petsc) on top of
+ * liblignum's public API, so that liblignum itself needs neither PETSc nor
+ * MPI; LGNSetLinearSolver takes it as a custom direct sparse solver.
  * ---------------------------------------------------------------------------*/
 
 #include <petscksp.h>
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -48,8 +52,18 @@
 
 #include <lignum/lignum_petsc.h>
 
-#include "lgn_err.h"
-#include "lgn_petsc.h"
+/* The library lignum_petsc sits on Lignum's public API (it cannot call
+ * liblignum's hidden lgnReport): its messages go to stderr in Lignum's
+ * default format. */
+static void Report(const char *func, const char *fmt, ...)
+{
+  va_list ap;
+  fprintf(stderr, "\n[LGN ERROR]  %s\n  ", func);
+  va_start(ap, fmt);
+  vfprintf(stderr, fmt, ap);
+  va_end(ap);
+  fprintf(stderr, "\n\n");
+}
 
 #if defined(PETSC_USE_COMPLEX) || !defined(PETSC_USE_REAL_DOUBLE)
 #error "LGNLinSol_PETSc needs PETSc with real double-precision scalars"
@@ -542,7 +556,7 @@ static int EnsurePetsc(const char *func)
   int mpi_init = 0;
   PetscBool done = PETSC_FALSE;
   if (MPI_Initialized(&mpi_init) != MPI_SUCCESS || !mpi_init) {
-    lgnReport(NULL, LGN_ILL_INPUT, func,
+    Report(func,
               "MPI is not initialised: call MPI_Init before creating the solver.");
     return -1;
   }
@@ -551,7 +565,7 @@ static int EnsurePetsc(const char *func)
     /* PETSc's signal handler would take over the application's */
     if (PetscOptionsSetValue(NULL, "-no_signal_handler", NULL) != 0 ||
         PetscInitializeNoArguments() != 0) {
-      lgnReport(NULL, LGN_ILL_INPUT, func, "PETSc could not be initialised.");
+      Report(func, "PETSc could not be initialised.");
       return -1;
     }
     lgn_petsc_initialised_here = 1;
@@ -569,28 +583,28 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
   int rank = 0, size = 1, r, nl;
 
   if (y == NULL || A == NULL || sunctx == NULL) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__, "%s = NULL illegal.",
+    Report(__func__, "%s = NULL illegal.",
               y == NULL ? "y" : A == NULL ? "A" : "sunctx");
     return NULL;
   }
   if (comm == MPI_COMM_NULL) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__, "comm = MPI_COMM_NULL illegal.");
+    Report(__func__, "comm = MPI_COMM_NULL illegal.");
     return NULL;
   }
   if (SUNMatGetID(A) != SUNMATRIX_SPARSE) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+    Report(__func__,
               "A must be a SUNSparseMatrix (its matrix ID is %d).", (int)SUNMatGetID(A));
     return NULL;
   }
   n = SUNSparseMatrix_Rows(A);
   if (SUNSparseMatrix_Columns(A) != n || n < 1) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+    Report(__func__,
               "A must be square and not empty (it is %lld x %lld).", (long long)n,
               (long long)SUNSparseMatrix_Columns(A));
     return NULL;
   }
   if (n > (sunindextype)PETSC_MAX_INT) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+    Report(__func__,
               "A is %lld x %lld, beyond PETSc's index range (PetscInt).", (long long)n,
               (long long)n);
     return NULL;
@@ -598,12 +612,12 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
   id = N_VGetVectorID(y);
   if (id != SUNDIALS_NVEC_SERIAL && id != SUNDIALS_NVEC_OPENMP &&
       id != SUNDIALS_NVEC_PTHREADS) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__,
+    Report(__func__,
               "y must be a serial, OpenMP or Pthreads vector (its vector ID is %d).", (int)id);
     return NULL;
   }
   if (N_VGetLength(y) != n) {
-    lgnReport(NULL, LGN_ILL_INPUT, __func__, "y has length %lld but A is %lld x %lld.",
+    Report(__func__, "y has length %lld but A is %lld x %lld.",
               (long long)N_VGetLength(y), (long long)n, (long long)n);
     return NULL;
   }
@@ -612,7 +626,7 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
 
   S = SUNLinSolNewEmpty(sunctx);
   if (S == NULL) {
-    lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    Report(__func__, MSG_MEM_FAIL);
     if (--lgn_petsc_nsolvers == 0 && lgn_petsc_initialised_here) {
       (void)PetscFinalize();
       lgn_petsc_initialised_here = 0;
@@ -631,7 +645,7 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
   c = (PetscLUContent *)calloc(1, sizeof *c);
   if (c == NULL) {
     SUNLinSolFreeEmpty(S);
-    lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    Report(__func__, MSG_MEM_FAIL);
     if (--lgn_petsc_nsolvers == 0 && lgn_petsc_initialised_here) {
       (void)PetscFinalize();
       lgn_petsc_initialised_here = 0;
@@ -654,7 +668,7 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
   if (c->counts == NULL || c->displs == NULL ||
       PetscSplitOwnership(comm, &nloc, &nglob) != 0) {
     Free(S);
-    lgnReport(NULL, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    Report(__func__, MSG_MEM_FAIL);
     return NULL;
   }
   nl = (int)nloc;
@@ -663,11 +677,4 @@ SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm, SUNConte
   c->nloc   = nloc;
   c->rstart = (PetscInt)c->displs[rank];
   return S;
-}
-
-sunindextype lgnPetscLUSize(SUNLinearSolver LS)
-{
-  if (LS == NULL || LS->ops == NULL || LS->ops->setup != PetscLUSetup || LS->content == NULL)
-    return -1;
-  return CONTENT(LS)->N;
 }

@@ -9,8 +9,8 @@
 #       exported, and all of them start with LGN. Each declaration must carry
 #       LGN_EXPORT (the number of LGN_EXPORTs is checked against the number
 #       of declarations found, which also guards the parsing). The headers
-#       named in LGN_HEADER_EXCLUDE (of optional parts the library was built
-#       without, e.g. lignum_petsc.h without PETSc) are not read.
+#       named in LGN_HEADER_EXCLUDE (whose functions another library
+#       exports, e.g. lignum_petsc.h: lignum_petsc) are not read.
 #
 #   cmake -DLGN_NM=nm -DLGN_LIBRARY=liblignum_fortran.so -DLGN_FORTRAN=ON
 #         "-DLGN_FORTRAN_SOURCES=a.f90|b.f90" [-DLGN_C_LIBRARY=liblignum.so]
@@ -90,7 +90,7 @@ if(NOT LGN_FORTRAN)
   foreach(_dir IN LISTS _dirs)
     file(GLOB _headers "${_dir}/*.h")
     foreach(_h IN LISTS _headers)
-      # headers of optional parts this library was built without
+      # headers of another library's functions
       get_filename_component(_hname "${_h}" NAME)
       if(_hname IN_LIST _lgn_exclude)
         continue()
