@@ -22,3 +22,20 @@ option(LGN_ENABLE_FORTRAN
   "Build the Fortran 2003 interface (modules flignum_mod, flignum_sundials_mod, flignum_joints_mod, flignum_bodies_mod, and flignum_klu_mod with KLU)"
   ${_lgn_fortran_default})
 option(LGN_ENABLE_VALGRIND_TESTS "Run examples and study tools under valgrind when it is found" ON)
+# The direct solve through PETSc and MUMPS (LGNLinSol_PETSc,
+# include/lignum/lignum_petsc.h) is built by default when pkg-config finds
+# PETSc (PETSc.pc; checked only while the option is not yet set); with
+# LGN_ENABLE_PETSC=ON a PETSc without MUMPS, or no PETSc, is an error.
+set(_lgn_petsc_default OFF)
+if(NOT DEFINED LGN_ENABLE_PETSC)
+  find_package(PkgConfig QUIET)
+  if(PKG_CONFIG_FOUND)
+    pkg_check_modules(_LGN_PETSC_PROBE QUIET PETSc)
+    if(_LGN_PETSC_PROBE_FOUND)
+      set(_lgn_petsc_default ON)
+    endif()
+  endif()
+endif()
+option(LGN_ENABLE_PETSC
+  "Build LGNLinSol_PETSc, a direct solve through PETSc's KSP with MUMPS (needs PETSc with MUMPS, and MPI)"
+  ${_lgn_petsc_default})

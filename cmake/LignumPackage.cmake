@@ -42,9 +42,14 @@ install(TARGETS ${_lgn_export_targets}
 
 # Public headers (include/lignum/*.h), and the generated ones in the build
 # tree's include/lignum (lignum_config.h, lignum_export.h with LGN_EXPORT).
+# lignum_petsc.h only with PETSc (LGN_ENABLE_PETSC).
+set(_lgn_header_excludes "")
+if(NOT LGN_ENABLE_PETSC)
+  list(APPEND _lgn_header_excludes PATTERN "lignum_petsc.h" EXCLUDE)
+endif()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lignum
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
-  FILES_MATCHING PATTERN "*.h")
+  FILES_MATCHING PATTERN "*.h" ${_lgn_header_excludes})
 install(FILES ${PROJECT_BINARY_DIR}/include/lignum/lignum_config.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/lignum)
 install(DIRECTORY ${PROJECT_BINARY_DIR}/include/lignum
@@ -144,6 +149,8 @@ if(LGN_ENABLE_KLU AND TARGET SUNDIALS::KLU)
   endforeach()
 endif()
 
+# lignum.pc describes liblignum only: LGNLinSol_PETSc is in the library
+# lignum_petsc (CMake: Lignum::lignum_petsc), which needs PETSc and MPI.
 configure_file(${PROJECT_SOURCE_DIR}/cmake/lignum.pc.in
                ${PROJECT_BINARY_DIR}/lignum.pc @ONLY)
 install(FILES ${PROJECT_BINARY_DIR}/lignum.pc

@@ -122,7 +122,11 @@ static sunindextype ZeroPivot(LGNMem mem, int ret)
     /* SUNDIALS' dense LU: the last flag is 1 + the column of the zero pivot */
     const sunindextype lf = (sunindextype)SUNLinSolLastFlag(mem->LS);
     (void)ret;
-    return lf > 0 ? lf - 1 : (ret > 0 && ret <= mem->nv + mem->m ? ret - 1 : -1);
+    /* (SUNLS_LUFACT_FAIL itself names no column: a solver that cannot
+     * tell, such as LGNLinSol_PETSc without null pivots, has last flag 0) */
+    return lf > 0 ? lf - 1
+                  : (ret > 0 && ret != SUNLS_LUFACT_FAIL && ret <= mem->nv + mem->m ? ret - 1
+                                                                                   : -1);
   }
 }
 

@@ -12,7 +12,9 @@
  * lgnKluCopySupported are accepted), the solves use a copy of KLU's
  * factors (lgn_klu_solve.c), into which Lignum also refactors (CSC).
  * Lignum's own dense LU (LGNLinSol_Dense, lgn_dense_lu.c) is checked
- * against the problem size as SUNLinSol_Dense is.
+ * against the problem size as SUNLinSol_Dense is. A sparse matrix goes with
+ * SUNLinSol_KLU or a custom direct solver (LGNLinSol_PETSc, lgn_petsc.c in
+ * the library lignum_petsc), which checks the size at its setup.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -64,17 +66,24 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
     return LGN_ILL_INPUT;
   }
   if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+    /* another direct solver of sparse matrices, such as LGNLinSol_PETSc
+     * (library lignum_petsc): a custom one that is not Lignum's dense LU */
+    if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_CUSTOM || lgnDenseLUSize(LS) >= 0) {
 #if defined(LGN_HAVE_KLU)
-    if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
-      LGN_ERROR(mem, LGN_LS_MISMATCH,
-                "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU).");
-      return LGN_LS_MISMATCH;
-    }
+      if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_KLU) {
+        LGN_ERROR(mem, LGN_LS_MISMATCH,
+                  "A sparse matrix needs the KLU linear solver (SUNLinSol_KLU)"
+                  " or a custom direct sparse solver such as LGNLinSol_PETSc.");
+        return LGN_LS_MISMATCH;
+      }
 #else
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON.");
-    return LGN_LS_MISMATCH;
+      LGN_ERROR(mem, LGN_LS_MISMATCH,
+                "Sparse matrices need Lignum built with LGN_ENABLE_KLU=ON "
+                "(SUNLinSol_KLU), or a custom direct sparse solver such as "
+                "LGNLinSol_PETSc.");
+      return LGN_LS_MISMATCH;
 #endif
+    }
   } else if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "Matrix type %d not supported: use a SUNDenseMatrix, or a "

@@ -207,7 +207,9 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   sp->npattern++;
   if (sp->analysed) {
 #if defined(LGN_HAVE_KLU)
-    if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) /* not a Krylov one */
+    /* KLU only: a Krylov solver has no factorisation, another sparse
+     * solver (LGNLinSol_PETSc) sees the new pattern itself */
+    if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU)
       SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
 #endif
     sp->analysed = SUNFALSE;

@@ -42,7 +42,8 @@ file(GLOB _libs ${LGN_LIBDIR}/liblignum.*)
 if(NOT _libs)
   message(FATAL_ERROR "[install] no liblignum.* in ${LGN_LIBDIR}")
 endif()
-lgn_check_exports(lignum -DLGN_HEADER_DIRS=${LGN_INCDIR}/lignum)
+# lignum_petsc.h: LGNLinSol_PETSc is exported by the library lignum_petsc
+lgn_check_exports(lignum -DLGN_HEADER_DIRS=${LGN_INCDIR}/lignum -DLGN_HEADER_EXCLUDE=lignum_petsc.h)
 
 # --- (b) configure and build the outside project, (c) run it ---------------------
 lgn_build_consumer(

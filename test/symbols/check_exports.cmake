@@ -3,12 +3,14 @@
 #
 #   cmake -DLGN_NM=nm -DLGN_LIBRARY=liblignum.so
 #         "-DLGN_HEADER_DIRS=include/lignum|build/include/lignum"
-#         -P check_exports.cmake
+#         ["-DLGN_HEADER_EXCLUDE=lignum_petsc.h|..."] -P check_exports.cmake
 #       liblignum: every exported symbol is a function declared in the
 #       public headers (*.h of LGN_HEADER_DIRS), every declared function is
 #       exported, and all of them start with LGN. Each declaration must carry
 #       LGN_EXPORT (the number of LGN_EXPORTs is checked against the number
-#       of declarations found, which also guards the parsing).
+#       of declarations found, which also guards the parsing). The headers
+#       named in LGN_HEADER_EXCLUDE (whose functions another library
+#       exports, e.g. lignum_petsc.h: lignum_petsc) are not read.
 #
 #   cmake -DLGN_NM=nm -DLGN_LIBRARY=liblignum_fortran.so -DLGN_FORTRAN=ON
 #         "-DLGN_FORTRAN_SOURCES=a.f90|b.f90" [-DLGN_C_LIBRARY=liblignum.so]
@@ -82,11 +84,17 @@ if(NOT LGN_FORTRAN)
     message(FATAL_ERROR "check_exports.cmake: -DLGN_HEADER_DIRS=... is required")
   endif()
   string(REPLACE "|" ";" _dirs "${LGN_HEADER_DIRS}")
+  string(REPLACE "|" ";" _lgn_exclude "${LGN_HEADER_EXCLUDE}")
   set(_declared "")
   set(_nmarked 0)
   foreach(_dir IN LISTS _dirs)
     file(GLOB _headers "${_dir}/*.h")
     foreach(_h IN LISTS _headers)
+      # headers of another library's functions
+      get_filename_component(_hname "${_h}" NAME)
+      if(_hname IN_LIST _lgn_exclude)
+        continue()
+      endif()
       file(READ "${_h}" _text)
       # comments, line continuations, then preprocessor lines
       string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" " " _text "${_text}")
