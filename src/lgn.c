@@ -479,6 +479,11 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     hstep     = (remaining <= mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)))
                     ? remaining
                     : mem->h;
+    /* BDF keeps its grid (a shortened step would enter its history with
+     * an arbitrary step ratio): it steps past tout and interpolates there */
+    if (mem->family == LGN_FAMILY_BDF &&
+        remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
+      hstep = mem->h;
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tout; /* exact arrival */
@@ -489,6 +494,8 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
       if (flag != LGN_SUCCESS) break;
     }
   }
+  if (flag == LGN_SUCCESS && mem->tn > tout + troundoff)
+    return OutputAt(mem, tout, tret, q, v); /* BDF: past tout */
   CopyOut(mem, tret, q, v);
   return flag;
 }

@@ -118,21 +118,62 @@ static void PushHistory(LGNMem mem)
   mem->bdf_chart_t = NAN;
 }
 
-/* x_{n-j} = log(q_n^{-1} q_{n-j}), once per t_n (x_n = 0). */
+/* x_{n-j} = log(q_n^{-1} q_{n-j}), once per t_n (x_n = 0). The logarithm
+ * is the principal one (rotation angles up to pi): once the history turns
+ * further, x jumps by 2 pi and the BDF derivative would be wrong. So the
+ * history is cut at the first point whose x is not continuous with the
+ * previous one: |x_{n-j} - x_{n-j+1} - y_j|_inf <= 2 |y_j|_inf + 1, with y_j
+ * the short step log(q_{n-j+1}^{-1} q_{n-j}) (inside the chart the two
+ * differ by about |x||y|/2 <= (pi/2)|y|; across the cut by about 2 pi). */
 static int ChartCoordinates(LGNMem mem)
 {
   LGNGroup G = mem->G;
   const sunindextype nq = mem->nq, nv = mem->nv;
+  sunrealtype *y = mem->work_nv;
+  sunindextype i;
   int j, ret;
   if (mem->bdf_chart_t == mem->tn) return LGN_SUCCESS;
   mem->dense_valid = SUNFALSE; /* the dense output reads the old chart */
   memset(mem->bdf_x, 0, (size_t)nv * sizeof(sunrealtype));
   for (j = 1; j < mem->bdf_nhist; j++) {
-    ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, mem->bdf_x + j * nv);
+    sunrealtype *x = mem->bdf_x + j * nv;
+    const sunrealtype *xp = x - nv;
+    sunrealtype ymax = SUN_RCONST(0.0), dmax = SUN_RCONST(0.0);
+    ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, x);
+    if (ret == 0 && j > 1)
+      ret = G->ops.compose_log(G, mem->bdf_q + (j - 1) * nq, mem->bdf_q + j * nq, y);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+    if (j == 1) continue;
+    for (i = 0; i < nv; i++) {
+      ymax = SUNMAX(ymax, fabs(y[i]));
+      dmax = SUNMAX(dmax, fabs(x[i] - xp[i] - y[i]));
+    }
+    if (dmax > SUN_RCONST(2.0) * ymax + SUN_RCONST(1.0)) { /* beyond the chart */
+      mem->bdf_nhist = j;
+      break;
+    }
   }
   mem->bdf_chart_t = mem->tn;
   return LGN_SUCCESS;
+}
+
+/* Error control: the highest order up to k whose nodes t_{n+1}, t_n, ...,
+ * t_{n+1-k} have neighbouring spacings within a factor 4 of each other. The
+ * controller changes h by at most 2 from step to step, except when it
+ * lands on a stop time with a short step and then goes on from the step it
+ * wanted; a short step inside the nodes makes the variable coefficients of
+ * the higher orders amplify the history's errors. (Fixed steps keep their
+ * grid: LGNSolve steps past tout and interpolates.) */
+static int SpacingOrder(const LGNMem mem, sunrealtype h, int k)
+{
+  sunrealtype prev = h, d;
+  int j;
+  for (j = 1; j < k; j++) {
+    d = mem->bdf_t[j - 1] - mem->bdf_t[j];
+    if (d > SUN_RCONST(4.0) * prev || prev > SUN_RCONST(4.0) * d) return j;
+    prev = d;
+  }
+  return k;
 }
 
 /* =============================================================================
@@ -301,20 +342,26 @@ static sunrealtype StepFactor(sunrealtype E, int k)
  * the factor of the next step. */
 static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype err)
 {
-  sunrealtype E[3], Enew = err;
+  sunrealtype E[3], Enew = err, scale;
   int knew = k;
   OrderEstimates(mem, c, k, E);
-  if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[0] <= err) {
+  /* E[0], E[2] compared with E[1], their own kind (unprojected, positions
+   * only), and carried over to err's measure (projected, with the
+   * velocity-constraint term) by err / E[1] */
+  scale = E[1] > SUN_RCONST(0.0) ? err / E[1] : SUN_RCONST(1.0);
+  if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[1] >= SUN_RCONST(0.0) && E[0] <= E[1]) {
     knew = k - 1;
-    Enew = E[0];
-  } else if (k < mem->bdf_maxord && E[2] >= SUN_RCONST(0.0) && E[2] < err &&
-             (mem->bdf_phase0 || mem->bdf_nsteps_order >= k + 1)) {
+    Enew = E[0] * scale;
+  } else if (k < mem->bdf_maxord && E[2] >= SUN_RCONST(0.0) && E[1] >= SUN_RCONST(0.0) &&
+             E[2] < E[1] && (mem->bdf_phase0 || mem->bdf_nsteps_order >= k + 1)) {
     knew = k + 1;
-    Enew = E[2];
-  } else if (k < mem->bdf_maxord && mem->bdf_phase0) {
+    Enew = E[2] * scale;
+  } else if (k < mem->bdf_maxord && mem->bdf_phase0 && E[2] < SUN_RCONST(0.0)) {
     knew = k + 1; /* start-up: not enough points for E_{k+1} yet */
   }
-  if (knew != k) mem->bdf_nsteps_order = 0;
+  /* the start-up ends as IDA's does: at a decrease, or at maxord */
+  if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
+  if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
   mem->bdf_order = knew;
   return StepFactor(Enew, knew);
 }
@@ -383,7 +430,7 @@ int lgnBDFStep(LGNMem mem, sunrealtype h)
  * a failure with the state at t_n as it was. A stop time is landed on. */
 int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
 {
-  sunrealtype h, err = SUN_RCONST(0.0), factor, E[3];
+  sunrealtype h, err = SUN_RCONST(0.0), factor, E[3], h_wanted;
   sunbooleantype landing;
   int nef = 0, ncf = 0, k, flag;
   LGNStepCoeffs c;
@@ -397,14 +444,15 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
   }
   h = lgnLimitStep(mem, mem->hnext);
   for (;;) {
-    landing = mem->tstop_set &&
+    h_wanted = h;
+    landing  = mem->tstop_set &&
               mem->tn + h * (SUN_RCONST(1.0) + SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF) >=
                   mem->tstop;
     if (landing) h = mem->tstop - mem->tn;
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     /* order k needs k + 1 points for its estimate (or the Taylor start) */
-    k = SUNMAX(1, SUNMIN(mem->bdf_order, mem->bdf_nhist - 1));
+    k = SUNMAX(1, SpacingOrder(mem, h, SUNMIN(mem->bdf_order, mem->bdf_nhist - 1)));
     lgnNewtonTolerances(mem, h);
     /* at index 3 a Newton error in x reaches v = T(x)(c0 x + r_x) times
      * c0 ~ k/h, and the history: a tenth of the Newmark family's share
@@ -424,7 +472,10 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
       Accept(mem, &c, k);
       if (landing) mem->tn = mem->tstop;
       mem->err_prev = err;
-      mem->hnext    = lgnLimitStep(mem, h * factor);
+      /* after a landing, go on from the step the controller wanted (the
+       * spacing guard lowers the order while the short step is in the
+       * history) */
+      mem->hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
       return LGN_SUCCESS;
     }
 
@@ -442,10 +493,10 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
       }
       if (nef == 1) {
         OrderEstimates(mem, &c, k, E);
-        if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[0] <= err) {
+        if (k > 1 && E[0] >= SUN_RCONST(0.0) && E[1] > SUN_RCONST(0.0) && E[0] <= E[1]) {
           mem->bdf_order = k - 1;
           mem->bdf_nsteps_order = 0;
-          err = E[0];
+          err *= E[0] / E[1];
           k--;
         }
         factor = SUN_RCONST(0.9) * pow(SUN_RCONST(2.0) * err + SUN_RCONST(1.0e-4),

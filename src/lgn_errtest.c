@@ -100,7 +100,9 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 /* Index 3 with constraints that depend on time: the hidden constraint of
  * the new state, h (B(q1) v1 + Phi_t(q1, t1)) (zero on the exact solution,
  * a position-type quantity of the order of the local error), in the RMS
- * norm with weights 1/atol. The estimate e keeps only its part in the
+ * norm with weights 1/(atol + rtol h |Phi_t|) (the prescribed rates set the
+ * scale: relative to them where they move, atol where they rest). The
+ * estimate e keeps only its part in the
  * constraints' tangent space; in a driven mechanism (the motion prescribed:
  * no tangent space but a free spin) that part is nothing, and without this
  * term the velocities and the output between steps went uncontrolled (a
@@ -120,7 +122,8 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
   ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1), mem->work_m);
   if (ret != LGN_SUCCESS) return ret;
   for (i = 0; i < m; i++) {
-    w = c->h * mem->work_m[i] / mem->atol;
+    w = c->h * mem->work_m[i] /
+        (mem->atol + mem->rtol * c->h * fabs(lgnData(mem->phit)[i]));
     s += w * w;
   }
   *norm = sqrt(s / (sunrealtype)m);

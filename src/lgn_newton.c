@@ -120,7 +120,9 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
    * each with one division */
   const sunrealtype sigma_atol  = atol * h + roundoff;
   const sunrealtype lambda_unit = c->scale / h;
-  const sunrealtype lambda_atol = atol + roundoff / (mem->beta * h);
+  /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
+  const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
+  const sunrealtype lambda_atol = atol + roundoff / (beta * h);
   sunrealtype sum, sum_lambda;
 
   /* per-component tolerances (error control): the same weights with

@@ -21,6 +21,13 @@
  *  (h) output between steps (the BDF interpolating polynomials): the
  *      error at interpolated output times is within 3 times the error
  *      when the steps land on them (maxord 4, tol 1e-10);
+ *  (i) fixed steps with output times off the grid (every 1.05 h): the
+ *      error stays that of outputs on the grid (BDF steps past tout and
+ *      interpolates; a shortened step had made BDF5 grow to 1e155);
+ *  (j) 1 rad per fixed step (a free spin, exact in the chart): orders 3-5
+ *      exact to 3e-14 (the history is cut where the logarithm wraps at pi);
+ *  (k) error control with a stop time every 0.2 s: fewer than 3 times the
+ *      steps without, the same accuracy;
  *  (d) on R^n the step is the textbook BDF: a linear oscillator
  *      x'' = -w^2 x on R^1 with fixed step and order k, started from the
  *      exact history, agrees with the classical constant-coefficient BDF
@@ -320,6 +327,133 @@ static double Textbook(SUNContext ctx, int k, double h, int nsteps)
   return diff;
 }
 
+/* The oscillator of (d) on R^1 (x0 = 1, v0 = 0.5). */
+static void *OscillatorCreate(SUNContext ctx, LGNGroup G, N_Vector q, N_Vector v,
+                              SUNLinearSolver *LS, SUNMatrix *A, N_Vector *y)
+{
+  void *mem = LGNCreate(ctx);
+  NV_Ith_S(q, 0) = 1.0;
+  NV_Ith_S(v, 0) = 0.5;
+  *y  = N_VNew_Serial(1, ctx);
+  *A  = SUNDenseMatrix(1, 1, ctx);
+  *LS = LGNLinSol_Dense(*y, *A, ctx);
+  LGNSetGroup(mem, G);
+  LGNSetMassFn(mem, KMass);
+  LGNSetForceFn(mem, KForce);
+  LGNSetStiffnessFn(mem, KStiff);
+  LGNSetDampingFn(mem, KDamp);
+  LGNInit(mem, 0.0, q, v);
+  LGNSetLinearSolver(mem, *LS, *A);
+  return mem;
+}
+
+static double OscillatorError(double t, N_Vector q)
+{
+  return fabs(NV_Ith_S(q, 0) - (cos(2 * t) + 0.25 * sin(2 * t)));
+}
+
+/* (i) */
+static double OffGridOscillator(SUNContext ctx, int k, double every)
+{
+  LGNGroup G = LGNGroup_Rn(1);
+  N_Vector q = N_VNew_Serial(1, ctx), v = N_VNew_Serial(1, ctx), y;
+  SUNLinearSolver LS;
+  SUNMatrix A;
+  void *mem = OscillatorCreate(ctx, G, q, v, &LS, &A, &y);
+  double e = 0.0;
+  sunrealtype t;
+  int n, flag = LGNSetBDF(mem, k);
+  if (!flag) flag = LGNSetStepSize(mem, 0.01);
+  if (!flag) flag = LGNSStolerances(mem, 1e-12, 1e-12);
+  for (n = 1; !flag && 0.01 * every * n <= 10.0; n++) {
+    flag = LGNSolve(mem, 0.01 * every * n, &t, q, v, LGN_NORMAL);
+    if (!flag) e = fmax(e, OscillatorError(t, q));
+  }
+  if (flag) e = HUGE_VAL;
+  LGNFree(&mem); SUNLinSolFree(LS); SUNMatDestroy(A);
+  N_VDestroy(q); N_VDestroy(v); N_VDestroy(y); LGNGroup_Destroy(G);
+  return e;
+}
+
+/* (k) error control to t = 10, maxord 5, with or without a stop time every
+ * 0.2 s; the error at t = 10 and the steps. */
+static double Landings(SUNContext ctx, int land, long int *nst)
+{
+  LGNGroup G = LGNGroup_Rn(1);
+  N_Vector q = N_VNew_Serial(1, ctx), v = N_VNew_Serial(1, ctx), y;
+  SUNLinearSolver LS;
+  SUNMatrix A;
+  void *mem = OscillatorCreate(ctx, G, q, v, &LS, &A, &y);
+  double e = HUGE_VAL;
+  sunrealtype t = 0.0;
+  int n, flag = LGNSetBDF(mem, 5);
+  if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+  if (!flag) flag = LGNSStolerances(mem, 1e-8, 1e-8);
+  for (n = 1; !flag && n <= 50; n++) {
+    const double tout = 0.2 * n;
+    if (land) flag = LGNSetStopTime(mem, tout);
+    if (!flag) flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
+    if (flag == LGN_TSTOP_RETURN) flag = LGN_SUCCESS;
+  }
+  if (!flag) e = OscillatorError(t, q);
+  LGNGetNumSteps(mem, nst);
+  LGNFree(&mem); SUNLinSolFree(LS); SUNMatDestroy(A);
+  N_VDestroy(q); N_VDestroy(v); N_VDestroy(y); LGNGroup_Destroy(G);
+  return e;
+}
+
+/* (j) a body with J = diag(1, 2, 3) spinning about its third axis at
+ * 10 rad/s, no forces: R(t) = exp(10 t e3~); fixed h = 0.1, 30 steps. */
+static int SpinMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  (void)t; (void)q; (void)ud;
+  SM_ELEMENT_D(M, 0, 0) = 1; SM_ELEMENT_D(M, 1, 1) = 2; SM_ELEMENT_D(M, 2, 2) = 3;
+  return 0;
+}
+static int SpinForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  const sunrealtype *w = N_VGetArrayPointer(v);
+  sunrealtype *gg = N_VGetArrayPointer(g);
+  (void)t; (void)q; (void)ud;
+  gg[0] = w[1] * 3 * w[2] - w[2] * 2 * w[1]; /* Omega x J Omega */
+  gg[1] = w[2] * 1 * w[0] - w[0] * 3 * w[2];
+  gg[2] = w[0] * 2 * w[1] - w[1] * 1 * w[0];
+  return 0;
+}
+static double FastSpin(SUNContext ctx, int k)
+{
+  LGNGroup G = LGNGroup_SO3();
+  N_Vector q = N_VNew_Serial(4, ctx), v = N_VNew_Serial(3, ctx), y = N_VNew_Serial(3, ctx);
+  SUNMatrix A = SUNDenseMatrix(3, 3, ctx);
+  SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
+  void *mem = LGNCreate(ctx);
+  sunrealtype t;
+  double e = HUGE_VAL;
+  int flag;
+  N_VConst(0.0, q);
+  NV_Ith_S(q, 0) = 1.0;
+  N_VConst(0.0, v);
+  NV_Ith_S(v, 2) = 10.0;
+  flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetMassFn(mem, SpinMass);
+  if (!flag) flag = LGNSetForceFn(mem, SpinForce);
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  if (!flag) flag = LGNSetBDF(mem, k);
+  if (!flag) flag = LGNSetStepSize(mem, 0.1);
+  if (!flag) flag = LGNSolve(mem, 3.0, &t, q, v, LGN_NORMAL);
+  if (!flag) {
+    /* q(3) = (cos 15, 0, 0, sin 15) up to sign */
+    const sunrealtype *p = N_VGetArrayPointer(q);
+    const double s = p[0] * cos(15.0) + p[3] * sin(15.0) >= 0 ? 1.0 : -1.0;
+    e = fmax(fmax(fabs(p[0] - s * cos(15.0)), fabs(p[3] - s * sin(15.0))),
+             fmax(fabs(p[1]), fabs(p[2])));
+  }
+  LGNFree(&mem); SUNLinSolFree(LS); SUNMatDestroy(A);
+  N_VDestroy(q); N_VDestroy(v); N_VDestroy(y); LGNGroup_Destroy(G);
+  return e;
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -449,6 +583,37 @@ int main(void)
            e_land);
     CHECK(e_interp <= 3.0 * e_land, "(h) interpolated %.3e against landed %.3e", e_interp,
           e_land);
+  }
+
+  /* (i) fixed steps with output times off the step grid: BDF steps past
+   * tout and interpolates (a shortened step had entered the history, and
+   * BDF5 then grew to 1e155 "successfully"); oscillator x'' = -4 x, exact
+   * x = cos 2t + 0.25 sin 2t */
+  for (k = 4; k <= 5; k++) {
+    const double e_on = OffGridOscillator(ctx, k, 1.0), e_off = OffGridOscillator(ctx, k, 1.05);
+    printf("(i) order %d, h = 0.01 to t = 10: max error %.2e with outputs every h, %.2e every "
+           "1.05 h\n", k, e_on, e_off);
+    CHECK(e_off <= 2.0 * e_on, "(i) off-grid outputs, order %d: %.2e against %.2e", k, e_off,
+          e_on);
+  }
+  /* (j) a large rotation per step: a free body spinning about a principal
+   * axis at 10 rad/s, fixed h = 0.1 (1 rad per step, more than pi over the
+   * history of order 4 and 5): the chart keeps only the points it reaches
+   * (the exact solution is linear in the chart: every order is exact) */
+  for (k = 3; k <= 5; k++) {
+    const double e = FastSpin(ctx, k);
+    printf("(j) order %d, free spin 1 rad per step, 30 steps: rotation error %.2e\n", k, e);
+    CHECK(e < 1e-10, "(j) fast spin, order %d: %.2e", k, e);
+  }
+  /* (k) stop times: landing on one every 20 steps does not make the steps
+   * collapse (the controller goes on from the step it wanted) */
+  {
+    long int n_free, n_land;
+    const double e_free = Landings(ctx, 0, &n_free), e_land = Landings(ctx, 1, &n_land);
+    printf("(k) oscillator tol 1e-8: %ld steps (error %.2e), with a stop time every 0.2: %ld "
+           "(error %.2e)\n", n_free, e_free, n_land, e_land);
+    CHECK(n_land < 3 * n_free && e_land < 10 * e_free + 1e-9, "(k) landings: %ld against %ld steps",
+          n_land, n_free);
   }
 
   /* (d) R^1: the textbook recursion */
