@@ -120,16 +120,17 @@ static void PushHistory(LGNMem mem)
 
 /* x_{n-j} = log(q_n^{-1} q_{n-j}), once per t_n (x_n = 0). The logarithm
  * is the principal one (rotation angles up to pi): once the history turns
- * further, x jumps by 2 pi and the BDF derivative would be wrong. So the
- * history is cut at the first point whose x is not continuous with the
- * previous one: |x_{n-j} - x_{n-j+1} - y_j|_inf <= 2 |y_j|_inf + 1, with y_j
- * the short step log(q_{n-j+1}^{-1} q_{n-j}) (inside the chart the two
- * differ by about |x||y|/2 <= (pi/2)|y|; across the cut by about 2 pi). */
+ * further, x jumps by about 2 pi and the BDF derivative would be wrong. So
+ * the history is cut at the first point whose difference from its
+ * neighbour, d_j = x_{n-j} - x_{n-j+1}, jumps against the previous one
+ * scaled by the step sizes: |d_j| > 2 r_j |d_{j-1}| + 1/2 (inf-norms,
+ * r_j = (t_{n-j+1} - t_{n-j}) / (t_{n-j+2} - t_{n-j+1})). A wrap adds about
+ * 2 pi, which this sees up to about 1.9 rad per step; no extra logarithm
+ * is needed. */
 static int ChartCoordinates(LGNMem mem)
 {
   LGNGroup G = mem->G;
   const sunindextype nq = mem->nq, nv = mem->nv;
-  sunrealtype *y = mem->work_nv;
   sunindextype i;
   int j, ret;
   if (mem->bdf_chart_t == mem->tn) return LGN_SUCCESS;
@@ -137,18 +138,17 @@ static int ChartCoordinates(LGNMem mem)
   memset(mem->bdf_x, 0, (size_t)nv * sizeof(sunrealtype));
   for (j = 1; j < mem->bdf_nhist; j++) {
     sunrealtype *x = mem->bdf_x + j * nv;
-    const sunrealtype *xp = x - nv;
-    sunrealtype ymax = SUN_RCONST(0.0), dmax = SUN_RCONST(0.0);
+    sunrealtype dmax = SUN_RCONST(0.0), dprev = SUN_RCONST(0.0);
     ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, x);
-    if (ret == 0 && j > 1)
-      ret = G->ops.compose_log(G, mem->bdf_q + (j - 1) * nq, mem->bdf_q + j * nq, y);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
     if (j == 1) continue;
     for (i = 0; i < nv; i++) {
-      ymax = SUNMAX(ymax, fabs(y[i]));
-      dmax = SUNMAX(dmax, fabs(x[i] - xp[i] - y[i]));
+      dmax  = SUNMAX(dmax, fabs(x[i] - x[i - nv]));
+      dprev = SUNMAX(dprev, fabs(x[i - nv] - x[i - 2 * nv]));
     }
-    if (dmax > SUN_RCONST(2.0) * ymax + SUN_RCONST(1.0)) { /* beyond the chart */
+    if (dmax > SUN_RCONST(2.0) * dprev * (mem->bdf_t[j - 1] - mem->bdf_t[j]) /
+                   (mem->bdf_t[j - 2] - mem->bdf_t[j - 1]) +
+                   SUN_RCONST(0.5)) { /* beyond the chart */
       mem->bdf_nhist = j;
       break;
     }
