@@ -36,96 +36,14 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_group.h>
 
-typedef long double LD;
-typedef sunrealtype RT;
+#define GROUP_TEST_SEED 0x2545F4914F6CDD1DULL
+#include "group_test_util.h"
 
 #define MAXF 8  /* max factors of a test group */
 #define MAXV 32 /* max nv of a test group      */
 #define MAXQ 40 /* max nq of a test group      */
 
 static const double PI = 3.141592653589793238462643383279502884;
-
-/* =============================================================================
- * Check bookkeeping (as test_groups.c)
- * ===========================================================================*/
-
-typedef struct {
-  const char *name;
-  double tol, maxerr;
-  long count, fails;
-} CheckRec;
-
-static CheckRec checks[96];
-static int nchecks = 0;
-static int ldx = 0; /* long double really wider than double at run time */
-
-static int Check(const char *name, double err, double tol, const char *ctx)
-{
-  CheckRec *c = NULL;
-  int k;
-  for (k = 0; k < nchecks; k++)
-    if (strcmp(checks[k].name, name) == 0) { c = &checks[k]; break; }
-  if (c == NULL) {
-    if (nchecks == (int)(sizeof checks / sizeof checks[0])) {
-      fprintf(stderr, "too many checks\n");
-      exit(2);
-    }
-    c = &checks[nchecks++];
-    c->name = name; c->tol = tol; c->maxerr = 0; c->count = 0; c->fails = 0;
-  }
-  c->count++;
-  if (!(err <= tol)) {
-    c->fails++;
-    if (c->fails <= 5)
-      printf("FAIL  %-62s err=%.3e tol=%.1e  [%s]\n", name, err, tol, ctx);
-  }
-  if (err > c->maxerr || err != err) c->maxerr = err;
-  return err <= tol;
-}
-
-/* =============================================================================
- * Random numbers and small helpers
- * ===========================================================================*/
-
-static unsigned long long rng = 0x2545F4914F6CDD1DULL;
-
-static double Rand(void) /* uniform in [-1, 1] */
-{
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return 2.0 * ((double)(rng >> 11) / 9007199254740992.0) - 1.0;
-}
-
-static void RandDir(RT d[3])
-{
-  double n;
-  do {
-    d[0] = Rand(); d[1] = Rand(); d[2] = Rand();
-    n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  } while (n < 0.1);
-  d[0] /= n; d[1] /= n; d[2] /= n;
-}
-
-static double MaxAbs(const RT *x, int n)
-{
-  double m = 0;
-  int i;
-  for (i = 0; i < n; i++)
-    if (fabs(x[i]) > m || x[i] != x[i]) m = fabs(x[i]);
-  return m;
-}
-
-static double MaxDiff(const RT *x, const RT *y, int n)
-{
-  double m = 0;
-  int i;
-  for (i = 0; i < n; i++) {
-    double d = fabs(x[i] - y[i]);
-    if (d > m || d != d) m = d;
-  }
-  return m;
-}
 
 /* =============================================================================
  * Test groups: the factor kinds, for building q and w and for the references
@@ -256,21 +174,6 @@ static void ScaleQuats(const TG *t, RT *q, double s)
 /* =============================================================================
  * Long double reference: log(q1^{-1} q2) from the stored q1, q2
  * ===========================================================================*/
-
-static void QMulL(const LD a[4], const LD b[4], LD r[4])
-{
-  r[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
-  r[1] = a[0] * b[1] + b[0] * a[1] + a[2] * b[3] - a[3] * b[2];
-  r[2] = a[0] * b[2] + b[0] * a[2] + a[3] * b[1] - a[1] * b[3];
-  r[3] = a[0] * b[3] + b[0] * a[3] + a[1] * b[2] - a[2] * b[1];
-}
-
-static void CrossL(const LD a[3], const LD b[3], LD r[3])
-{
-  r[0] = a[1] * b[2] - a[2] * b[1];
-  r[1] = a[2] * b[0] - a[0] * b[2];
-  r[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* d(phi) = (1 - (phi/2) cot(phi/2)) / phi^2 of T^{-1} */
 static LD CoefDL(LD phi)
@@ -721,7 +624,7 @@ int main(void)
   LGNGroup rn = LGNGroup_Rn(3), so3 = LGNGroup_SO3(), r3 = LGNGroup_R3xSO3();
   LGNGroup se3 = LGNGroup_SE3(), r2 = LGNGroup_Rn(2), fac[4], prod, fac2[2], nest;
   TG t;
-  int k, nfail = 0;
+  int nfail;
 
   printf("Lignum unit test: the logarithm of the built-in Lie groups\n");
   {
@@ -759,13 +662,7 @@ int main(void)
   RunSO3Special(so3);
   RunBadInput(so3);
 
-  printf("\n%-66s %7s %10s %8s  %s\n", "check", "count", "max err", "tol", "result");
-  for (k = 0; k < nchecks; k++) {
-    printf("%-66s %7ld %10.2e %8.1e  %s\n", checks[k].name, checks[k].count,
-           checks[k].maxerr, checks[k].tol, checks[k].fails ? "FAIL" : "ok");
-    if (checks[k].fails) nfail++;
-  }
-  printf("\n%d of %d checks failed\n", nfail, nchecks);
+  nfail = CheckSummary(66);
 
   LGNGroup_Destroy(nest);
   LGNGroup_Destroy(prod);

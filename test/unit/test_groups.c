@@ -24,100 +24,12 @@
 
 #include "groups/lgn_so3.h"
 
-typedef long double LD;
-typedef sunrealtype RT;
+#define GROUP_TEST_SEED 0x9E3779B97F4A7C15ULL
+#include "group_test_util.h"
 
 #define MAXF 8    /* max factors of a test group */
 #define MAXV 64   /* max nv of a test group      */
 #define MAXQ 80   /* max nq of a test group      */
-
-/* =============================================================================
- * Check bookkeeping
- * ===========================================================================*/
-
-typedef struct {
-  const char *name;
-  double tol;
-  double maxerr;
-  long count;
-  long fails;
-} CheckRec;
-
-static CheckRec checks[128];
-static int nchecks = 0;
-
-/* 1 if long double arithmetic really is wider than double at run time
- * (valgrind, for one, computes x87 long double in double precision). */
-static int ldx = 0;
-
-/* Record err <= tol under `name`; print the first few failures with ctx. */
-static int Check(const char *name, double err, double tol, const char *ctx)
-{
-  CheckRec *c = NULL;
-  int k;
-  for (k = 0; k < nchecks; k++)
-    if (strcmp(checks[k].name, name) == 0) { c = &checks[k]; break; }
-  if (c == NULL) {
-    if (nchecks == (int)(sizeof checks / sizeof checks[0])) {
-      fprintf(stderr, "too many checks\n");
-      exit(2);
-    }
-    c = &checks[nchecks++];
-    c->name = name; c->tol = tol; c->maxerr = 0; c->count = 0; c->fails = 0;
-  }
-  c->count++;
-  if (!(err <= tol)) { /* also catches NaN */
-    c->fails++;
-    if (c->fails <= 5)
-      printf("FAIL  %-58s err=%.3e tol=%.1e  [%s]\n", name, err, tol, ctx);
-  }
-  if (err > c->maxerr || err != err) c->maxerr = err;
-  return err <= tol;
-}
-
-/* =============================================================================
- * Random numbers and small vector helpers
- * ===========================================================================*/
-
-static unsigned long long rng = 0x9E3779B97F4A7C15ULL;
-
-static double Rand(void) /* uniform in [-1, 1] */
-{
-  rng ^= rng << 13;
-  rng ^= rng >> 7;
-  rng ^= rng << 17;
-  return 2.0 * ((double)(rng >> 11) / 9007199254740992.0) - 1.0;
-}
-
-static void RandDir(RT d[3])
-{
-  double n;
-  do {
-    d[0] = Rand(); d[1] = Rand(); d[2] = Rand();
-    n = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-  } while (n < 0.1);
-  d[0] /= n; d[1] /= n; d[2] /= n;
-}
-
-static double MaxAbs(const RT *x, sunindextype n)
-{
-  double m = 0;
-  sunindextype i;
-  for (i = 0; i < n; i++)
-    if (fabs(x[i]) > m || x[i] != x[i]) m = fabs(x[i]);
-  return m;
-}
-
-static double MaxDiff(const RT *x, const RT *y, sunindextype n)
-{
-  double m = 0;
-  sunindextype i;
-  for (i = 0; i < n; i++) {
-    double d = fabs(x[i] - y[i]);
-    if (d > m || d != d) m = d;
-  }
-  return m;
-}
 
 static double MaxDiffL(const LD *x, const RT *y, int n)
 {
@@ -251,16 +163,6 @@ static LD CoefRefL(const CoefDef *cd, LD phi)
  * Long double references: rotations
  * ===========================================================================*/
 
-static void QMulL(const LD a[4], const LD b[4], LD r[4])
-{
-  LD t[4];
-  t[0] = a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3];
-  t[1] = a[0] * b[1] + b[0] * a[1] + a[2] * b[3] - a[3] * b[2];
-  t[2] = a[0] * b[2] + b[0] * a[2] + a[3] * b[1] - a[1] * b[3];
-  t[3] = a[0] * b[3] + b[0] * a[3] + a[1] * b[2] - a[2] * b[1];
-  memcpy(r, t, sizeof t);
-}
-
 /* rotation vector of a (not necessarily unit) quaternion */
 static void QLogL(const LD p[4], LD phi[3])
 {
@@ -280,15 +182,6 @@ static void QRotL(const LD p0[4], LD R[9])
   R[4] = 1 - 2 * (x * x + z * z); R[5] = 2 * (y * z - w * x);
   R[6] = 2 * (x * z - w * y);     R[7] = 2 * (y * z + w * x);
   R[8] = 1 - 2 * (x * x + y * y);
-}
-
-static void CrossL(const LD a[3], const LD b[3], LD r[3])
-{
-  LD t[3];
-  t[0] = a[1] * b[2] - a[2] * b[1];
-  t[1] = a[2] * b[0] - a[0] * b[2];
-  t[2] = a[0] * b[1] - a[1] * b[0];
-  memcpy(r, t, sizeof t);
 }
 
 /* E = expm(A) for a 4x4 row-major A: scaling, Taylor (30 terms), squaring */
@@ -1053,7 +946,7 @@ int main(void)
   LGNGroup se3 = LGNGroup_SE3(), r2 = LGNGroup_Rn(2), prod;
   LGNGroup fac[3];
   TG t;
-  int k, nfail = 0;
+  int nfail;
 
   printf("Lignum unit test: built-in Lie groups (doc/theory.md §1.1)\n");
   {
@@ -1089,13 +982,7 @@ int main(void)
 
   RunApiAndProducts();
 
-  printf("\n%-60s %8s %10s %8s  %s\n", "check", "count", "max err", "tol", "result");
-  for (k = 0; k < nchecks; k++) {
-    printf("%-60s %8ld %10.2e %8.1e  %s\n", checks[k].name, checks[k].count,
-           checks[k].maxerr, checks[k].tol, checks[k].fails ? "FAIL" : "ok");
-    if (checks[k].fails) nfail++;
-  }
-  printf("\n%d of %d checks failed\n", nfail, nchecks);
+  nfail = CheckSummary(60);
 
   LGNGroup_Destroy(prod);
   LGNGroup_Destroy(rn5); LGNGroup_Destroy(so3); LGNGroup_Destroy(r3);
