@@ -43,6 +43,7 @@
 #include <string.h>
 
 #include "lgn_impl.h"
+#include "lgn_methods.h"
 
 #define BDF_HMAX_RATIO SUN_RCONST(2.0)
 #define BDF_CUT_FAIL   SUN_RCONST(0.25)
@@ -51,17 +52,6 @@
 /* =============================================================================
  * Coefficients
  * ===========================================================================*/
-
-/* p_j = l_j(t) of the Lagrange basis on the nodes tau[0..n]. */
-static void LagrangeValues(const sunrealtype *tau, int n, sunrealtype t, sunrealtype *p)
-{
-  int i, j;
-  for (j = 0; j <= n; j++) {
-    p[j] = SUN_RCONST(1.0);
-    for (i = 0; i <= n; i++)
-      if (i != j) p[j] *= (t - tau[i]) / (tau[j] - tau[i]);
-  }
-}
 
 /* d_j = l_j'(tau_0): d_0 = sum_{i>0} 1/(tau_0 - tau_i), and for j > 0
  * d_j = prod_{i != 0, j} (tau_0 - tau_i) / prod_{i != j} (tau_j - tau_i). */
@@ -238,7 +228,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     }
   } else {
     kp = SUNMIN(k, nh - 1);
-    LagrangeValues(mem->bdf_t, kp, t1, d);
+    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, NULL);
     for (i = 0; i < nv; i++) {
       sunrealtype x = SUN_RCONST(0.0), v = SUN_RCONST(0.0);
       for (j = 0; j <= kp; j++) {

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "lgn_impl.h"
+#include "lgn_methods.h"
 
 /* The BDF family: the interpolating polynomials of the last step's order
  * k through the newest k + 1 points, x in the chart of the step's start
@@ -36,24 +37,11 @@ static int BDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
   sunrealtype tau[LGN_BDF_MAXHIST], l[LGN_BDF_MAXHIST], dl[LGN_BDF_MAXHIST];
   sunrealtype *x = mem->dense_work;
   sunindextype i;
-  int j, m, r, ret;
+  int j, ret;
 
   tau[0] = mem->tn;
   for (j = 1; j <= kk; j++) tau[j] = mem->bdf_t[j];
-  /* l_j(t) and l_j'(t) = sum_{m != j} 1/(tau_j - tau_m) prod_{r != j, m} (t - tau_r)/(tau_j - tau_r) */
-  for (j = 0; j <= kk; j++) {
-    l[j]  = SUN_RCONST(1.0);
-    dl[j] = SUN_RCONST(0.0);
-    for (m = 0; m <= kk; m++) {
-      sunrealtype p;
-      if (m == j) continue;
-      l[j] *= (t - tau[m]) / (tau[j] - tau[m]);
-      p = SUN_RCONST(1.0) / (tau[j] - tau[m]);
-      for (r = 0; r <= kk; r++)
-        if (r != j && r != m) p *= (t - tau[r]) / (tau[j] - tau[r]);
-      dl[j] += p;
-    }
-  }
+  lgnLagrangeBasis(tau, kk, t, l, dl);
   if (k == 0) {
     for (i = 0; i < nv; i++) {
       sunrealtype s = l[0] * mem->sigma[i];

@@ -68,3 +68,26 @@ int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
   }
   return LGN_SUCCESS;
 }
+
+/* l_j(t) = prod_{m != j} (t - tau_m)/(tau_j - tau_m) and
+ * l_j'(t) = sum_{m != j} 1/(tau_j - tau_m) prod_{r != j, m} (t - tau_r)/(tau_j - tau_r). */
+void lgnLagrangeBasis(const sunrealtype *tau, int n, sunrealtype t, sunrealtype *l,
+                      sunrealtype *dl)
+{
+  int j, m, r;
+  for (j = 0; j <= n; j++) {
+    l[j] = SUN_RCONST(1.0);
+    for (m = 0; m <= n; m++)
+      if (m != j) l[j] *= (t - tau[m]) / (tau[j] - tau[m]);
+    if (dl == NULL) continue;
+    dl[j] = SUN_RCONST(0.0);
+    for (m = 0; m <= n; m++) {
+      sunrealtype p;
+      if (m == j) continue;
+      p = SUN_RCONST(1.0) / (tau[j] - tau[m]);
+      for (r = 0; r <= n; r++)
+        if (r != j && r != m) p *= (t - tau[r]) / (tau[j] - tau[r]);
+      dl[j] += p;
+    }
+  }
+}

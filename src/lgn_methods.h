@@ -3,7 +3,8 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * Private header of lgn_methods.c: the admissibility check of a method's
- * parameters (a pure helper, no integrator record).
+ * parameters, and the Lagrange basis of the BDF family's polynomials (pure
+ * helpers, no integrator record).
  * ---------------------------------------------------------------------------*/
 
 #ifndef LGN_METHODS_H
@@ -16,5 +17,10 @@
 int lgnCheckMethodParams(sunrealtype alpha_m, sunrealtype alpha_f,
                          sunrealtype beta, sunrealtype gamma,
                          const char **why);
+
+/* The Lagrange basis on the nodes tau[0..n] at t: l[j] = l_j(t) and, if dl
+ * is not NULL, dl[j] = l_j'(t). */
+void lgnLagrangeBasis(const sunrealtype *tau, int n, sunrealtype t, sunrealtype *l,
+                      sunrealtype *dl);
 
 #endif
