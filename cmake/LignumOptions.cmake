@@ -39,3 +39,18 @@ endif()
 option(LGN_ENABLE_PETSC
   "Build LGNLinSol_PETSc, a direct solve through PETSc's KSP with MUMPS (needs PETSc with MUMPS, and MPI)"
   ${_lgn_petsc_default})
+# Runs across MPI ranks (state vectors of type N_Vector_Parallel or
+# MPIPlusX; src/lgn_parallel.c) are built by default when MPI for C is
+# found (checked only while the option is not yet set). liblignum then
+# links MPI and SUNDIALS' parallel vectors privately; its headers do not
+# include <mpi.h>.
+set(_lgn_mpi_default OFF)
+if(NOT DEFINED LGN_ENABLE_MPI)
+  find_package(MPI QUIET COMPONENTS C)
+  if(MPI_C_FOUND)
+    set(_lgn_mpi_default ON)
+  endif()
+endif()
+option(LGN_ENABLE_MPI
+  "Runs across MPI ranks with SUNDIALS' parallel vectors (needs MPI and SUNDIALS' nvecparallel and nvecmpiplusx)"
+  ${_lgn_mpi_default})

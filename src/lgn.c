@@ -123,11 +123,12 @@ static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
   flag = lgnCheckVector(mem, q0, mem->G->nq, "q0", func);
   if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v0, mem->G->nv, "v0", func);
   if (flag != LGN_SUCCESS) return flag;
-  if (!lgnAllFinite(N_VGetArrayPointer(q0), N_VGetLength(q0)) ||
-      !lgnAllFinite(N_VGetArrayPointer(v0), N_VGetLength(v0))) {
+  if (!lgnAllFinite(N_VGetArrayPointer(q0), lgnLocalLength(q0)) ||
+      !lgnAllFinite(N_VGetArrayPointer(v0), lgnLocalLength(v0))) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "%s has a NaN or Inf entry.",
-                    lgnAllFinite(N_VGetArrayPointer(q0), N_VGetLength(q0)) ? "v0" : "q0");
+                    lgnAllFinite(N_VGetArrayPointer(q0), lgnLocalLength(q0)) ? "v0"
+                                                                                : "q0");
     return LGN_ILL_INPUT;
   }
   if (!isfinite(t0)) {
@@ -158,7 +159,15 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  flag = CheckInitialState(mem, t0, q0, v0, __func__);
+  if (q0 == NULL || v0 == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "%s = NULL illegal.", q0 == NULL ? "q0" : "v0");
+    return LGN_ILL_INPUT;
+  }
+  /* the ranks of q0 and v0 (a collective call on all of them) */
+  lgnParallelFree(&mem->par);
+  flag = lgnParallelCreate(q0, v0, &mem->err, __func__, &mem->par);
+  if (flag != LGN_SUCCESS) return flag;
+  flag = lgnAgree(mem, CheckInitialState(mem, t0, q0, v0, __func__));
   if (flag != LGN_SUCCESS) return flag;
 
   flag = lgnAllocState(mem, q0, v0);
@@ -181,7 +190,7 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
               "The Lie group changed size since LGNInit: call LGNInit.");
     return LGN_ILL_INPUT;
   }
-  flag = CheckInitialState(mem, t0, q0, v0, __func__);
+  flag = lgnAgree(mem, CheckInitialState(mem, t0, q0, v0, __func__));
   if (flag != LGN_SUCCESS) return flag;
   SetInitialState(mem, t0, q0, v0);
   return LGN_SUCCESS;
@@ -191,11 +200,10 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
  * LGNSolve
  * ===========================================================================*/
 
-/* Everything LGNSolve needs before the first step: callbacks, step size,
- * linear solver, work space and consistent initial values. */
-static int CheckReadyToSolve(LGNMem mem)
+/* The settings LGNSolve needs: callbacks, step size, tolerances, a linear
+ * solver (checked on each rank alone). */
+static int CheckSettings(LGNMem mem)
 {
-  int flag;
   if (mem->mass == NULL) {
     LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");
     return LGN_MISSING_FN;
@@ -248,12 +256,23 @@ static int CheckReadyToSolve(LGNMem mem)
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;
   }
+  return LGN_SUCCESS;
+}
+
+/* Everything LGNSolve needs before the first step: the settings, work
+ * space and consistent initial values. Across ranks, each stage is agreed
+ * before the next (which may be collective). */
+static int CheckReadyToSolve(LGNMem mem)
+{
+  int flag = lgnAgree(mem, CheckSettings(mem));
+  if (flag != LGN_SUCCESS) return flag;
   if (!mem->work_done) {
     flag = lgnAllocWork(mem);
     if (flag != LGN_SUCCESS) return flag;
   }
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
+  flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
   if (!mem->ic_done) {
     flag = lgnInitialConditions(mem);
@@ -289,6 +308,7 @@ static int OutputAt(LGNMem mem, sunrealtype t, sunrealtype *tret, N_Vector q,
   *tret = t;
   flag = lgnDenseOutput(mem, t, 0, lgnData(q));
   if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 1, lgnData(v));
+  flag = lgnAgree(mem, flag);
   return flag;
 }
 

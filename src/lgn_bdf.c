@@ -130,15 +130,20 @@ static int ChartCoordinates(LGNMem mem)
     sunrealtype *x = mem->bdf_x + j * nv;
     sunrealtype dmax = SUN_RCONST(0.0), dprev = SUN_RCONST(0.0);
     ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, x);
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+    ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve")
+                                  : LGN_SUCCESS);
+    if (ret != LGN_SUCCESS) return ret;
     if (j == 1) continue;
     for (i = 0; i < nv; i++) {
       dmax  = SUNMAX(dmax, fabs(x[i] - x[i - nv]));
       dprev = SUNMAX(dprev, fabs(x[i - nv] - x[i - 2 * nv]));
     }
-    if (dmax > SUN_RCONST(2.0) * dprev * (mem->bdf_t[j - 1] - mem->bdf_t[j]) /
-                   (mem->bdf_t[j - 2] - mem->bdf_t[j - 1]) +
-                   SUN_RCONST(0.5)) { /* beyond the chart */
+    /* the history is cut on every rank where it leaves one rank's chart */
+    if (lgnMaxAll(mem, dmax > SUN_RCONST(2.0) * dprev * (mem->bdf_t[j - 1] - mem->bdf_t[j]) /
+                                  (mem->bdf_t[j - 2] - mem->bdf_t[j - 1]) +
+                              SUN_RCONST(0.5)
+                          ? SUN_RCONST(1.0)
+                          : SUN_RCONST(0.0)) > SUN_RCONST(0.0)) { /* beyond the chart */
       mem->bdf_nhist = j;
       break;
     }
@@ -251,6 +256,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   c->hmat    = SUN_RCONST(1.0) / mem->bdf_c0;
   c->qscale  = SUN_RCONST(1.0);
   for (i = 0; i < mem->nq; i++) c->qscale = SUNMAX(c->qscale, fabs(lgnData(mem->q)[i]));
+  c->qscale = lgnMaxAll(mem, c->qscale);
 
   mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
   mem->kin->bind(mem);
@@ -371,7 +377,7 @@ static int Prepare(LGNMem mem)
               "which this group does not set.");
     return LGN_ILL_INPUT;
   }
-  flag = lgnAllocBDF(mem);
+  flag = lgnAgree(mem, lgnAllocBDF(mem));
   if (flag != LGN_SUCCESS) return flag;
   /* a landing on a stop time or tout moves t_n to it by roundoff */
   if (mem->bdf_nhist > 0 &&

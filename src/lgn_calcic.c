@@ -43,7 +43,7 @@ static int PrepareModel(LGNMem mem, const char *func)
   }
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
-  return flag;
+  return lgnAgree(mem, flag);
 }
 
 int LGNCalcIC(void *lgn_mem, int icopt)

@@ -39,6 +39,7 @@
 
 #include "lgn_dense_lu.h"
 #include "lgn_err.h"
+#include "lgn_parallel.h"
 
 #define MSG_MEM_FAIL "A memory request failed." /* as the integrator's */
 
@@ -252,7 +253,7 @@ static int DenseLUSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b,
   flag = CheckMatrix(c, A);
   if (flag == SUNLS_SUCCESS && !c->factored) flag = SUNLS_ILL_INPUT;
   if (flag == SUNLS_SUCCESS &&
-      (N_VGetLength(x) != c->N || N_VGetLength(b) != c->N))
+      (lgnLocalLength(x) != c->N || lgnLocalLength(b) != c->N))
     flag = SUNLS_ILL_INPUT;
   xd = N_VGetArrayPointer(x);
   bd = N_VGetArrayPointer(b);

@@ -41,13 +41,14 @@ void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w)
            ((atol != NULL ? atol[i] : mem->atol) + mem->rtol * fabs(incr[i]));
 }
 
-/* sqrt( (1/nv) sum_i (x_i w_i)^2 ) */
+/* sqrt( (1/nv) sum_i (x_i w_i)^2 ), over all ranks */
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w)
 {
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
   for (i = 0; i < mem->nv; i++) s += (x[i] * w[i]) * (x[i] * w[i]);
-  return sqrt(s / (sunrealtype)mem->nv);
+  lgnSumAll(mem, &s, 1);
+  return sqrt(s / mem->nv_all);
 }
 
 /* Index 3: e's part normal to the constraints, e <- e - M^{-1} B^T mu with
@@ -67,7 +68,7 @@ static int ProjectOnConstraints(LGNMem mem, const LGNStepCoeffs *c)
   lgnMatvec(mem->Mmat, mem->ele, rhs, SUNFALSE);
   for (i = 0; i < nv; i++) rhs[i] *= cM;
   for (i = 0; i < m; i++) rhs[nv + i] = SUN_RCONST(0.0);
-  flag = lgnLsSolve(mem, mem->sol, mem->rhs);
+  flag = lgnAgree(mem, lgnLsSolve(mem, mem->sol, mem->rhs));
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < nv; i++) mem->ele[i] = sol[i];
   return LGN_SUCCESS;
@@ -87,7 +88,9 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
   sunrealtype *td = mem->work_nv; /* Tdot(0, v_n) vdot_n = -ad(v_n) vdot_n / 2 */
   sunindextype i;
   int ret = G->ops.tangent_dot_apply(G, mem->zero_nv, v0, a0, td);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve")
+                                : LGN_SUCCESS);
+  if (ret != LGN_SUCCESS) return ret;
   for (i = 0; i < nv; i++)
     mem->ele[i] = s[i] - (h * v0[i] + h2 * (SUN_RCONST(0.5) * a0[i] +
                                             (a1[i] - a0[i]) / SUN_RCONST(6.0)) -
@@ -118,15 +121,18 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
   ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
                           mem->constr_jac(c->t1, mem->q1, mem->Bmat, mem->user_data),
                           mem->Bmat, "LGNSolve");
-  if (ret != LGN_SUCCESS) return ret;
-  ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1), mem->work_m);
+  if (ret == LGN_SUCCESS)
+    ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1),
+                                mem->work_m);
+  ret = lgnAgree(mem, ret);
   if (ret != LGN_SUCCESS) return ret;
   for (i = 0; i < m; i++) {
     w = c->h * mem->work_m[i] /
         (mem->atol + mem->rtol * c->h * fabs(lgnData(mem->phit)[i]));
     s += w * w;
   }
-  *norm = sqrt(s / (sunrealtype)m);
+  lgnSumAll(mem, &s, 1);
+  *norm = sqrt(s / mem->m_all);
   return LGN_SUCCESS;
 }
 

@@ -61,7 +61,7 @@ static int EvalAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
   if (v != mem->v1) N_VScale(SUN_RCONST(1.0), v, mem->v1);
   N_VConst(SUN_RCONST(0.0), mem->vdot1);
   if (mem->m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda1);
-  return lgnEvalModel(mem, t, SUNTRUE);
+  return lgnAgree(mem, lgnEvalModel(mem, t, SUNTRUE));
 }
 
 /* Assemble and factorise [[M, B^T], [B, 0]] from the M, B just evaluated,
@@ -74,10 +74,11 @@ static int SaddlePointSolve(LGNMem mem, sunrealtype t)
   lgnSaddlePointTerms(&terms);
   flag = lgnAssembleIterationMatrix(mem, t, &terms);
   if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
+  flag = lgnAgree(mem, flag); /* across ranks: before a (collective) solve */
   if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
   if (flag == LGN_SUCCESS && !lgnAllFinite(lgnData(mem->sol), mem->nv + mem->m))
     flag = LGN_IC_FAIL;
-  return flag;
+  return lgnAgree(mem, flag);
 }
 
 /* The index-1 system at (t, q, v): (vdot, lambda) into mem->sol. */
@@ -86,7 +87,7 @@ static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *rhs = lgnData(mem->rhs);
   const sunrealtype *g = lgnData(mem->g);
-  int ret, flag;
+  int ret = LGN_SUCCESS, flag;
 
   flag = EvalAt(mem, t, q, v); /* B: the matrix below */
   if (flag != LGN_SUCCESS) return flag;
@@ -96,19 +97,20 @@ static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
       N_VConst(SUN_RCONST(0.0), mem->phi);
       ret = mem->curvature(t, mem->q1, mem->v1, mem->phi, mem->user_data);
       ret = lgnCallbackVector(mem, LGN_CB_CURVATURE, ret, mem->phi, "LGNSolve");
-      if (ret != LGN_SUCCESS) return ret;
     } else {
-      flag = lgnCurvatureDQ(mem, t, mem->q1, mem->v1, mem->phi);
-      if (flag != LGN_SUCCESS) return flag;
+      ret = lgnCurvatureDQ(mem, t, mem->q1, mem->v1, mem->phi);
     }
     for (i = 0; i < m; i++) rhs[nv + i] = -lgnData(mem->phi)[i];
   }
-  if (!lgnAllFinite(rhs, nv + m)) {
+  flag = ret;
+  if (flag == LGN_SUCCESS && !lgnAllFinite(rhs, nv + m)) {
     LGN_ERROR(mem, LGN_NONFINITE,
               MSG_TIME "NaN or Inf in the forces or constraint curvature at "
               "the initial state.", (double)t);
-    return LGN_NONFINITE;
+    flag = LGN_NONFINITE;
   }
+  flag = lgnAgree(mem, flag);
+  if (flag != LGN_SUCCESS) return flag;
   flag = SaddlePointSolve(mem, t);
   if (flag == LGN_IC_FAIL) {
     LGN_ERROR(mem, LGN_IC_FAIL,
@@ -168,8 +170,8 @@ static int EvalPhi(LGNMem mem, N_Vector q)
   int ret;
   N_VConst(SUN_RCONST(0.0), mem->phi);
   ret = mem->constr(mem->tn, q, mem->phi, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__);
-  return LGN_SUCCESS;
+  return lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__)
+                                : LGN_SUCCESS);
 }
 
 /* B(q) v + Phi_t(q) into mem->work_m (B evaluated into Bmat at t = tn). */
@@ -178,8 +180,9 @@ static int EvalBv(LGNMem mem, N_Vector q, N_Vector v)
   int ret;
   lgnMatClear(mem->Bmat);
   ret = mem->constr_jac(mem->tn, q, mem->Bmat, mem->user_data);
-  if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__);
-  return lgnConstraintVelocity(mem, mem->tn, q, mem->Bmat, lgnData(v), mem->work_m);
+  if (ret != 0) return lgnAgree(mem, lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__));
+  return lgnAgree(mem, lgnConstraintVelocity(mem, mem->tn, q, mem->Bmat, lgnData(v),
+                                             mem->work_m));
 }
 
 static sunrealtype QScale(LGNMem mem)
@@ -188,7 +191,7 @@ static sunrealtype QScale(LGNMem mem)
   sunrealtype s = SUN_RCONST(1.0);
   const sunrealtype *q = lgnData(mem->q);
   for (i = 0; i < mem->nq; i++) s = SUNMAX(s, fabs(q[i]));
-  return s;
+  return lgnMaxAll(mem, s);
 }
 
 /* The check's tolerances (header comment). */
@@ -218,7 +221,7 @@ static int CheckConsistency(LGNMem mem)
   if (mem->constr_index == LGN_CONSTR_INDEX3) {
     flag = EvalPhi(mem, mem->q);
     if (flag != LGN_SUCCESS) return flag;
-    viol = MaxAbs(lgnData(mem->phi), mem->m, &i);
+    viol = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), mem->m, &i));
     tol  = TolPhi(mem);
     if (!(viol <= tol)) {
       LGN_ERROR(mem, LGN_INCONSISTENT_IC,
@@ -233,7 +236,7 @@ static int CheckConsistency(LGNMem mem)
   }
   flag = EvalBv(mem, mem->q, mem->v);
   if (flag != LGN_SUCCESS) return flag;
-  viol = MaxAbs(mem->work_m, mem->m, &i);
+  viol = lgnMaxAll(mem, MaxAbs(mem->work_m, mem->m, &i));
   tol  = TolBv(mem);
   if (!(viol <= tol)) {
     LGN_ERROR(mem, LGN_INCONSISTENT_IC,
@@ -273,7 +276,7 @@ static int ProjectQ(LGNMem mem)
   for (it = 0;; it++) {
     flag = EvalPhi(mem, mem->q);
     if (flag != LGN_SUCCESS) return flag;
-    nrm = MaxAbs(lgnData(mem->phi), m, &imax);
+    nrm = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), m, &imax));
     if (nrm <= tol_round) return LGN_SUCCESS;
     /* no longer contracting: roundoff level of this model's Phi */
     if (it >= 2 && nrm > SUN_RCONST(0.5) * prev && nrm <= tol_stall) return LGN_SUCCESS;
@@ -301,7 +304,9 @@ static int ProjectQ(LGNMem mem)
     /* q <- q o exp(dq) (through q1: compose_exp may not alias) */
     ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q), lgnData(mem->sol),
                                   lgnData(mem->q1));
-    if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__)
+                                  : LGN_SUCCESS);
+    if (ret != LGN_SUCCESS) return ret;
     N_VScale(SUN_RCONST(1.0), mem->q1, mem->q);
   }
 }
@@ -318,7 +323,7 @@ static int ProjectV(LGNMem mem)
   for (it = 0; it < 3; it++) {
     flag = EvalBv(mem, mem->q, mem->v);
     if (flag != LGN_SUCCESS) return flag;
-    nrm = MaxAbs(mem->work_m, m, &imax);
+    nrm = lgnMaxAll(mem, MaxAbs(mem->work_m, m, &imax));
     if (nrm <= SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * N_VMaxNorm(mem->v)) break;
     for (i = 0; i < m; i++) rhs[nv + i] = -mem->work_m[i];
     flag = EvalAt(mem, mem->tn, mem->q, mem->v);
@@ -385,8 +390,9 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
     return LGN_ILL_INPUT;
   }
   work = (sunrealtype *)malloc(3 * (size_t)nv * sizeof(sunrealtype));
-  if (work == NULL) {
-    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+  if (work == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+  if (lgnAgree(mem, work == NULL ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
+    free(work);
     return LGN_MEM_FAIL;
   }
   vdp = work; hvdd = work + nv; w = work + 2 * nv;
@@ -398,10 +404,9 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
       v1[i] = v0[i] + sign * h * vd0[i];
     }
     ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q), w, lgnData(mem->q1));
-    if (ret != 0) {
-      flag = lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
-      break;
-    }
+    flag = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__)
+                                   : LGN_SUCCESS);
+    if (flag != LGN_SUCCESS) break;
     flag = SolveIndex1At(mem, mem->tn + sign * h, mem->q1, mem->v1);
     if (flag != LGN_SUCCESS) break;
     if (sign > 0)
@@ -417,6 +422,7 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
     /* l = h c0 (h vddot) + h^2 [v0, vdot0] / 12, [v, w] = -2 Tdot(0, v) w */
     ret = mem->G->ops.tangent_dot_apply(mem->G, mem->zero_nv, v0, vd0, w);
     if (ret != 0) flag = lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
+    flag = lgnAgree(mem, flag);
     if (flag == LGN_SUCCESS) {
       for (i = 0; i < nv; i++)
         vdp[i] = h * c0 * hvdd[i] - h * h * SUN_RCONST(2.0) * w[i] / SUN_RCONST(12.0);

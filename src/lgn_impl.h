@@ -15,6 +15,7 @@
 
 #include "lgn_err.h"
 #include "lgn_matops.h"
+#include "lgn_parallel.h"
 
 /* =============================================================================
  * Defaults
@@ -74,6 +75,11 @@ typedef enum {
 
 typedef struct LGNMemRec {
   SUNContext sunctx;
+
+  /* ---- a run across MPI ranks (lgn_parallel.h; NULL: one process) ---- */
+  LGNParallel par;          /* the communicator of q0 and v0              */
+  sunrealtype nv_all;       /* nv and m summed over the ranks: the sizes  */
+  sunrealtype m_all;        /* of the weighted RMS norms                  */
 
   /* ---- model ---- */
   LGNGroup G;               /* configuration space (not owned)            */
@@ -363,6 +369,9 @@ int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
                       const char *func);
 int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
                       const char *func);
+int lgnAgree(LGNMem mem, int flag);
+void lgnSumAll(LGNMem mem, sunrealtype *x, int n);
+sunrealtype lgnMaxAll(LGNMem mem, sunrealtype x);
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
 int lgnAllocWork(LGNMem mem);

@@ -448,7 +448,14 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   }
   N_VScale(SUN_RCONST(1.0), atol, mem->atol_vec);
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
-  mem->atol     = sum / (sunrealtype)mem->nv; /* the multipliers' (mean) */
+  {
+    /* the multipliers' atol: the mean over all ranks (a collective call) */
+    sunrealtype mean[2];
+    mean[0] = sum;
+    mean[1] = (sunrealtype)mem->nv;
+    lgnSumAll(mem, mean, 2);
+    mem->atol = mean[0] / mean[1];
+  }
   mem->tols_set = SUNTRUE;
   return LGN_SUCCESS;
 }

@@ -289,14 +289,15 @@ void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c)
   mem->kry_newton = SUNTRUE;
 }
 
-/* sqrt(sum (w_i x_i)^2) */
-static sunrealtype WeightedNorm(N_Vector x, N_Vector w)
+/* sqrt(sum (w_i x_i)^2), over all ranks */
+static sunrealtype WeightedNorm(LGNMem mem, N_Vector x, N_Vector w)
 {
-  const sunindextype n = N_VGetLength(x);
+  const sunindextype n = lgnLocalLength(x);
   const sunrealtype *px = lgnData(x), *pw = lgnData(w);
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
   for (i = 0; i < n; i++) s += (px[i] * pw[i]) * (px[i] * pw[i]);
+  lgnSumAll(mem, &s, 1);
   return sqrt(s);
 }
 
@@ -304,7 +305,7 @@ static sunrealtype WeightedNorm(N_Vector x, N_Vector w)
  * lgnKrylovNewtonWeights; else relative), from x = 0. */
 int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
-  const sunindextype n = mem->nv + mem->m;
+  const sunrealtype n = mem->nv_all + mem->m_all; /* of all ranks */
   const sunbooleantype newton = mem->kry_newton;
   const sunbooleantype left = HasPreconditioner(mem) &&
                               mem->kry_pretype != SUN_PREC_RIGHT;
@@ -317,7 +318,7 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
     b = mem->kry_tmp;
   }
   if (newton) {
-    delta = mem->eplifac * sqrt((sunrealtype)n);
+    delta = mem->eplifac * sqrt(n);
   } else {
     /* unit weights, a relative residual: of P^{-1} b when the solver
      * measures the left-preconditioned residual */
@@ -331,9 +332,9 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
                   (double)mem->tn, ret);
         return LGN_LSOLVE_FAIL;
       }
-      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem->kry_tmp, mem->kry_w);
+      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, mem->kry_tmp, mem->kry_w);
     } else {
-      delta = KRYLOV_RTOL_OTHER * WeightedNorm(b, mem->kry_w);
+      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, b, mem->kry_w);
     }
   }
   N_VConst(SUN_RCONST(0.0), x);

@@ -107,7 +107,8 @@ int lgnAccessMem(void *lgn_mem, const char *func, LGNMem *mem)
 }
 
 /* Check a vector argument of a public function: not NULL, with a data
- * array (serial N_Vector) of the expected length. */
+ * array whose rank-local part (all of it on one process) has the expected
+ * length. */
 int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
                    const char *func)
 {
@@ -118,14 +119,14 @@ int lgnCheckVector(LGNMem mem, N_Vector x, sunindextype len, const char *name,
   }
   if (N_VGetArrayPointer(x) == NULL && len > 0) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "%s has no data array (a serial N_Vector is required).",
-                    name);
+                    "%s has no data array (a serial, parallel or MPIPlusX "
+                    "N_Vector is required).", name);
     return LGN_ILL_INPUT;
   }
-  if (N_VGetLength(x) != len) {
+  if (lgnLocalLength(x) != len) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "%s has length %lld, but %lld is needed.", name,
-                    (long long)N_VGetLength(x), (long long)len);
+                    (long long)lgnLocalLength(x), (long long)len);
     return LGN_ILL_INPUT;
   }
   return LGN_SUCCESS;
@@ -213,7 +214,7 @@ int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
 {
   sunindextype k;
   if (retval != 0) return lgnCallbackFlag(mem, cb, retval, func);
-  k = FirstNonFinite(NV_DATA_S(x), NV_LENGTH_S(x));
+  k = FirstNonFinite(N_VGetArrayPointer(x), lgnLocalLength(x));
   if (k < 0) return LGN_SUCCESS;
   lgnProcessError(mem, LGN_NONFINITE, __LINE__, func, __FILE__,
                   MSG_TIME "the %s function returned %g in entry %lld.",
@@ -326,6 +327,37 @@ static int BlocksBuild(LGNMem mem)
 }
 
 /* =============================================================================
+ * A run across ranks: the agreement on failures, and reductions
+ * ===========================================================================*/
+
+/* The flag every rank goes on with (lgnParallelAgree). A rank that did not
+ * fail itself reports the failure of the other rank (the failing rank has
+ * reported what failed); recoverable flags stay silent, as they are on one
+ * process. On one process: flag. */
+int lgnAgree(LGNMem mem, int flag)
+{
+  int rank, agreed;
+  if (mem->par == NULL) return flag;
+  agreed = lgnParallelAgree(mem->par, flag, &rank);
+  if (agreed < 0 && flag == LGN_SUCCESS && agreed != LGN_CONV_FAILURE)
+    LGN_ERROR(mem, agreed, MSG_TIME "failed on rank %d (flag %d): see its message.",
+              (double)mem->tn, rank, agreed);
+  return agreed;
+}
+
+/* x[0 .. n-1] <- their sums over the ranks. */
+void lgnSumAll(LGNMem mem, sunrealtype *x, int n)
+{
+  lgnParallelSum(mem->par, x, n);
+}
+
+/* The maximum of x over the ranks. */
+sunrealtype lgnMaxAll(LGNMem mem, sunrealtype x)
+{
+  return lgnParallelMax(mem->par, x);
+}
+
+/* =============================================================================
  * Allocation and release
  * ===========================================================================*/
 
@@ -425,6 +457,7 @@ void lgnFreeAll(LGNMem mem)
   lgnFreeState(mem);
   DestroyVector(&mem->atol_vec);
   lgnFreeRoots(mem);
+  lgnParallelFree(&mem->par);
 }
 
 /* =============================================================================
@@ -442,7 +475,7 @@ int lgnAllocKrylov(LGNMem mem)
     lgnFreeMatrices(mem);
     DestroyMatrix(&mem->A);
   }
-  if (mem->kry_w != NULL && N_VGetLength(mem->kry_w) != n) {
+  if (mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != n) {
     DestroyVector(&mem->kry_w);
     DestroyVector(&mem->kry_tmp);
   }
@@ -452,8 +485,8 @@ int lgnAllocKrylov(LGNMem mem)
     mem->A     = SUNSparseMatrix(n, n, SUNMAX(10 * n, 1), CSC_MAT, mem->sunctx);
     mem->own_A = mem->A != NULL ? SUNTRUE : SUNFALSE;
   }
-  if (mem->kry_w == NULL) mem->kry_w = N_VNew_Serial(n, mem->sunctx);
-  if (mem->kry_tmp == NULL) mem->kry_tmp = N_VNew_Serial(n, mem->sunctx);
+  if (mem->kry_w == NULL) mem->kry_w = lgnParallelNewVector(mem->par, n, mem->sunctx);
+  if (mem->kry_tmp == NULL) mem->kry_tmp = lgnParallelNewVector(mem->par, n, mem->sunctx);
   if (mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL) {
     lgnFreeKrylov(mem, SUNFALSE);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
@@ -579,26 +612,48 @@ int lgnAllocWork(LGNMem mem)
   int fail = 0;
 
   lgnFreeWork(mem);
-  fail = BlocksBuild(mem) != LGN_SUCCESS;
+  /* every rank allocates or none (the vectors below are made collectively) */
+  fail = lgnAgree(mem, BlocksBuild(mem) != LGN_SUCCESS ? LGN_MEM_FAIL : LGN_SUCCESS) !=
+         LGN_SUCCESS;
   if (!fail) {
-    mem->g    = N_VNew_Serial(nv, ctx);
-    mem->rdyn = N_VNew_Serial(nv, ctx);
-    mem->dq_g = N_VNew_Serial(nv, ctx);
-    mem->dq_r = N_VNew_Serial(nv, ctx);
-    mem->rhs  = N_VNew_Serial(nv + m, ctx);
-    mem->sol  = N_VNew_Serial(nv + m, ctx);
+    /* the sizes of the weighted RMS norms: nv and m of all ranks */
+    sunrealtype sizes[3];
+    sizes[0] = (sunrealtype)nv;
+    sizes[1] = (sunrealtype)m;
+    sizes[2] = m == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
+    lgnSumAll(mem, sizes, 3);
+    mem->nv_all = sizes[0];
+    mem->m_all  = sizes[1];
+    if (sizes[1] > SUN_RCONST(0.0) && sizes[2] > SUN_RCONST(0.0)) {
+      /* the step takes the constrained path on every rank or on none */
+      LGN_ERROR(mem, LGN_ILL_INPUT,
+                "%g of %d ranks have no constraints (m = 0) while others have: "
+                "give every rank constraints, or none.",
+                (double)sizes[2], lgnParallelSize(mem->par));
+      lgnFreeWork(mem);
+      return LGN_ILL_INPUT;
+    }
+  }
+  if (!fail) {
+    /* every rank makes every vector, whatever failed (collective types) */
+    mem->g    = N_VClone(mem->v);
+    mem->rdyn = N_VClone(mem->v);
+    mem->dq_g = N_VClone(mem->v);
+    mem->dq_r = N_VClone(mem->v);
+    mem->rhs  = lgnParallelNewVector(mem->par, nv + m, ctx);
+    mem->sol  = lgnParallelNewVector(mem->par, nv + m, ctx);
     fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
             mem->dq_r == NULL || mem->rhs == NULL ||
             mem->sol == NULL);
-  }
-  if (m > 0 && !fail) {
-    mem->lambda  = N_VNew_Serial(m, ctx);
-    mem->lambda1 = N_VNew_Serial(m, ctx);
-    mem->phi     = N_VNew_Serial(m, ctx);
-    mem->dq_z    = N_VNew_Serial(m, ctx);
-    mem->phit    = N_VNew_Serial(m, ctx);
-    fail = (mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
-            mem->dq_z == NULL || mem->phit == NULL);
+    if (m > 0) {
+      mem->lambda  = lgnParallelNewVector(mem->par, m, ctx);
+      mem->lambda1 = lgnParallelNewVector(mem->par, m, ctx);
+      mem->phi     = lgnParallelNewVector(mem->par, m, ctx);
+      mem->dq_z    = lgnParallelNewVector(mem->par, m, ctx);
+      mem->phit    = lgnParallelNewVector(mem->par, m, ctx);
+      fail = fail || mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
+             mem->dq_z == NULL || mem->phit == NULL;
+    }
   }
   if (!fail) {
     /* sigma, sigma_dot and sigma_ddot of the exact variant
@@ -613,9 +668,9 @@ int lgnAllocWork(LGNMem mem)
     mem->diag_red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL);
   }
-  if (fail) {
+  if (lgnAgree(mem, fail ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeWork(mem);
-    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    if (fail) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
   mem->Tv         = mem->Tm + mem->tlen;
@@ -762,7 +817,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     lgnKluCopySpace(mem->klu, &rw, &iw);
   }
   if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
-  if (mem->kry_w != NULL) rw += 2 * (long int)N_VGetLength(mem->kry_w);
+  if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
   lgnBlockPrecSpace(mem->bp, &rw, &iw);
   *lenrw = rw;
   *leniw = iw;

@@ -123,19 +123,22 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
   const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
   const sunrealtype lambda_atol = atol + roundoff / (beta * h);
-  sunrealtype sum, sum_lambda;
+  const sunrealtype n = mem->nv_all + mem->m_all;
+  sunrealtype sum[2]; /* the configuration and multiplier parts */
 
   /* per-component tolerances (error control): the same weights with
    * atol_i h in place of atol h */
-  sum = mem->nls_atolv != NULL
-            ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv, h,
-                                 roundoff, rtol)
-            : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol, rtol);
-  t->norm_sigma = sqrt(sum / (sunrealtype)(nv + m));
-  sum_lambda = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
-                                 lambda_unit * rtol);
-  t->norm_lambda = sqrt(sum_lambda / (sunrealtype)(nv + m));
-  t->norm = sqrt((sum + sum_lambda) / (sunrealtype)(nv + m));
+  sum[0] = mem->nls_atolv != NULL
+               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv, h,
+                                    roundoff, rtol)
+               : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol,
+                                   rtol);
+  sum[1] = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
+                             lambda_unit * rtol);
+  lgnSumAll(mem, sum, 2); /* over the ranks: every rank takes the same decision */
+  t->norm_sigma  = sqrt(sum[0] / n);
+  t->norm_lambda = sqrt(sum[1] / n);
+  t->norm        = sqrt((sum[0] + sum[1]) / n);
 }
 
 /* =============================================================================
@@ -242,11 +245,15 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
   int flag = mem->kin->iterate(mem, setup);
   if (flag == LGN_SUCCESS)
     flag = lgnNewtonResidual(mem, c->t1, c->scale, c->gamma_p, setup);
+  /* across ranks, each stage is agreed before the next, which may be
+   * collective (a Krylov solve) */
+  flag = lgnAgree(mem, flag);
   if (flag == LGN_SUCCESS && setup) {
     lgnInvalidate(mem, LGN_CHANGE_MATRIX); /* A is overwritten */
     flag = mem->kin->matrix(mem, c, &terms);
     if (flag == LGN_SUCCESS) flag = lgnAssembleIterationMatrix(mem, c->t1, &terms);
     if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
+    flag = lgnAgree(mem, flag);
     if (flag == LGN_SUCCESS) {
       mem->lu_valid = SUNTRUE;
       mem->lu_h     = c->hmat;
@@ -254,7 +261,7 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
     }
   }
   if (flag == LGN_SUCCESS && mem->krylov) lgnKrylovNewtonWeights(mem, c);
-  if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
+  if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnLsSolve(mem, mem->sol, mem->rhs));
   return flag;
 }
 
@@ -307,10 +314,10 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
     if (verdict == NEWTON_DIVERGED) break;
     if (verdict == NEWTON_DROP) continue;
     test.norm_prev = test.norm;
-    flag = ApplyCorrection(mem, c, sol, sol + nv);
+    flag = lgnAgree(mem, ApplyCorrection(mem, c, sol, sol + nv));
     if (flag != LGN_SUCCESS) return flag;
     if (test.stalled) mem->nstall++;
-    if (verdict == NEWTON_CONVERGED) return mem->kin->iterate(mem, SUNFALSE);
+    if (verdict == NEWTON_CONVERGED) return lgnAgree(mem, mem->kin->iterate(mem, SUNFALSE));
   }
   mem->nncf++;
   return LGN_CONV_FAILURE;

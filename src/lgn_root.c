@@ -61,10 +61,12 @@ static int StateAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 }
 
 /* gout = g(t, q(t), v(t)); a nonzero return or a value not finite is
- * LGN_RTFUNC_FAIL. */
+ * LGN_RTFUNC_FAIL. Across ranks g is the sum of the ranks' returns (each
+ * returns its part: what its bodies contribute, zero for the others'), so
+ * that every rank finds the same roots. */
 static int EvalG(LGNMem mem, sunrealtype t, sunrealtype *gout)
 {
-  int i, ret, flag = StateAt(mem, t, mem->rt_q, mem->rt_v);
+  int i, ret, flag = lgnAgree(mem, StateAt(mem, t, mem->rt_q, mem->rt_v));
   if (flag != LGN_SUCCESS) return flag;
   ret = mem->gfun(t, mem->rt_q, mem->rt_v, gout, mem->user_data);
   mem->nge++;
@@ -72,17 +74,19 @@ static int EvalG(LGNMem mem, sunrealtype t, sunrealtype *gout)
     lgnProcessError(mem, LGN_RTFUNC_FAIL, __LINE__, FUNC_SOLVE, __FILE__,
                     MSG_TIME "the root function failed (returned %d).",
                     (double)t, ret);
-    return LGN_RTFUNC_FAIL;
+    flag = LGN_RTFUNC_FAIL;
   }
-  for (i = 0; i < mem->nrtfn; i++) {
+  for (i = 0; i < mem->nrtfn && flag == LGN_SUCCESS; i++) {
     if (!isfinite(gout[i])) {
       lgnProcessError(mem, LGN_RTFUNC_FAIL, __LINE__, FUNC_SOLVE, __FILE__,
                       MSG_TIME "the root function returned g[%d] = %g, not "
                       "finite.", (double)t, i, (double)gout[i]);
-      return LGN_RTFUNC_FAIL;
+      flag = LGN_RTFUNC_FAIL;
     }
   }
-  return LGN_SUCCESS;
+  flag = lgnAgree(mem, flag);
+  if (flag == LGN_SUCCESS) lgnSumAll(mem, gout, mem->nrtfn);
+  return flag;
 }
 
 /* =============================================================================

@@ -28,6 +28,7 @@ LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
   c.qscale  = SUN_RCONST(1.0);
   c.hmat    = h;
   for (i = 0; i < mem->nq; i++) c.qscale = SUNMAX(c.qscale, fabs(q[i]));
+  c.qscale = lgnMaxAll(mem, c.qscale); /* the same Newton test on every rank */
   return c;
 }
 
@@ -141,18 +142,18 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
     mem->pstart_done    = SUNTRUE;
     mem->pstart_pending = SUNTRUE; /* until the step is completed */
     perturbed = SUNTRUE;
-    flag = lgnPerturbedStart(mem, c->h);
+    flag = lgnAgree(mem, lgnPerturbedStart(mem, c->h));
     if (flag != LGN_SUCCESS) {
       RestoreStart(mem, saved);
       return flag;
     }
   }
-  flag = Predict(mem, c);
+  flag = lgnAgree(mem, Predict(mem, c));
   if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNFALSE, &used_old);
   if (flag == LGN_CONV_FAILURE && used_old) {
     /* modified Newton failed with an old matrix: once more with a fresh one */
     mem->nrestart++;
-    flag = Predict(mem, c);
+    flag = lgnAgree(mem, Predict(mem, c));
     if (flag == LGN_SUCCESS) flag = lgnNewton(mem, c, SUNTRUE, &used_old);
   }
   if (flag != LGN_SUCCESS) {

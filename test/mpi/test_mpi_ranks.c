@@ -1,0 +1,394 @@
+/* -----------------------------------------------------------------------------
+ * Lignum: Lie group Newmark-type integrators for constrained multibody systems.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * -----------------------------------------------------------------------------
+ * A run across MPI ranks (run on 1, 2 and 4 ranks by CTest): every rank
+ * holds its part of a model of heavy tops (rank r has 1 + r of them, each an
+ * R^3 x SO(3) body on a spherical joint, spun at its own rate), in MPIPlusX
+ * or N_Vector_Parallel state vectors; error control, outputs between steps
+ * and an event whose root function is the sum of the ranks' parts. Checked
+ * against the same model of all tops on one process (serial vectors):
+ *
+ *   (a) the same trajectory: every rank's tops at every output equal the
+ *       one-process run's to round-off (the reductions only add in another
+ *       order), the same number of steps and the same event time;
+ *   (b) the same step decisions on every rank: steps, step failures,
+ *       Newton iterations and the last step size equal on all ranks;
+ *   (c) a force callback failing for good on the last rank: LGNSolve
+ *       returns LGN_FORCE_FAIL on every rank, at the same time, every rank
+ *       gets a message, and nothing hangs (CTest's timeout);
+ *   (d) a recoverable failure on the last rank: every rank retries the same
+ *       step with a smaller one and goes on; the result is as accurate as
+ *       the one-process run's (errors against a run at tolerance 1e-10).
+ *
+ * Generalized-alpha (modified kinematics) with full Newton and BDF (orders
+ * up to 5) with modified Newton; a model of another size on one rank than
+ * on the others is refused by nothing, as it should be.
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <mpi.h>
+
+#include <lignum/lignum.h>
+#include <lignum/lignum_bodies.h>
+#include <lignum/lignum_joints.h>
+#include <lignum/lignum_ls.h>
+#include <nvector/nvector_mpiplusx.h>
+#include <nvector/nvector_parallel.h>
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#define NOUT 5
+#define TOUT 0.1
+#define NQ_TOP 7
+#define NV_TOP 6
+
+enum { VEC_SERIAL, VEC_MPIPLUSX, VEC_PARALLEL };
+enum { FAIL_NONE, FAIL_FATAL, FAIL_RECOVERABLE };
+
+typedef struct {
+  LGNBodies bodies;
+  LGNJoints joints;
+  int inject;         /* FAIL_*: on this rank's force callback      */
+  int injected;       /* the recoverable failure was returned once  */
+  int rank_part;      /* this rank owns top 0: its part of the event */
+} Model;
+
+typedef struct {
+  int flag;
+  long int nst, nfails, nni;
+  sunrealtype hlast, troot, tret;
+  int nmsg;           /* messages the error handler received         */
+  sunrealtype *q;     /* the tops' q at each output (NOUT x nq)       */
+  sunrealtype *v;
+} Run;
+
+static int nfail_checks = 0;
+
+static void Check(int ok, int rank, const char *what)
+{
+  if (!ok) {
+    nfail_checks++;
+    printf("  rank %d FAILED: %s\n", rank, what);
+  }
+}
+
+static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
+}
+
+static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  Model *md = (Model *)ud;
+  if (md->inject == FAIL_FATAL && t > 0.2) return -1;
+  if (md->inject == FAIL_RECOVERABLE && t > 0.15 && !md->injected) {
+    md->injected = 1;
+    return 1;
+  }
+  return LGNBodies_ForceFn(t, q, v, g, md->bodies);
+}
+
+static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi);
+}
+
+static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B);
+}
+
+/* The event: |x| of top 0's centre reaches 0.05 (its precession), from the
+ * rank that holds top 0; the other ranks' part is zero. */
+static int Event(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *g, void *ud)
+{
+  const sunrealtype *qd = N_VGetArrayPointer(q);
+  (void)t;
+  (void)v;
+  g[0] = ((Model *)ud)->rank_part ? qd[0] * qd[0] - 0.0025 : 0.0;
+  return 0;
+}
+
+static void CountMessages(int code, const char *module, const char *func, const char *msg,
+                          void *data)
+{
+  (void)code;
+  (void)module;
+  (void)func;
+  (void)msg;
+  (*(int *)data)++;
+}
+
+static N_Vector NewVector(int kind, MPI_Comm comm, sunindextype n, SUNContext ctx)
+{
+  if (kind == VEC_SERIAL) return N_VNew_Serial(n, ctx);
+  if (kind == VEC_PARALLEL) {
+    long long local = n, global = 0;
+    MPI_Allreduce(&local, &global, 1, MPI_LONG_LONG, MPI_SUM, comm);
+    return N_VNew_Parallel(comm, n, (sunindextype)global, ctx);
+  }
+  return N_VMake_MPIPlusX(comm, N_VNew_Serial(n, ctx), ctx);
+}
+
+static void FreeVector(int kind, N_Vector x)
+{
+  if (kind == VEC_MPIPLUSX) N_VDestroy(N_VGetLocalVector_MPIPlusX(x));
+  N_VDestroy(x);
+}
+
+/* Tops u0 ... u0 + K - 1 of the model, in vectors of the given kind on
+ * comm; method 0: mod. generalized-alpha, full Newton; 1: BDF 5, modified. */
+static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int inject,
+                      sunrealtype tol, SUNContext ctx, Run *run)
+{
+  const sunrealtype J[3]       = {0.234375, 0.46875, 0.234375};
+  const sunrealtype gravity[3] = {0.0, 0.0, -9.81};
+  const sunrealtype origin[3]  = {0.0, 0.0, 0.0};
+  const sunrealtype tip[3]     = {0.0, -1.0, 0.0};
+  LGNGroup body = LGNGroup_R3xSO3(), G;
+  LGNGroup *factors = (LGNGroup *)malloc((size_t)K * sizeof(LGNGroup));
+  Model md = {NULL, NULL, inject, 0, u0 == 0};
+  N_Vector q, v, tmpl;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  void *mem;
+  sunindextype nq, nv, m;
+  sunrealtype *qd, *vd, t = 0.0;
+  int k, flag = 0, rootsfound = 0;
+
+  for (k = 0; k < K; k++) factors[k] = body;
+  G  = LGNGroup_Product(K, factors);
+  nq = G->nq;
+  nv = G->nv;
+  md.bodies = LGNBodies_Create(G);
+  md.joints = LGNJoints_Create(G);
+  for (k = 0; k < K && !flag; k++) {
+    flag = LGNBodies_SetPrincipalInertia(md.bodies, k, 15.0, J);
+    if (!flag) flag = LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, k, tip);
+  }
+  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gravity);
+  m = LGNJoints_NumConstraints(md.joints);
+
+  q  = NewVector(kind, comm, nq, ctx);
+  v  = NewVector(kind, comm, nv, ctx);
+  qd = N_VGetArrayPointer(q);
+  vd = N_VGetArrayPointer(v);
+  LGNGroup_Identity(G, qd);
+  N_VConst(0.0, v);
+  for (k = 0; k < K; k++) {
+    const int u = u0 + k; /* the top's number in the whole model */
+    qd[NQ_TOP * k + 1] = 1.0;                       /* centre at (0, 1, 0) */
+    vd[NV_TOP * k + 4] = 150.0 - 5.0 * u;           /* spin (body frame)   */
+    vd[NV_TOP * k + 5] = -4.61538 + 0.3 * u;
+    vd[NV_TOP * k + 0] = vd[NV_TOP * k + 5] * 1.0;  /* u = Omega x X: tip fixed */
+  }
+
+  mem = LGNCreate(ctx);
+  run->nmsg = 0;
+  if (!flag) flag = LGNSetErrHandlerFn(mem, CountMessages, &run->nmsg);
+  if (!flag) flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetUserData(mem, &md);
+  if (!flag) flag = LGNSetMassFn(mem, Mass);
+  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNSetForceFn(mem, Force);
+  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+  if (!flag) flag = LGNSStolerances(mem, tol, tol);
+  if (method == 0) {
+    if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
+  } else {
+    if (!flag) flag = LGNSetBDF(mem, 5);
+    if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
+  }
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag) flag = LGNRootInit(mem, 1, Event);
+  /* each rank solves its own block: the tops do not couple */
+  tmpl = N_VNew_Serial(nv + m, ctx);
+  A    = SUNDenseMatrix(nv + m, nv + m, ctx);
+  LS   = LGNLinSol_Dense(tmpl, A, ctx);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+
+  run->troot = -1.0;
+  for (k = 1; k <= NOUT && !flag;) {
+    flag = LGNSolve(mem, k * TOUT, &t, q, v, LGN_NORMAL);
+    if (flag == LGN_ROOT_RETURN) {
+      if (!rootsfound++) run->troot = t;
+      flag = 0;
+      continue;
+    }
+    if (flag) break;
+    memcpy(run->q + (size_t)(k - 1) * (size_t)nq, qd, (size_t)nq * sizeof(sunrealtype));
+    memcpy(run->v + (size_t)(k - 1) * (size_t)nv, vd, (size_t)nv * sizeof(sunrealtype));
+    k++;
+  }
+  run->flag = flag;
+  run->tret = t;
+  LGNGetNumSteps(mem, &run->nst);
+  LGNGetNumStepFails(mem, &run->nfails);
+  LGNGetNumNewtonIters(mem, &run->nni);
+  LGNGetLastStep(mem, &run->hlast);
+
+  LGNFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(tmpl);
+  FreeVector(kind, q);
+  FreeVector(kind, v);
+  LGNJoints_Destroy(&md.joints);
+  LGNBodies_Destroy(&md.bodies);
+  LGNGroup_Destroy(G);
+  LGNGroup_Destroy(body);
+  free(factors);
+}
+
+/* min == max over the ranks */
+static int SameOnAllRanks(double x, MPI_Comm comm)
+{
+  double lo, hi;
+  MPI_Allreduce(&x, &lo, 1, MPI_DOUBLE, MPI_MIN, comm);
+  MPI_Allreduce(&x, &hi, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return lo == hi;
+}
+
+static Run NewRun(int K)
+{
+  Run r;
+  memset(&r, 0, sizeof(r));
+  r.q = (sunrealtype *)calloc((size_t)NOUT * NQ_TOP * (size_t)K, sizeof(sunrealtype));
+  r.v = (sunrealtype *)calloc((size_t)NOUT * NV_TOP * (size_t)K, sizeof(sunrealtype));
+  return r;
+}
+
+static void FreeRun(Run *r)
+{
+  free(r->q);
+  free(r->v);
+}
+
+/* max over the outputs and this rank's tops of |x_ranks - x_one| */
+static sunrealtype MaxDiff(const Run *par, const Run *one, int u0, int K, int N)
+{
+  sunrealtype d = 0.0;
+  int k, i;
+  for (k = 0; k < NOUT; k++) {
+    for (i = 0; i < NQ_TOP * K; i++)
+      d = fmax(d, fabs(par->q[k * NQ_TOP * K + i] - one->q[k * NQ_TOP * N + NQ_TOP * u0 + i]));
+    for (i = 0; i < NV_TOP * K; i++)
+      d = fmax(d, fabs(par->v[k * NV_TOP * K + i] - one->v[k * NV_TOP * N + NV_TOP * u0 + i]) /
+                      150.0);
+  }
+  return d;
+}
+
+int main(int argc, char **argv)
+{
+  MPI_Comm comm = MPI_COMM_WORLD;
+  SUNContext ctx_par = NULL, ctx_one = NULL;
+  int rank, size, N, K, u0, method, kind, fails = 0;
+  Run exact;
+  static const char *mname[2] = {"mod. LGGalpha, full Newton", "BDF5, modified Newton"};
+  static const char *kname[3] = {"serial", "MPIPlusX", "Parallel"};
+
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+  N  = size * (size + 1) / 2; /* rank r holds 1 + r tops */
+  K  = 1 + rank;
+  u0 = rank * (rank + 1) / 2;
+  SUNContext_Create(&comm, &ctx_par);
+  SUNContext_Create(NULL, &ctx_one);
+  if (rank == 0) printf("test_mpi_ranks: %d ranks, %d heavy tops (rank r holds 1 + r)\n", size, N);
+
+  /* the accurate solution, for the errors of (d) */
+  exact = NewRun(N);
+  Integrate(1, VEC_SERIAL, MPI_COMM_SELF, 0, N, FAIL_NONE, 1e-10, ctx_one, &exact);
+  Check(exact.flag == 0, rank, "the accurate one-process run succeeds");
+
+  for (method = 0; method < 2; method++) {
+    Run one = NewRun(N), par;
+    char what[200];
+    /* the reference: all tops on one process */
+    Integrate(method, VEC_SERIAL, MPI_COMM_SELF, 0, N, FAIL_NONE, 1e-7, ctx_one, &one);
+    Check(one.flag == 0, rank, "the one-process run succeeds");
+    for (kind = VEC_MPIPLUSX; kind <= VEC_PARALLEL; kind++) {
+      sunrealtype d, dmax;
+      par = NewRun(K);
+      Integrate(method, kind, comm, u0, K, FAIL_NONE, 1e-7, ctx_par, &par);
+      d = MaxDiff(&par, &one, u0, K, N);
+      MPI_Allreduce(&d, &dmax, 1, MPI_DOUBLE, MPI_MAX, comm);
+      if (rank == 0)
+        printf("  %-27s %-8s: steps %ld (one process %ld), event t = %.10f (%.10f), "
+               "max difference %.1e\n",
+               mname[method], kname[kind], par.nst, one.nst, (double)par.troot,
+               (double)one.troot, (double)dmax);
+      snprintf(what, sizeof what, "(a) %s %s: success", mname[method], kname[kind]);
+      Check(par.flag == 0, rank, what);
+      snprintf(what, sizeof what, "(a) %s %s: same trajectory as one process (%.1e)",
+               mname[method], kname[kind], (double)d);
+      Check(d <= 1e-10, rank, what);
+      snprintf(what, sizeof what, "(a) %s %s: same steps and event", mname[method],
+               kname[kind]);
+      Check(par.nst == one.nst && one.troot > 0.0 &&
+                fabs(par.troot - one.troot) <= 1e-10, rank, what);
+      snprintf(what, sizeof what, "(b) %s %s: same decisions on every rank", mname[method],
+               kname[kind]);
+      Check(SameOnAllRanks((double)par.nst, comm) && SameOnAllRanks((double)par.nfails, comm) &&
+                SameOnAllRanks((double)par.nni, comm) && SameOnAllRanks(par.hlast, comm),
+            rank, what);
+      FreeRun(&par);
+    }
+
+    /* (c) a fatal failure on the last rank */
+    par = NewRun(K);
+    Integrate(method, VEC_MPIPLUSX, comm, u0, K, rank == size - 1 ? FAIL_FATAL : FAIL_NONE,
+              1e-7, ctx_par, &par);
+    if (rank == 0) printf("  %-27s fatal force failure on rank %d: flag %s at t = %.6f\n",
+                          mname[method], size - 1, LGNGetReturnFlagName(par.flag),
+                          (double)par.tret);
+    snprintf(what, sizeof what, "(c) %s: LGN_FORCE_FAIL on every rank (%s)", mname[method],
+             LGNGetReturnFlagName(par.flag));
+    Check(par.flag == LGN_FORCE_FAIL, rank, what);
+    snprintf(what, sizeof what, "(c) %s: the same time and steps on every rank, a message",
+             mname[method]);
+    Check(SameOnAllRanks(par.tret, comm) && SameOnAllRanks((double)par.nst, comm) &&
+              par.nmsg >= 1 && par.tret >= 0.1, rank, what);
+    FreeRun(&par);
+
+    /* (d) a recoverable failure on the last rank */
+    par = NewRun(K);
+    Integrate(method, VEC_MPIPLUSX, comm, u0, K,
+              rank == size - 1 ? FAIL_RECOVERABLE : FAIL_NONE, 1e-7, ctx_par, &par);
+    {
+      sunrealtype e[2], emax[2];
+      e[0] = MaxDiff(&par, &exact, u0, K, N); /* its error */
+      e[1] = MaxDiff(&one, &exact, 0, N, N);  /* the one-process run's */
+      MPI_Allreduce(e, emax, 2, MPI_DOUBLE, MPI_MAX, comm);
+      if (rank == 0)
+        printf("  %-27s recoverable failure on rank %d: flag %s, %ld steps, %ld failed, "
+               "error %.1e (one process %.1e)\n",
+               mname[method], size - 1, LGNGetReturnFlagName(par.flag), par.nst, par.nfails,
+               (double)emax[0], (double)emax[1]);
+      snprintf(what, sizeof what, "(d) %s: retried and finished on every rank", mname[method]);
+      Check(par.flag == 0 && par.nfails >= 1 && SameOnAllRanks((double)par.nst, comm) &&
+                SameOnAllRanks((double)par.nfails, comm), rank, what);
+      snprintf(what, sizeof what, "(d) %s: as accurate as one process (%.1e against %.1e)",
+               mname[method], (double)emax[0], (double)emax[1]);
+      Check(emax[0] <= 3.0 * emax[1], rank, what);
+    }
+    FreeRun(&par);
+    FreeRun(&one);
+  }
+
+  FreeRun(&exact);
+  MPI_Allreduce(&nfail_checks, &fails, 1, MPI_INT, MPI_SUM, comm);
+  if (rank == 0) printf("test_mpi_ranks: %s\n", fails == 0 ? "OK" : "FAILED");
+  SUNContext_Free(&ctx_one);
+  SUNContext_Free(&ctx_par);
+  MPI_Finalize();
+  return fails == 0 ? 0 : 1;
+}
