@@ -369,9 +369,7 @@ int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
                       const char *func);
 int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
                       const char *func);
-int lgnAgree(LGNMem mem, int flag);
-void lgnSumAll(LGNMem mem, sunrealtype *x, int n);
-sunrealtype lgnMaxAll(LGNMem mem, sunrealtype x);
+int lgnAgreeRanks(LGNMem mem, int flag);
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
 int lgnAllocWork(LGNMem mem);
@@ -595,6 +593,24 @@ static inline void lgnTangentColumnRange(const struct LGNMemRec *mem,
 static inline sunbooleantype lgnPerturbedStartDue(const struct LGNMemRec *mem)
 {
   return mem->pstart_on && !mem->pstart_done && mem->nst == 0;
+}
+
+/* A run across ranks (lgn_parallel.h): the flag every rank goes on with
+ * (lgnAgreeRanks reports another rank's failure), sums and maxima over the
+ * ranks. Inline, so that a run on one process pays one test each. */
+static inline int lgnAgree(struct LGNMemRec *mem, int flag)
+{
+  return mem->par == NULL ? flag : lgnAgreeRanks(mem, flag);
+}
+
+static inline void lgnSumAll(const struct LGNMemRec *mem, sunrealtype *x, int n)
+{
+  if (mem->par != NULL) lgnParallelSum(mem->par, x, n);
+}
+
+static inline sunrealtype lgnMaxAll(const struct LGNMemRec *mem, sunrealtype x)
+{
+  return mem->par == NULL ? x : lgnParallelMax(mem->par, x);
 }
 
 static inline sunrealtype *lgnData(N_Vector x)

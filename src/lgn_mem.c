@@ -330,31 +330,18 @@ static int BlocksBuild(LGNMem mem)
  * A run across ranks: the agreement on failures, and reductions
  * ===========================================================================*/
 
-/* The flag every rank goes on with (lgnParallelAgree). A rank that did not
- * fail itself reports the failure of the other rank (the failing rank has
- * reported what failed); recoverable flags stay silent, as they are on one
- * process. On one process: flag. */
-int lgnAgree(LGNMem mem, int flag)
+/* The flag every rank goes on with (lgnParallelAgree; lgnAgree in
+ * lgn_impl.h calls this across ranks only). A rank that did not fail itself
+ * reports the failure of the other rank (the failing rank has reported what
+ * failed); recoverable flags stay silent, as they are on one process. */
+int lgnAgreeRanks(LGNMem mem, int flag)
 {
-  int rank, agreed;
-  if (mem->par == NULL) return flag;
-  agreed = lgnParallelAgree(mem->par, flag, &rank);
+  int rank;
+  const int agreed = lgnParallelAgree(mem->par, flag, &rank);
   if (agreed < 0 && flag == LGN_SUCCESS && agreed != LGN_CONV_FAILURE)
     LGN_ERROR(mem, agreed, MSG_TIME "failed on rank %d (flag %d): see its message.",
               (double)mem->tn, rank, agreed);
   return agreed;
-}
-
-/* x[0 .. n-1] <- their sums over the ranks. */
-void lgnSumAll(LGNMem mem, sunrealtype *x, int n)
-{
-  lgnParallelSum(mem->par, x, n);
-}
-
-/* The maximum of x over the ranks. */
-sunrealtype lgnMaxAll(LGNMem mem, sunrealtype x)
-{
-  return lgnParallelMax(mem->par, x);
 }
 
 /* =============================================================================

@@ -21,9 +21,11 @@
  *       step with a smaller one and goes on; the result is as accurate as
  *       the one-process run's (errors against a run at tolerance 1e-10).
  *
- * Generalized-alpha (modified kinematics) with full Newton and BDF (orders
- * up to 5) with modified Newton; a model of another size on one rank than
- * on the others is refused by nothing, as it should be.
+ * Generalized-alpha (modified kinematics) with full Newton and a dense LU
+ * of each rank's block, BDF (orders up to 5) with modified Newton, and
+ * (with KLU) generalized-alpha with SPGMR over vectors of the ranks and
+ * the block preconditioner, one block per rank. The ranks hold different
+ * numbers of bodies.
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
@@ -34,12 +36,14 @@
 #include <mpi.h>
 
 #include <lignum/lignum.h>
+#include <lignum/lignum_config.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
 #include <lignum/lignum_ls.h>
 #include <nvector/nvector_mpiplusx.h>
 #include <nvector/nvector_parallel.h>
 #include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #define NOUT 5
@@ -142,7 +146,8 @@ static void FreeVector(int kind, N_Vector x)
 }
 
 /* Tops u0 ... u0 + K - 1 of the model, in vectors of the given kind on
- * comm; method 0: mod. generalized-alpha, full Newton; 1: BDF 5, modified. */
+ * comm; method 0: mod. generalized-alpha, full Newton; 1: BDF 5, modified;
+ * 2: as 0 with SPGMR and the block preconditioner (one block per rank). */
 static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int inject,
                       sunrealtype tol, SUNContext ctx, Run *run)
 {
@@ -199,7 +204,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, tol, tol);
-  if (method == 0) {
+  if (method != 1) {
     if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
   } else {
     if (!flag) flag = LGNSetBDF(mem, 5);
@@ -207,11 +212,20 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   }
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   if (!flag) flag = LGNRootInit(mem, 1, Event);
-  /* each rank solves its own block: the tops do not couple */
-  tmpl = N_VNew_Serial(nv + m, ctx);
-  A    = SUNDenseMatrix(nv + m, nv + m, ctx);
-  LS   = LGNLinSol_Dense(tmpl, A, ctx);
-  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  if (method == 2) {
+    /* Krylov over vectors of the ranks (its norms are collective) */
+    tmpl = NewVector(kind, comm, nv + m, ctx);
+    A    = NULL;
+    LS   = SUNLinSol_SPGMR(tmpl, SUN_PREC_LEFT, 10, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
+    if (!flag) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
+  } else {
+    /* each rank solves its own block: the tops do not couple */
+    tmpl = N_VNew_Serial(nv + m, ctx);
+    A    = SUNDenseMatrix(nv + m, nv + m, ctx);
+    LS   = LGNLinSol_Dense(tmpl, A, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  }
 
   run->troot = -1.0;
   for (k = 1; k <= NOUT && !flag;) {
@@ -235,8 +249,11 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
 
   LGNFree(&mem);
   SUNLinSolFree(LS);
-  SUNMatDestroy(A);
-  N_VDestroy(tmpl);
+  if (A != NULL) SUNMatDestroy(A);
+  if (method == 2)
+    FreeVector(kind, tmpl);
+  else
+    N_VDestroy(tmpl);
   FreeVector(kind, q);
   FreeVector(kind, v);
   LGNJoints_Destroy(&md.joints);
@@ -291,7 +308,13 @@ int main(int argc, char **argv)
   SUNContext ctx_par = NULL, ctx_one = NULL;
   int rank, size, N, K, u0, method, kind, fails = 0;
   Run exact;
-  static const char *mname[2] = {"mod. LGGalpha, full Newton", "BDF5, modified Newton"};
+  static const char *mname[3] = {"mod. LGGalpha, full Newton", "BDF5, modified Newton",
+                                 "mod. LGGalpha, SPGMR+block"};
+#ifdef LGN_HAVE_KLU
+  const int nmethods = 3;
+#else
+  const int nmethods = 2; /* the block preconditioner needs KLU */
+#endif
   static const char *kname[3] = {"serial", "MPIPlusX", "Parallel"};
 
   MPI_Init(&argc, &argv);
@@ -309,7 +332,7 @@ int main(int argc, char **argv)
   Integrate(1, VEC_SERIAL, MPI_COMM_SELF, 0, N, FAIL_NONE, 1e-10, ctx_one, &exact);
   Check(exact.flag == 0, rank, "the accurate one-process run succeeds");
 
-  for (method = 0; method < 2; method++) {
+  for (method = 0; method < nmethods; method++) {
     Run one = NewRun(N), par;
     char what[200];
     /* the reference: all tops on one process */
