@@ -42,6 +42,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
+#include "lgn_matops.h"
 #include "groups/lgn_so3.h"
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
@@ -517,7 +518,7 @@ static int CheckMat(const struct LGNBodiesRec *B, SUNMatrix A, const char *name,
   const sunindextype nv = B->G->nv;
   if (A == NULL ||
       (SUNMatGetID(A) == SUNMATRIX_DENSE && (SM_ROWS_D(A) != nv || SM_COLUMNS_D(A) != nv)) ||
-      (SUNMatGetID(A) == SUNMATRIX_SPARSE &&
+      (lgnMatIsSparse(A) &&
        (SUNSparseMatrix_Rows(A) != nv || SUNSparseMatrix_Columns(A) != nv)) ||
       (SUNMatGetID(A) != SUNMATRIX_DENSE && SUNMatGetID(A) != SUNMATRIX_SPARSE)) {
     BErr(B, LGN_ILL_INPUT, func, "%s must be a dense or sparse %lld x %lld matrix.", name,
@@ -735,9 +736,9 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
       lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS ||
       lgnCheckSerialVector(&B->err, g, B->G->nv, "g", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  qd = N_VGetArrayPointer(q);
-  vd = N_VGetArrayPointer(v);
-  gd = N_VGetArrayPointer(g);
+  qd = lgnVecData(q);
+  vd = lgnVecData(v);
+  gd = lgnVecData(g);
   for (k = 0; k < B->nb; k++) {
     const sunrealtype *u = vd + B->voff[k], *w = u + 3, *J = B->inertia + 9 * (size_t)k;
     const sunrealtype m = B->mass[k];
@@ -802,8 +803,8 @@ int LGNBodies_Energy(LGNBodies B, N_Vector q, N_Vector v, sunrealtype *kinetic,
   if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
       lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  qd = N_VGetArrayPointer(q);
-  vd = N_VGetArrayPointer(v);
+  qd = lgnVecData(q);
+  vd = lgnVecData(v);
   for (k = 0; k < B->nb; k++) {
     const sunrealtype *u = vd + B->voff[k], *w = u + 3;
     lgnMat3Apply(B->inertia + 9 * (size_t)k, w, Jw);
@@ -1015,7 +1016,7 @@ static int TangentPublic(struct LGNBodiesRec *B, N_Vector q, N_Vector v, SUNMatr
     BErr(B, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  if (Tangent(B, N_VGetArrayPointer(q), N_VGetArrayPointer(v), stiff, func) != LGN_SUCCESS)
+  if (Tangent(B, lgnVecData(q), lgnVecData(v), stiff, func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   return WriteBlocks(B, A, SUNFALSE, func);
 }

@@ -615,7 +615,7 @@ static inline sunrealtype lgnMaxAll(const struct LGNMemRec *mem, sunrealtype x)
 
 static inline sunrealtype *lgnData(N_Vector x)
 {
-  return N_VGetArrayPointer(x);
+  return lgnVecData(x);
 }
 
 #endif

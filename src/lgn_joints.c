@@ -36,6 +36,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
+#include "lgn_matops.h"
 #include "groups/lgn_so3.h"
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
@@ -788,8 +789,8 @@ int LGNJoints_Residual(LGNJoints J, sunrealtype t, N_Vector q, N_Vector phi)
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phi, J->m, "phi", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  qd = N_VGetArrayPointer(q);
-  f  = N_VGetArrayPointer(phi);
+  qd = lgnVecData(q);
+  f  = lgnVecData(phi);
   FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
@@ -1029,7 +1030,7 @@ int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
   if (B == NULL ||
       (SUNMatGetID(B) == SUNMATRIX_DENSE &&
        (SM_ROWS_D(B) != J->m || SM_COLUMNS_D(B) != nv)) ||
-      (SUNMatGetID(B) == SUNMATRIX_SPARSE &&
+      (lgnMatIsSparse(B) &&
        (SUNSparseMatrix_Rows(B) != J->m || SUNSparseMatrix_Columns(B) != nv)) ||
       (SUNMatGetID(B) != SUNMATRIX_DENSE && SUNMatGetID(B) != SUNMATRIX_SPARSE)) {
     JErr(J, LGN_ILL_INPUT, __func__, "B must be a dense or sparse %lld x %lld matrix.",
@@ -1038,7 +1039,7 @@ int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
   }
   flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  qd = N_VGetArrayPointer(q);
+  qd = lgnVecData(q);
   FillRotations(J, qd);
   if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
     Sink s = {SINK_DENSE, 0, NULL, NULL, NULL, NULL, NULL};
@@ -1072,11 +1073,11 @@ int LGNJoints_ConstraintForce(LGNJoints J, sunrealtype t, N_Vector q, N_Vector l
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, f, J->G->nv, "f", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  fd = N_VGetArrayPointer(f);
+  fd = lgnVecData(f);
   memset(fd, 0, (size_t)J->G->nv * sizeof(sunrealtype)); /* the data checked above */
   if (J->m == 0) return LGN_SUCCESS;
-  qd = N_VGetArrayPointer(q);
-  ld = N_VGetArrayPointer(lambda);
+  qd = lgnVecData(q);
+  ld = lgnVecData(lambda);
   FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
@@ -1189,9 +1190,9 @@ int LGNJoints_Curvature(LGNJoints J, sunrealtype t, N_Vector q, N_Vector v, N_Ve
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, z, J->m, "z", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  qd = N_VGetArrayPointer(q);
-  vd = N_VGetArrayPointer(v);
-  zd = N_VGetArrayPointer(z);
+  qd = lgnVecData(q);
+  vd = lgnVecData(v);
+  zd = lgnVecData(z);
   FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
@@ -1261,10 +1262,10 @@ int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q, N_Vector ph
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phit, J->m, "phit", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  pd = N_VGetArrayPointer(phit);
+  pd = lgnVecData(phit);
   if (J->m > 0) memset(pd, 0, (size_t)J->m * sizeof(sunrealtype));
   if (J->ndrivers == 0) return LGN_SUCCESS;
-  qd = N_VGetArrayPointer(q);
+  qd = lgnVecData(q);
   FillRotations(J, qd);
   for (k = 0; k < J->nprim; k++) {
     const Primitive *p = J->prim + k;
@@ -1543,7 +1544,7 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
     return LGN_ILL_INPUT;
   if (K == NULL ||
       (SUNMatGetID(K) == SUNMATRIX_DENSE && (SM_ROWS_D(K) != nv || SM_COLUMNS_D(K) != nv)) ||
-      (SUNMatGetID(K) == SUNMATRIX_SPARSE &&
+      (lgnMatIsSparse(K) &&
        (SUNSparseMatrix_Rows(K) != nv || SUNSparseMatrix_Columns(K) != nv)) ||
       (SUNMatGetID(K) != SUNMATRIX_DENSE && SUNMatGetID(K) != SUNMATRIX_SPARSE)) {
     JErr(J, LGN_ILL_INPUT, __func__, "K must be a dense or sparse %lld x %lld matrix.",
@@ -1557,8 +1558,8 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
   if (J->m == 0) return LGN_SUCCESS;
   flag = EvalDrivers(J, t, __func__);
   if (flag != LGN_SUCCESS) return flag;
-  qd = N_VGetArrayPointer(q);
-  ld = N_VGetArrayPointer(lambda);
+  qd = lgnVecData(q);
+  ld = lgnVecData(lambda);
   FillRotations(J, qd);
   memset(J->kblk, 0, (size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
   for (k = 0; k < J->nprim; k++) PrimitiveStiffness(J, J->prim + k, qd, ld + J->prim[k].row);

@@ -61,7 +61,7 @@ static void Matvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                    sunbooleantype add, sunbooleantype transpose)
 {
   sunindextype i, j, M, N;
-  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+  if (lgnMatIsSparse(A)) {
     const sunbooleantype csc = SUNSparseMatrix_SparseType(A) == CSC_MAT;
     M = transpose ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A);
     if (!add)
@@ -111,7 +111,7 @@ void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
  * SUNMatZero does, would cost more than the evaluation. */
 void lgnMatClear(SUNMatrix A)
 {
-  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+  if (lgnMatIsSparse(A)) {
     const sunindextype np = SUNSparseMatrix_NP(A);
     memset(SUNSparseMatrix_IndexPointers(A), 0, (size_t)(np + 1) * sizeof(sunindextype));
   } else {

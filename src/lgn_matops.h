@@ -10,6 +10,27 @@
 #define LGN_MATOPS_H
 
 #include <lignum/lignum.h>
+#include <nvector/nvector_serial.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+/* The data array of x. A serial vector's is read directly: Debian builds
+ * SUNDIALS at -O0, where N_VGetArrayPointer costs two calls (8 % of a
+ * heavy-top step was spent in them). Its operation table tells the type
+ * without a call; any other type goes through N_VGetArrayPointer. */
+static inline sunrealtype *lgnVecData(N_Vector x)
+{
+  return x->ops->nvgetarraypointer == N_VGetArrayPointer_Serial ? NV_DATA_S(x)
+                                                               : N_VGetArrayPointer(x);
+}
+
+/* Is A a SUNSparseMatrix? (The same shortcut for SUNMatGetID.) */
+static inline sunbooleantype lgnMatIsSparse(SUNMatrix A)
+{
+  if (A->ops->getid == SUNMatGetID_Dense) return SUNFALSE;
+  if (A->ops->getid == SUNMatGetID_Sparse) return SUNTRUE;
+  return SUNMatGetID(A) == SUNMATRIX_SPARSE;
+}
 
 /* y = A x (add: y += A x) for a dense or sparse (CSC or CSR) A. */
 void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,

@@ -230,7 +230,7 @@ int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
 {
   sunindextype k, row, col;
   if (retval != 0) return lgnCallbackFlag(mem, cb, retval, func);
-  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+  if (lgnMatIsSparse(A)) {
     const sunindextype np = SUNSparseMatrix_NP(A);
     const sunindextype *ptr = SUNSparseMatrix_IndexPointers(A);
     const sunindextype *ind = SUNSparseMatrix_IndexValues(A);

@@ -31,7 +31,7 @@ sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
 static sunbooleantype DiagonalOf(SUNMatrix M, sunrealtype *d)
 {
   sunindextype i, j, p;
-  if (SUNMatGetID(M) == SUNMATRIX_SPARSE) {
+  if (lgnMatIsSparse(M)) {
     const sunindextype *ptr = SUNSparseMatrix_IndexPointers(M);
     const sunindextype *ind = SUNSparseMatrix_IndexValues(M);
     const sunrealtype *val  = SUNSparseMatrix_Data(M);

@@ -210,11 +210,19 @@ LGN_EXPORT void *LGNCreate(SUNContext sunctx);
 
 /** Provide the initial state and allocate the state vectors.
  *  The Lie group must have been set with LGNSetGroup.
+ *  Vectors with a communicator (N_Vector_Parallel or MPIPlusX) make a run
+ *  across MPI ranks: the group and the lengths are then the rank's part,
+ *  and this call and LGNReInit, LGNSolve, LGNCalcIC and LGNSVtolerances are
+ *  collective (user guide §11).
  *  @param lgn_mem memory from LGNCreate
  *  @param t0 initial time
- *  @param q0 initial configuration (length nq of the group; serial N_Vector)
- *  @param v0 initial velocity (length nv of the group)
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT, LGN_MEM_FAIL. */
+ *  @param q0 initial configuration (length nq of the group: a serial,
+ *            OpenMP or Pthreads N_Vector, or across ranks N_Vector_Parallel
+ *            or MPIPlusX with local length nq)
+ *  @param v0 initial velocity (length nv of the group; of q0's type)
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (also: vectors of
+ *          another type with a communicator, q0 and v0 on different
+ *          communicators, or Lignum built without MPI), LGN_MEM_FAIL. */
 LGN_EXPORT int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0);
 
 /** Restart from a new initial state, keeping all settings. Counters are reset
