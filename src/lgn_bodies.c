@@ -517,10 +517,10 @@ static int CheckMat(const struct LGNBodiesRec *B, SUNMatrix A, const char *name,
 {
   const sunindextype nv = B->G->nv;
   if (A == NULL ||
-      (SUNMatGetID(A) == SUNMATRIX_DENSE && (SM_ROWS_D(A) != nv || SM_COLUMNS_D(A) != nv)) ||
+      (lgnMatID(A) == SUNMATRIX_DENSE && (SM_ROWS_D(A) != nv || SM_COLUMNS_D(A) != nv)) ||
       (lgnMatIsSparse(A) &&
        (SUNSparseMatrix_Rows(A) != nv || SUNSparseMatrix_Columns(A) != nv)) ||
-      (SUNMatGetID(A) != SUNMATRIX_DENSE && SUNMatGetID(A) != SUNMATRIX_SPARSE)) {
+      (lgnMatID(A) != SUNMATRIX_DENSE && lgnMatID(A) != SUNMATRIX_SPARSE)) {
     BErr(B, LGN_ILL_INPUT, func, "%s must be a dense or sparse %lld x %lld matrix.", name,
          (long long)nv, (long long)nv);
     return LGN_ILL_INPUT;
@@ -654,7 +654,7 @@ static int WriteBlocks(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
                        const char *func)
 {
   int b, i, r, c;
-  if (SUNMatGetID(A) == SUNMATRIX_DENSE) {
+  if (lgnMatID(A) == SUNMATRIX_DENSE) {
     if (mass) {
       for (b = 0; b < B->nb; b++) {
         const sunindextype o = B->voff[b];

@@ -37,6 +37,7 @@
 
 #include <lignum/lignum_ls.h>
 
+#include "lgn_matops.h"
 #include "lgn_dense_lu.h"
 #include "lgn_err.h"
 #include "lgn_parallel.h"
@@ -208,7 +209,7 @@ static int Initialize(SUNLinearSolver S)
 /* Is A a dense N x N matrix with data? Else the flag to return. */
 static int CheckMatrix(const DenseLUContent *c, SUNMatrix A)
 {
-  if (SUNMatGetID(A) != SUNMATRIX_DENSE || SM_ROWS_D(A) != c->N ||
+  if (lgnMatID(A) != SUNMATRIX_DENSE || SM_ROWS_D(A) != c->N ||
       SM_COLUMNS_D(A) != c->N)
     return SUNLS_ILL_INPUT;
   if (SM_DATA_D(A) == NULL) return SUNLS_MEM_FAIL;
@@ -312,10 +313,10 @@ SUNLinearSolver LGNLinSol_Dense(N_Vector y, SUNMatrix A, SUNContext sunctx)
               y == NULL ? "y" : A == NULL ? "A" : "sunctx");
     return NULL;
   }
-  if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
+  if (lgnMatID(A) != SUNMATRIX_DENSE) {
     lgnReport(NULL, LGN_ILL_INPUT, __func__,
               "A must be a SUNDenseMatrix (its matrix ID is %d).",
-              (int)SUNMatGetID(A));
+              (int)lgnMatID(A));
     return NULL;
   }
   n = SM_ROWS_D(A);

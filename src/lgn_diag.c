@@ -42,7 +42,7 @@ extern void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *
 static void DenseB(SUNMatrix B, sunindextype m, sunindextype nv, double *D)
 {
   sunindextype i, j, p;
-  if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
+  if (lgnMatID(B) == SUNMATRIX_DENSE) {
     memcpy(D, SM_DATA_D(B), (size_t)(m * nv) * sizeof(double));
     return;
   }

@@ -1028,11 +1028,11 @@ int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (B == NULL ||
-      (SUNMatGetID(B) == SUNMATRIX_DENSE &&
+      (lgnMatID(B) == SUNMATRIX_DENSE &&
        (SM_ROWS_D(B) != J->m || SM_COLUMNS_D(B) != nv)) ||
       (lgnMatIsSparse(B) &&
        (SUNSparseMatrix_Rows(B) != J->m || SUNSparseMatrix_Columns(B) != nv)) ||
-      (SUNMatGetID(B) != SUNMATRIX_DENSE && SUNMatGetID(B) != SUNMATRIX_SPARSE)) {
+      (lgnMatID(B) != SUNMATRIX_DENSE && lgnMatID(B) != SUNMATRIX_SPARSE)) {
     JErr(J, LGN_ILL_INPUT, __func__, "B must be a dense or sparse %lld x %lld matrix.",
          (long long)J->m, (long long)nv);
     return LGN_ILL_INPUT;
@@ -1041,7 +1041,7 @@ int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
   if (flag != LGN_SUCCESS) return flag;
   qd = lgnVecData(q);
   FillRotations(J, qd);
-  if (SUNMatGetID(B) == SUNMATRIX_DENSE) {
+  if (lgnMatID(B) == SUNMATRIX_DENSE) {
     Sink s = {SINK_DENSE, 0, NULL, NULL, NULL, NULL, NULL};
     s.B = B;
     JacobianEntries(J, qd, &s);
@@ -1543,10 +1543,10 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
       (J->m > 0 && lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
     return LGN_ILL_INPUT;
   if (K == NULL ||
-      (SUNMatGetID(K) == SUNMATRIX_DENSE && (SM_ROWS_D(K) != nv || SM_COLUMNS_D(K) != nv)) ||
+      (lgnMatID(K) == SUNMATRIX_DENSE && (SM_ROWS_D(K) != nv || SM_COLUMNS_D(K) != nv)) ||
       (lgnMatIsSparse(K) &&
        (SUNSparseMatrix_Rows(K) != nv || SUNSparseMatrix_Columns(K) != nv)) ||
-      (SUNMatGetID(K) != SUNMATRIX_DENSE && SUNMatGetID(K) != SUNMATRIX_SPARSE)) {
+      (lgnMatID(K) != SUNMATRIX_DENSE && lgnMatID(K) != SUNMATRIX_SPARSE)) {
     JErr(J, LGN_ILL_INPUT, __func__, "K must be a dense or sparse %lld x %lld matrix.",
          (long long)nv, (long long)nv);
     return LGN_ILL_INPUT;
@@ -1564,7 +1564,7 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
   memset(J->kblk, 0, (size_t)J->kptr[J->nb] * 36 * sizeof(sunrealtype));
   for (k = 0; k < J->nprim; k++) PrimitiveStiffness(J, J->prim + k, qd, ld + J->prim[k].row);
 
-  if (SUNMatGetID(K) == SUNMATRIX_DENSE) {
+  if (lgnMatID(K) == SUNMATRIX_DENSE) {
     for (b = 0; b < J->nb; b++)
       for (i = J->kptr[b]; i < J->kptr[b + 1] && J->kbody[i] >= 0; i++)
         for (c = 0; c < 6; c++)

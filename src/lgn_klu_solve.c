@@ -45,6 +45,7 @@
 
 #include <sundials/sundials_math.h>
 
+#include "lgn_matops.h"
 #include "lgn_klu_solve.h"
 
 #if defined(LGN_KLU_COPY) /* else the stubs of lgn_klu_solve.h */
@@ -672,7 +673,7 @@ int lgnKluCopyRefactor(LGNKluCopy *c, SUNMatrix A, long int pattern, int scale)
   int32_t b, f;
   int flag;
 
-  if (c == NULL || !c->complete || !c->rows || SUNMatGetID(A) != SUNMATRIX_SPARSE ||
+  if (c == NULL || !c->complete || !c->rows || lgnMatID(A) != SUNMATRIX_SPARSE ||
       SUNSparseMatrix_SparseType(A) != CSC_MAT || SUNSparseMatrix_NP(A) != c->n)
     return LGN_KLU_NO_COPY;
   Ap = SUNSparseMatrix_IndexPointers(A);

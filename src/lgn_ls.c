@@ -65,7 +65,7 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
               "iterative solvers such as SUNLinSol_SPGMR take A = NULL).");
     return LGN_ILL_INPUT;
   }
-  if (SUNMatGetID(A) == SUNMATRIX_SPARSE) {
+  if (lgnMatID(A) == SUNMATRIX_SPARSE) {
     /* another direct solver of sparse matrices, such as LGNLinSol_PETSc
      * (library lignum_petsc): a custom one that is not Lignum's dense LU */
     if (SUNLinSolGetID(LS) != SUNLINEARSOLVER_CUSTOM || lgnDenseLUSize(LS) >= 0) {
@@ -84,11 +84,11 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
       return LGN_LS_MISMATCH;
 #endif
     }
-  } else if (SUNMatGetID(A) != SUNMATRIX_DENSE) {
+  } else if (lgnMatID(A) != SUNMATRIX_DENSE) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "Matrix type %d not supported: use a SUNDenseMatrix, or a "
               "SUNSparseMatrix with SUNLinSol_KLU.",
-              (int)SUNMatGetID(A));
+              (int)lgnMatID(A));
     return LGN_LS_MISMATCH;
   } else if (SUNLinSolGetID(LS) == SUNLINEARSOLVER_KLU) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
@@ -269,7 +269,7 @@ int lgnLsCheck(LGNMem mem)
     ret = lgnKrylovCheck(mem);
     if (ret != LGN_SUCCESS) return ret;
   }
-  sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
   rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
   cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
   if (rows != n || cols != n) {
@@ -414,7 +414,7 @@ static int DenseNearlySingular(LGNMem mem)
   const sunindextype n = mem->nv + mem->m;
   sunrealtype umin = SUN_BIG_REAL, umax = SUN_RCONST(0.0), u;
   sunindextype k, kmin = 0;
-  if (SUNMatGetID(mem->A) != SUNMATRIX_DENSE) return 0;
+  if (lgnMatID(mem->A) != SUNMATRIX_DENSE) return 0;
   for (k = 0; k < n; k++) { /* the LU factors are in A */
     u = fabs(SM_ELEMENT_D(mem->A, k, k));
     if (u < umin) {

@@ -24,12 +24,18 @@ static inline sunrealtype *lgnVecData(N_Vector x)
                                                                : N_VGetArrayPointer(x);
 }
 
-/* Is A a SUNSparseMatrix? (The same shortcut for SUNMatGetID.) */
+/* SUNMatGetID(A), with the same shortcut for the dense and sparse types. */
+static inline SUNMatrix_ID lgnMatID(SUNMatrix A)
+{
+  if (A->ops->getid == SUNMatGetID_Dense) return SUNMATRIX_DENSE;
+  if (A->ops->getid == SUNMatGetID_Sparse) return SUNMATRIX_SPARSE;
+  return SUNMatGetID(A);
+}
+
+/* Is A a SUNSparseMatrix? */
 static inline sunbooleantype lgnMatIsSparse(SUNMatrix A)
 {
-  if (A->ops->getid == SUNMatGetID_Dense) return SUNFALSE;
-  if (A->ops->getid == SUNMatGetID_Sparse) return SUNTRUE;
-  return SUNMatGetID(A) == SUNMATRIX_SPARSE;
+  return lgnMatID(A) == SUNMATRIX_SPARSE;
 }
 
 /* y = A x (add: y += A x) for a dense or sparse (CSC or CSR) A. */

@@ -732,7 +732,7 @@ int lgnAllocMatrices(LGNMem mem)
 
   lgnFreeMatrices(mem);
   mem->mass_current = SUNFALSE;
-  mem->sparse = SUNMatGetID(mem->A) == SUNMATRIX_SPARSE;
+  mem->sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
   if (mem->sparse) mem->sparsetype = (int)SUNSparseMatrix_SparseType(mem->A);
   for (b = 0; b < mem->nblk; b++) {
     sunindextype size = mem->blk_voff[b + 1] - mem->blk_voff[b];
