@@ -12,7 +12,8 @@
  *   LTE_k = (x_{n+1} - x_pred) / (c0 psi_{k+1}),
  *
  * in the inf-norm and in the error test's WRMS norm (weights 1/(tol + tol
- * |x_{n+1}|)), over several h and several t_n (the largest ratio). The
+ * |x_{n+1}|)), over several h and several t_n (the largest ratio); the
+ * same for h (v_{n+1} - v_ref) and h LTE_k of the velocities (WRMS). The
  * step uses Lignum's internal step function lgnBDFStep (linked with
  * lignum_internal): a program to run by hand, not a test.
  *
@@ -176,6 +177,7 @@ typedef struct {
   double true_v;          /* inf-norm of the velocity local error           */
   double hdv_w;           /* WRMS of h (v_{n+1} - v_ref)                     */
   double estp_w;          /* WRMS of the projected estimate (the error test) */
+  double estv_w;          /* WRMS of the projected h LTE of the velocities    */
 } LteResult;
 
 /* One step of order k and size h from the exact history at t_n. */
@@ -241,6 +243,11 @@ static int OneStep(SUNContext ctx, int k, double h, double tn, double tol, LteRe
     lgnErrorNorm(mem, &c, x1, &nrm);
     memcpy(estp, mem->ele, sizeof estp);
     res->estp_w = nrm;
+    /* the velocities' h LTE_k, the same way */
+    for (i = 0; i < 6; i++)
+      mem->ele[i] = h * (lgnData(mem->v)[i] - mem->bdf_vpred[i]) / (mem->bdf_c0 * (k + 1) * h);
+    lgnErrorNorm(mem, &c, x1, &nrm);
+    res->estv_w = nrm;
   }
   if (getenv("LTE_VERBOSE") != NULL) {
     printf("   k %d h %.2e t %.2f\n    estp:", k, h, tn);
@@ -324,6 +331,31 @@ int main(int argc, char **argv)
   int k, ih, it;
   if (argc == 3 && !strcmp(argv[1], "--tol")) tol = atof(argv[2]);
   SUNContext_Create(NULL, &ctx);
+  if (argc == 5 && !strcmp(argv[1], "--trace")) { /* --trace maxord tol t_end */
+    Run r;
+    sunrealtype t = 0, hl = 0;
+    long int nst = 0;
+    int ko = 0, flag = RunCreateBase(&r, ctx, atoi(argv[2]), atof(argv[3]));
+    const double te = atof(argv[4]);
+    if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
+    if (!flag) flag = LGNSetStopTime(r.mem, te);
+    while (!flag && t < te) {
+      flag = LGNSolve(r.mem, te, &t, r.q, r.v, LGN_ONE_STEP);
+      if (flag == LGN_TSTOP_RETURN) flag = 0;
+      LGNGetLastStep(r.mem, &hl);
+      LGNGetLastOrder(r.mem, &ko);
+      LGNGetNumSteps(r.mem, &nst);
+      {
+        long int etf = 0, ncf = 0;
+        LGNGetNumErrTestFails(r.mem, &etf);
+        LGNGetNumNewtonConvFails(r.mem, &ncf);
+        printf("%5ld t %.10f h %.3e k %d etf %ld ncf %ld\n", nst, t, hl, ko, etf, ncf);
+      }
+    }
+    RunFree(&r);
+    SUNContext_Free(&ctx);
+    return flag;
+  }
   if (argc == 2 && !strcmp(argv[1], "--sweep")) {
     int ret = Sweep(ctx);
     SUNContext_Free(&ctx);
@@ -334,9 +366,11 @@ int main(int argc, char **argv)
          "weights 1/(%g (1 + |x|)))\n\n", tol);
   printf("%2s %9s %10s %10s %7s %10s %10s %7s %10s %7s %10s\n", "k", "h", "true |dx|",
          "est |dx|", "ratio", "true wrms", "est wrms", "ratio", "proj wrms", "ratio", "|dv|");
+  printf("%2s %9s %10s %10s\n", "", "", "true h dv", "est h dv");
   for (k = 3; k <= 5; k++) {
     for (ih = 0; ih < 6; ih++) {
       double tx = 0, ex = 0, tw = 0, ew = 0, tv = 0, rx = 0, rw = 0, pw = 0, rp = 0;
+      double hv = 0, hve = 0;
       for (it = 0; it < 4; it++) {
         LteResult res;
         int flag = OneStep(ctx, k, hs[ih], tns[it], tol, &res);
@@ -353,9 +387,12 @@ int main(int argc, char **argv)
         rw = fmax(rw, res.true_w / res.est_w);
         pw = fmax(pw, res.estp_w);
         rp = fmax(rp, res.true_w / res.estp_w);
+        hv = fmax(hv, res.hdv_w);
+        hve = fmax(hve, res.estv_w);
       }
       printf("%2d %9.2e %10.3e %10.3e %7.2f %10.3e %10.3e %7.2f %10.3e %7.2f %10.3e\n", k,
              hs[ih], tx, ex, rx, tw, ew, rw, pw, rp, tv);
+      printf("%2s %9s %10.3e %10.3e (WRMS)\n", "", "", hv, hve);
     }
   }
   SUNContext_Free(&ctx);
