@@ -27,7 +27,8 @@
  *   LTE_k = (x_{n+1} - x_pred) / (c0 psi_{k+1}),  psi_j = t_{n+1} - t_{n+1-j},
  * and the same with v, times h (the norm is the larger of the two, both
  * projected on the constraints' tangent space; doc/theory.md section 8 for
- * why the velocities must enter at order 5),
+ * why the velocities must enter at order 5; the velocities' part less a
+ * bound of what the positions' roundoff noise makes of it, PositionNoise),
  * from y_{n+1} - y_pred = [y_{n+1}, ..., y_{n-k}] prod_{j<=k+1} psi_j and
  * LTE_k = y^(k+1)/(k+1)! prod_{j<=k} psi_j / c0 (for constant steps
  * h^{k+1} y^(k+1) / ((k+1) sum_{j<=k} 1/j): 1/2, 2/9, ... as it should be).
@@ -89,6 +90,7 @@ static void StartHistory(LGNMem mem)
   memcpy(mem->bdf_q, lgnData(mem->q), (size_t)mem->nq * sizeof(sunrealtype));
   memcpy(mem->bdf_v, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
   if (mem->m > 0) memcpy(mem->bdf_l, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+  mem->bdf_vgain[0]     = SUN_RCONST(0.0); /* v_0 is given */
   mem->bdf_nhist        = 1;
   mem->bdf_order        = 1;
   mem->bdf_nsteps_order = 0;
@@ -102,9 +104,11 @@ static void PushHistory(LGNMem mem)
   const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
   const int n = SUNMIN(mem->bdf_nhist, LGN_BDF_MAXHIST - 1);
   memmove(mem->bdf_t + 1, mem->bdf_t, (size_t)n * sizeof(sunrealtype));
+  memmove(mem->bdf_vgain + 1, mem->bdf_vgain, (size_t)n * sizeof(sunrealtype));
   memmove(mem->bdf_q + nq, mem->bdf_q, (size_t)n * nq * sizeof(sunrealtype));
   memmove(mem->bdf_v + nv, mem->bdf_v, (size_t)n * nv * sizeof(sunrealtype));
   mem->bdf_t[0] = mem->tn;
+  mem->bdf_vgain[0] = mem->bdf_vgain1;
   memcpy(mem->bdf_q, lgnData(mem->q), nq * sizeof(sunrealtype));
   memcpy(mem->bdf_v, lgnData(mem->v), nv * sizeof(sunrealtype));
   if (m > 0) {
@@ -216,6 +220,10 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   for (j = 1; j <= k; j++) tau[j] = mem->bdf_t[j - 1];
   LagrangeDerivativeAtFirst(tau, k, d);
   mem->bdf_c0 = d[0];
+  /* v_{n+1} = T(x)(sum_j d_j x_{n+1-j}): a noise e in each x_j reaches it
+   * as at most sum_j |d_j| e (PositionNoise) */
+  mem->bdf_vgain1 = SUN_RCONST(0.0);
+  for (j = 0; j <= k; j++) mem->bdf_vgain1 += fabs(d[j]);
   for (i = 0; i < nv; i++) {
     sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
     for (j = 1; j <= k; j++) {
@@ -233,6 +241,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
       xp[i] = h * v0[i];
       vp[i] = v0[i] + h * a0[i];
     }
+    mem->bdf_vpgain = mem->bdf_vgain[0];
   } else {
     kp = SUNMIN(k, nh - 1);
     lgnLagrangeBasis(mem->bdf_t, kp, t1, d, NULL);
@@ -245,6 +254,8 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
       xp[i] = x;
       vp[i] = v;
     }
+    mem->bdf_vpgain = SUN_RCONST(0.0);
+    for (j = 0; j <= kp; j++) mem->bdf_vpgain += fabs(d[j]) * mem->bdf_vgain[j];
   }
   memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
   PredictMultipliers(mem, nh > 1 ? SUNMIN(k, nh - 1) : 0, d);
@@ -270,6 +281,21 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   }
   if (flag != LGN_SUCCESS) mem->nfails++;
   return flag;
+}
+
+/* The noise of the positions x_j in the RMS of the error test's weights w:
+ * Newton's roundoff floor 100 eps |q| (lgn_newton.c, CorrectionNorm), below
+ * which the iteration does not resolve x. The velocities v = T(x)(sum_j d_j
+ * x_j) carry it times their gain sum_j |d_j| (up to 1/h times 6.7, 10.7, 17
+ * at orders 3, 4, 5), and their differences in the estimates more: at tol
+ * 1e-13 on the heavy top that is the size of the velocities' estimates
+ * (doc/theory.md section 8), which are therefore taken less this bound. */
+static sunrealtype PositionNoise(const LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *w)
+{
+  sunrealtype s = SUN_RCONST(0.0);
+  sunindextype i;
+  for (i = 0; i < mem->nv; i++) s += w[i] * w[i];
+  return SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale * sqrt(s / (sunrealtype)mem->nv);
 }
 
 /* The local error estimate of order k (into mem->ele: the positions) and
@@ -298,6 +324,9 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
   for (i = 0; i < nv; i++) mem->ele[i] = c->h * f * (v1[i] - mem->bdf_vpred[i]);
   flag = lgnErrorNorm(mem, c, mem->sigma, &ev);
   memcpy(mem->ele, mem->bdf_dd, (size_t)nv * sizeof(sunrealtype));
+  /* less what the positions' noise can make of it: h f (v_{n+1} - sum_j
+   * p_j v_{n-j}), each v with its gain */
+  ev -= c->h * f * (mem->bdf_vgain1 + mem->bdf_vpgain) * PositionNoise(mem, c, mem->ewt);
   *err = SUNMAX(*err, ev);
   return flag;
 }
@@ -309,9 +338,12 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
 /* Estimates E_j of the error of orders j = k - 2 ... k + 1 of the step just
  * taken (E[j - k + 2]; negative: not available) from the divided
  * differences of y over t_{n+1}, t_n, ... (y1 the new point, Y the
- * history), times s, in the weights of the error test; maximum with E. */
+ * history), times s, in the weights of the error test; maximum with E.
+ * noise > 0 (the velocities): each less the bound of what the positions'
+ * noise (PositionNoise) makes of it, at least 0. */
 static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const sunrealtype *y1,
-                             const sunrealtype *Y, sunrealtype s, sunrealtype E[4])
+                             const sunrealtype *Y, sunrealtype s, sunrealtype noise,
+                             sunrealtype E[4])
 {
   const sunindextype nv = mem->nv;
   const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
@@ -339,7 +371,21 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
     }
     for (i = 0; i < nv; i++) mem->work_nv[i] = a[(ord + 1) * nv + i] * prod / c0;
-    E[o] = SUNMAX(E[o], lgnWrmsNorm(mem, mem->work_nv, mem->ewt));
+    if (noise > SUN_RCONST(0.0)) { /* the velocities: less their noise */
+      /* [y_0 .. y_m] = sum_j y_j / prod_{i != j} (tt_j - tt_i), each y_j
+       * (v_{n+1-j}) with the noise gain g_j times the positions' noise */
+      sunrealtype nz = SUN_RCONST(0.0), e;
+      int l;
+      for (j = 0; j <= ord + 1; j++) {
+        sunrealtype den = SUN_RCONST(1.0);
+        for (l = 0; l <= ord + 1; l++)
+          if (l != j) den *= tt[j] - tt[l];
+        nz += (j == 0 ? mem->bdf_vgain1 : mem->bdf_vgain[j - 1]) / fabs(den);
+      }
+      e = lgnWrmsNorm(mem, mem->work_nv, mem->ewt) - nz * noise * prod / c0;
+      E[o] = SUNMAX(E[o], SUNMAX(SUN_RCONST(0.0), e));
+    } else
+      E[o] = SUNMAX(E[o], lgnWrmsNorm(mem, mem->work_nv, mem->ewt));
   }
 }
 
@@ -348,8 +394,9 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
 static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype E[4])
 {
   E[0] = E[1] = E[2] = E[3] = -SUN_RCONST(1.0);
-  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf_x, SUN_RCONST(1.0), E);
-  OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf_v, c->h, E);
+  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf_x, SUN_RCONST(1.0), SUN_RCONST(0.0), E);
+  OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf_v, c->h,
+                   PositionNoise(mem, c, mem->ewt), E);
 }
 
 /* The step factor for an error estimate E at order k. */
