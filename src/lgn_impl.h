@@ -119,6 +119,9 @@ typedef struct LGNMemRec {
   sunbooleantype bdf_phase0;/* start-up: the order rises every step        */
   sunrealtype bdf_chart_t;  /* t_n of the chart coordinates in bdf_x       */
   sunrealtype bdf_t[LGN_BDF_MAXHIST];
+  sunrealtype bdf_vgain[LGN_BDF_MAXHIST]; /* v_{n-j}'s gain on position noise */
+  sunrealtype bdf_vgain1;   /* ... of the attempt's v_{n+1}: sum_j |d_j|      */
+  sunrealtype bdf_vpgain;   /* ... of its predictor: sum_j |p_j| vgain_j      */
   sunrealtype *bdf_q;       /* LGN_BDF_MAXHIST x nq: q_{n-j}               */
   sunrealtype *bdf_v;       /* LGN_BDF_MAXHIST x nv: v_{n-j}               */
   sunrealtype *bdf_l;       /* LGN_BDF_MAXHIST x m: lambda_{n-j}           */
