@@ -88,17 +88,18 @@ static void ResetCounters(LGNMem mem)
  * copy, so that a refused q0 leaves the state as it was) is finite. */
 static int CheckNormalisable(LGNMem mem, N_Vector q0, const char *func)
 {
-  N_Vector q = N_VClone(q0);
+  /* a plain array, not N_VClone: cloning an MPI vector is collective */
+  const size_t nq = (size_t)mem->G->nq;
+  sunrealtype *q = (sunrealtype *)malloc(SUNMAX(nq, 1) * sizeof(sunrealtype));
   int ok;
   if (q == NULL) {
     lgnProcessError(mem, LGN_MEM_FAIL, __LINE__, func, __FILE__,
                     "A copy of q0 could not be allocated.");
     return LGN_MEM_FAIL;
   }
-  N_VScale(SUN_RCONST(1.0), q0, q);
-  ok = LGNGroup_Normalize(mem->G, lgnData(q)) == 0 &&
-       lgnAllFinite(lgnData(q), mem->G->nq);
-  N_VDestroy(q);
+  memcpy(q, lgnData(q0), nq * sizeof(sunrealtype));
+  ok = LGNGroup_Normalize(mem->G, q) == 0 && lgnAllFinite(q, mem->G->nq);
+  free(q);
   if (!ok) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "q0 is not an element of the Lie group (it could not be "
@@ -170,7 +171,7 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   flag = lgnAgree(mem, CheckInitialState(mem, t0, q0, v0, __func__));
   if (flag != LGN_SUCCESS) return flag;
 
-  flag = lgnAllocState(mem, q0, v0);
+  flag = lgnAgree(mem, lgnAllocState(mem, q0, v0));
   if (flag != LGN_SUCCESS) return flag;
   SetInitialState(mem, t0, q0, v0);
   return LGN_SUCCESS;
@@ -188,9 +189,11 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   if (mem->G == NULL || mem->G->nq != mem->nq || mem->G->nv != mem->nv) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The Lie group changed size since LGNInit: call LGNInit.");
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
+  } else {
+    flag = CheckInitialState(mem, t0, q0, v0, __func__);
   }
-  flag = lgnAgree(mem, CheckInitialState(mem, t0, q0, v0, __func__));
+  flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
   SetInitialState(mem, t0, q0, v0);
   return LGN_SUCCESS;
@@ -259,22 +262,62 @@ static int CheckSettings(LGNMem mem)
   return LGN_SUCCESS;
 }
 
+/* Across ranks the settings that decide the steps must be the same on
+ * every rank (else the ranks would part ways in a collective): refused
+ * with LGN_ILL_INPUT on all, naming the first that differs. */
+static int CheckSameSettings(LGNMem mem)
+{
+  static const char *names[] = {
+    "the method family (LGNSetBDF / LGNSetNewmark ...)", "the BDF order",
+    "the step control", "the step size", "rtol", "atol", "the Newton iterations",
+    "the Newton mode", "the setups of modified Newton", "mxstep",
+    "the constraint index", "the kinematics", "the predictor", "alpha_m",
+    "alpha_f", "beta", "gamma", "the perturbed start", "the number of root functions",
+    "the kind of linear solver (Krylov or direct)", "eplifac", "epcon",
+    "the initial step", "hmin", "hmax", "maxnef", "maxncf", "the stop time",
+    "the acceptance of stalls", "the tolerances set"};
+  const sunrealtype x[] = {
+    (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->step_control,
+    mem->h, mem->rtol, mem->atol, (sunrealtype)mem->maxcor, (sunrealtype)mem->newton_mode,
+    (sunrealtype)mem->msbp, (sunrealtype)mem->mxstep, (sunrealtype)mem->constr_index,
+    (sunrealtype)mem->kinematics, (sunrealtype)mem->predictor, mem->alpha_m, mem->alpha_f,
+    mem->beta, mem->gamma, (sunrealtype)mem->pstart_on, (sunrealtype)mem->nrtfn,
+    (sunrealtype)mem->krylov, mem->eplifac, mem->epcon, mem->h0_user, mem->hmin, mem->hmax,
+    (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
+    mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
+    (sunrealtype)mem->tols_set};
+  int first;
+  _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
+                 "a name for each setting");
+  if (mem->par == NULL) return LGN_SUCCESS;
+  if (lgnParallelSame(mem->par, x, (int)(sizeof x / sizeof x[0]), &first))
+    return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "%s differs between the ranks: the settings of the method must be the "
+            "same on every rank.", names[first]);
+  return LGN_ILL_INPUT;
+}
+
 /* Everything LGNSolve needs before the first step: the settings, work
  * space and consistent initial values. Across ranks, each stage is agreed
- * before the next (which may be collective). */
+ * before the next (which may be collective), and what one rank must make
+ * (work space, initial values) every rank makes. */
 static int CheckReadyToSolve(LGNMem mem)
 {
   int flag = lgnAgree(mem, CheckSettings(mem));
+  if (flag == LGN_SUCCESS) flag = CheckSameSettings(mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->work_done) {
-    flag = lgnAllocWork(mem);
-    if (flag != LGN_SUCCESS) return flag;
-  }
+  /* Phi_t on any rank: every rank takes part in its error norm */
+  mem->any_constr_time =
+      lgnMaxAll(mem, mem->constr_time != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
+      SUN_RCONST(0.0);
+  flag = lgnEnsureWork(mem);
+  if (flag != LGN_SUCCESS) return flag;
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->ic_done) {
+  if (lgnMaxAll(mem, mem->ic_done ? SUN_RCONST(0.0) : SUN_RCONST(1.0)) > SUN_RCONST(0.0)) {
     flag = lgnInitialConditions(mem);
     if (flag == LGN_RECOVERABLE) {
       /* no smaller step can help the initial values */

@@ -467,9 +467,11 @@ static int Prepare(LGNMem mem)
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "BDF needs the Lie group's compose_log operation (log(q1^{-1} q2)), "
               "which this group does not set.");
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
+  } else {
+    flag = lgnAllocBDF(mem);
   }
-  flag = lgnAgree(mem, lgnAllocBDF(mem));
+  flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
   /* a landing on a stop time or tout moves t_n to it by roundoff */
   if (mem->bdf_nhist > 0 &&
@@ -601,7 +603,11 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
         factor = BDF_CUT_FAIL;
       }
     } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
-      const sunbooleantype singular = flag == LGN_RECOVERABLE && mem->last_lin_flag != 0;
+      /* singular on any rank: the same flag on all */
+      const sunbooleantype singular =
+          lgnMaxAll(mem, flag == LGN_RECOVERABLE && mem->last_lin_flag != 0 ? SUN_RCONST(1.0)
+                                                                             : SUN_RCONST(0.0)) >
+          SUN_RCONST(0.0);
       ncf++;
       if (ncf >= mem->maxncf || h <= mem->hmin) {
         const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE

@@ -9,11 +9,10 @@
 
 #include "lgn_impl.h"
 
-/* What LGNCalcIC needs of LGNSolve's preparation: the model callbacks, the
- * linear solver, the work space and the model matrices. */
-static int PrepareModel(LGNMem mem, const char *func)
+/* What LGNCalcIC needs of LGNSolve's preparation: the model callbacks and
+ * the linear solver. */
+static int CheckModel(LGNMem mem, const char *func)
 {
-  int flag;
   if (mem->mass == NULL || mem->force == NULL) {
     lgnProcessError(mem, LGN_MISSING_FN, __LINE__, func, __FILE__,
                     "No %s function: call %s first.",
@@ -37,10 +36,16 @@ static int PrepareModel(LGNMem mem, const char *func)
                     "No linear solver: call LGNSetLinearSolver first.");
     return LGN_NO_LINSOL;
   }
-  if (!mem->work_done) {
-    flag = lgnAllocWork(mem);
-    if (flag != LGN_SUCCESS) return flag;
-  }
+  return LGN_SUCCESS;
+}
+
+/* The model checked (on every rank: the work space is made collectively),
+ * the work space, the linear solver and the model matrices. */
+static int PrepareModel(LGNMem mem, const char *func)
+{
+  int flag = lgnAgree(mem, CheckModel(mem, func));
+  if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
+  if (flag != LGN_SUCCESS) return flag;
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   return lgnAgree(mem, flag);

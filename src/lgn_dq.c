@@ -125,10 +125,15 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
                    N_Vector z)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
-  sunrealtype vmax = N_VMaxNorm(v), eps;
+  sunrealtype vmax = SUN_RCONST(0.0), eps;
   sunrealtype *zd = lgnData(z), *zm = lgnData(mem->dq_z), *w = mem->work_nv;
   const sunrealtype *vd = lgnData(v);
   int flag;
+
+  /* |v|_inf of this rank's part: the quotient is local, and N_VMaxNorm
+   * of an MPI vector would be a collective on the ranks without a
+   * curvature callback only */
+  for (i = 0; i < nv; i++) vmax = SUNMAX(vmax, fabs(vd[i]));
 
   if (vmax == SUN_RCONST(0.0) && mem->constr_time == NULL) {
     N_VConst(SUN_RCONST(0.0), z);

@@ -114,25 +114,31 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 {
   const sunindextype m = mem->m;
-  sunrealtype s = SUN_RCONST(0.0), w;
+  sunrealtype s[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)}, w; /* sum, rows */
   sunindextype i;
-  int ret;
-  lgnMatClear(mem->Bmat);
-  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                          mem->constr_jac(c->t1, mem->q1, mem->Bmat, mem->user_data),
-                          mem->Bmat, "LGNSolve");
-  if (ret == LGN_SUCCESS)
-    ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1),
-                                mem->work_m);
+  int ret = LGN_SUCCESS;
+  /* across ranks, a rank without Phi_t adds nothing but takes part */
+  if (mem->constr_time != NULL) {
+    lgnMatClear(mem->Bmat);
+    ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
+                            mem->constr_jac(c->t1, mem->q1, mem->Bmat, mem->user_data),
+                            mem->Bmat, "LGNSolve");
+    if (ret == LGN_SUCCESS)
+      ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1),
+                                  mem->work_m);
+  }
   ret = lgnAgree(mem, ret);
   if (ret != LGN_SUCCESS) return ret;
-  for (i = 0; i < m; i++) {
-    w = c->h * mem->work_m[i] /
-        (mem->atol + mem->rtol * c->h * fabs(lgnData(mem->phit)[i]));
-    s += w * w;
+  if (mem->constr_time != NULL) {
+    for (i = 0; i < m; i++) {
+      w = c->h * mem->work_m[i] /
+          (mem->atol + mem->rtol * c->h * fabs(lgnData(mem->phit)[i]));
+      s[0] += w * w;
+    }
+    s[1] = (sunrealtype)m;
   }
-  lgnSumAll(mem, &s, 1);
-  *norm = sqrt(s / mem->m_all);
+  lgnSumAll(mem, s, 2);
+  *norm = sqrt(s[0] / s[1]);
   return LGN_SUCCESS;
 }
 
@@ -145,7 +151,7 @@ int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
   }
   lgnErrorWeights(mem, incr, mem->ewt);
   *norm = lgnWrmsNorm(mem, mem->ele, mem->ewt);
-  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3 && mem->constr_time != NULL) {
+  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3 && mem->any_constr_time) {
     sunrealtype vnorm;
     int flag = VelocityConstraintNorm(mem, c, &vnorm);
     if (flag != LGN_SUCCESS) return flag;

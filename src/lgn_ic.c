@@ -170,8 +170,7 @@ static int EvalPhi(LGNMem mem, N_Vector q)
   int ret;
   N_VConst(SUN_RCONST(0.0), mem->phi);
   ret = mem->constr(mem->tn, q, mem->phi, mem->user_data);
-  return lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_CONSTR, ret, __func__)
-                                : LGN_SUCCESS);
+  return lgnAgree(mem, lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->phi, __func__));
 }
 
 /* B(q) v + Phi_t(q) into mem->work_m (B evaluated into Bmat at t = tn). */
@@ -350,9 +349,11 @@ int lgnProjectIC(LGNMem mem, int icopt)
   int flag = LGN_SUCCESS;
   if (mem->m == 0) return LGN_SUCCESS;
   save = (sunrealtype *)malloc((nq + nv) * sizeof(sunrealtype));
-  if (save == NULL) {
-    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
-    return LGN_MEM_FAIL;
+  if (save == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+  flag = lgnAgree(mem, save == NULL ? LGN_MEM_FAIL : LGN_SUCCESS);
+  if (flag != LGN_SUCCESS) {
+    free(save);
+    return flag;
   }
   memcpy(save, lgnData(mem->q), nq * sizeof(sunrealtype));
   memcpy(save + nq, lgnData(mem->v), nv * sizeof(sunrealtype));
@@ -387,13 +388,17 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The perturbed start (LGNSetPerturbedStart) needs the Lie "
               "group's tangent_dot_apply (the bracket [v0, vdot0]).");
-    return LGN_ILL_INPUT;
+    work = NULL;
+    flag = LGN_ILL_INPUT;
+  } else {
+    work = (sunrealtype *)malloc(3 * (size_t)nv * sizeof(sunrealtype));
+    if (work == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    flag = work == NULL ? LGN_MEM_FAIL : LGN_SUCCESS;
   }
-  work = (sunrealtype *)malloc(3 * (size_t)nv * sizeof(sunrealtype));
-  if (work == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
-  if (lgnAgree(mem, work == NULL ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
+  flag = lgnAgree(mem, flag); /* every rank goes on, or none */
+  if (flag != LGN_SUCCESS) {
     free(work);
-    return LGN_MEM_FAIL;
+    return flag;
   }
   vdp = work; hvdd = work + nv; w = work + 2 * nv;
 

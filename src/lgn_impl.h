@@ -80,6 +80,8 @@ typedef struct LGNMemRec {
   LGNParallel par;          /* the communicator of q0 and v0              */
   sunrealtype nv_all;       /* nv and m summed over the ranks: the sizes  */
   sunrealtype m_all;        /* of the weighted RMS norms                  */
+  sunbooleantype any_constr_time; /* Phi_t set on some rank (on one process:
+                                     on this one); set by LGNSolve         */
 
   /* ---- model ---- */
   LGNGroup G;               /* configuration space (not owned)            */
@@ -228,6 +230,8 @@ typedef struct LGNMemRec {
   long int nps;             /* preconditioner solves                       */
   long int njtimes;         /* products with the iteration matrix          */
   long int nlcf;            /* linear solves that missed their tolerance   */
+  int kry_pfail;            /* across ranks: a preconditioner solve's failure
+                               in the current Krylov solve (0: none)      */
 
   /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
   sunindextype *diag_red;   /* redundant constraints (m; work space)       */
@@ -376,6 +380,7 @@ int lgnAgreeRanks(LGNMem mem, int flag);
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
 int lgnAllocWork(LGNMem mem);
+int lgnEnsureWork(LGNMem mem);
 int lgnAllocBDF(LGNMem mem);
 void lgnFreeWork(LGNMem mem);
 int lgnAllocMatrices(LGNMem mem);

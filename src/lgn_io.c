@@ -423,28 +423,33 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   sunindextype i;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
+  /* every check ends in one flag that all ranks agree on before the
+   * collective clone and sum */
   if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
+  } else {
+    flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
   }
-  flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
-  if (flag != LGN_SUCCESS) return flag;
-  a = N_VGetArrayPointer(atol);
-  for (i = 0; i < mem->nv; i++) {
+  a = flag == LGN_SUCCESS ? N_VGetArrayPointer(atol) : NULL;
+  for (i = 0; flag == LGN_SUCCESS && i < mem->nv; i++) {
     if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
                 (long long)i, (double)a[i]);
-      return LGN_ILL_INPUT;
+      flag = LGN_ILL_INPUT;
     }
     sum += a[i];
   }
-  if (mem->atol_vec == NULL) {
+  flag = lgnAgree(mem, flag);
+  if (flag != LGN_SUCCESS) return flag;
+  if (lgnMaxAll(mem, mem->atol_vec == NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
+      SUN_RCONST(0.0)) {
+    if (mem->atol_vec != NULL) N_VDestroy(mem->atol_vec);
     mem->atol_vec = N_VClone(atol);
-    if (mem->atol_vec == NULL) {
-      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
-      return LGN_MEM_FAIL;
-    }
+    if (mem->atol_vec == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    flag = lgnAgree(mem, mem->atol_vec == NULL ? LGN_MEM_FAIL : LGN_SUCCESS);
+    if (flag != LGN_SUCCESS) return flag;
   }
   N_VScale(SUN_RCONST(1.0), atol, mem->atol_vec);
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
@@ -710,22 +715,22 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   flag = lgnCheckVector(mem, vdot0, mem->nv, "vdot0", __func__);
   if (flag == LGN_SUCCESS && mem->m > 0)
     flag = lgnCheckVector(mem, lambda0, mem->m, "lambda0", __func__);
-  if (flag != LGN_SUCCESS) return flag;
-  if (mem->nst > 0) {
+  if (flag == LGN_SUCCESS && mem->nst > 0) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "vdot0 and lambda0 can only be set before the first step "
               "(call LGNReInit to start again from the current state).");
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
   }
-  if (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
-      (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m))) {
+  if (flag == LGN_SUCCESS &&
+      (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
+       (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m)))) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
   }
-  if (!mem->work_done) {
-    flag = lgnAllocWork(mem);
-    if (flag != LGN_SUCCESS) return flag;
-  }
+  /* across ranks a collective call: agreed before the work space is made */
+  flag = lgnAgree(mem, flag);
+  if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
+  if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
   if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
   lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */

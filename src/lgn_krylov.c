@@ -220,11 +220,8 @@ static int PSetup(void *P_data)
                      mem->asm_cK, mem->user_data);
 }
 
-static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
+static int PreconditionerSolve(LGNMem mem, N_Vector r, N_Vector z, sunrealtype tol)
 {
-  LGNMem mem = (LGNMem)P_data;
-  (void)lr;
-  mem->nps++;
   if (mem->bp_nblocks > 0 && mem->bp != NULL) {
 #if defined(LGN_HAVE_KLU)
     return lgnBlockPrecSolve(mem->bp, lgnData(r), lgnData(z));
@@ -238,6 +235,23 @@ static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
   }
   return mem->psolve(mem->asm_t, mem->q1, mem->v1, r, z, mem->asm_cM,
                      mem->asm_cC, mem->asm_cK, tol, mem->user_data);
+}
+
+/* Across ranks a failure must not end the Krylov iteration on one rank
+ * while the others go on with its (collective) inner products: it is
+ * recorded (kry_pfail), z = r, and the solve is failed on every rank after
+ * it (lgnKrylovSolve). */
+static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
+{
+  LGNMem mem = (LGNMem)P_data;
+  int ret;
+  (void)lr;
+  mem->nps++;
+  ret = PreconditionerSolve(mem, r, z, tol);
+  if (ret == 0 || mem->par == NULL) return ret;
+  if (mem->kry_pfail == 0 || ret < 0) mem->kry_pfail = ret;
+  N_VScale(SUN_RCONST(1.0), r, z);
+  return 0;
 }
 
 /* =============================================================================
@@ -311,8 +325,9 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
                               mem->kry_pretype != SUN_PREC_RIGHT;
   sunrealtype delta;
   long int nli = 0;
-  int ret;
+  int ret, flag;
   mem->kry_newton = SUNFALSE;
+  mem->kry_pfail  = 0;
   if (x == b) { /* the solver needs them apart */
     N_VScale(SUN_RCONST(1.0), b, mem->kry_tmp);
     b = mem->kry_tmp;
@@ -343,6 +358,15 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
   nli = (long int)SUNLinSolNumIters(mem->LS);
   mem->nli += nli;
   mem->last_lin_flag = ret;
+  if (mem->par != NULL) { /* a preconditioner that failed on some rank */
+    if (mem->kry_pfail < 0)
+      LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the preconditioner solve failed (%d).",
+                (double)mem->tn, mem->kry_pfail);
+    flag = lgnAgree(mem, mem->kry_pfail > 0   ? LGN_RECOVERABLE
+                         : mem->kry_pfail < 0 ? LGN_LSOLVE_FAIL
+                                              : LGN_SUCCESS);
+    if (flag != LGN_SUCCESS) return flag;
+  }
   if (ret == SUNLS_SUCCESS) return LGN_SUCCESS;
   if (ret > 0) mem->nlcf++;
   /* an inexact Newton correction: Newton's own test judges it */

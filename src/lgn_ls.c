@@ -259,7 +259,8 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
 }
 
 /* Before the first solve: the matrix must be (nv+m) x (nv+m). */
-int lgnLsCheck(LGNMem mem)
+/* The linear solver and A fit the problem (on this rank). */
+static int CheckLinearSolver(LGNMem mem)
 {
   const sunindextype n = mem->nv + mem->m;
   sunbooleantype sparse;
@@ -301,13 +302,22 @@ int lgnLsCheck(LGNMem mem)
               (long long)lgnDenseLUSize(mem->LS), (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
+  return LGN_SUCCESS;
+}
+
+int lgnLsCheck(LGNMem mem)
+{
+  int ret;
+  /* across ranks: agreed before SUNLinSolInitialize (collective for a
+   * Krylov solver over MPI vectors: it clones its basis) */
+  int flag = lgnAgree(mem, CheckLinearSolver(mem));
+  if (flag != LGN_SUCCESS) return flag;
   if (!mem->ls_initialized) {
     ret = SUNLinSolInitialize(mem->LS);
     mem->last_lin_flag = ret;
-    if (ret != 0) {
-      LGN_ERROR(mem, LGN_LINIT_FAIL, "SUNLinSolInitialize failed (%d).", ret);
-      return LGN_LINIT_FAIL;
-    }
+    if (ret != 0) LGN_ERROR(mem, LGN_LINIT_FAIL, "SUNLinSolInitialize failed (%d).", ret);
+    flag = lgnAgree(mem, ret != 0 ? LGN_LINIT_FAIL : LGN_SUCCESS);
+    if (flag != LGN_SUCCESS) return flag;
     mem->ls_initialized = SUNTRUE;
   }
   return LGN_SUCCESS;

@@ -332,13 +332,13 @@ static int BlocksBuild(LGNMem mem)
 
 /* The flag every rank goes on with (lgnParallelAgree; lgnAgree in
  * lgn_impl.h calls this across ranks only). A rank that did not fail itself
- * reports the failure of the other rank (the failing rank has reported what
+ * (or only recoverably) reports the failure of the other rank (the failing rank has reported what
  * failed); recoverable flags stay silent, as they are on one process. */
 int lgnAgreeRanks(LGNMem mem, int flag)
 {
   int rank;
   const int agreed = lgnParallelAgree(mem->par, flag, &rank);
-  if (agreed < 0 && flag == LGN_SUCCESS && agreed != LGN_CONV_FAILURE)
+  if (agreed < 0 && flag >= 0 && agreed != LGN_CONV_FAILURE)
     LGN_ERROR(mem, agreed, MSG_TIME "failed on rank %d (flag %d): see its message.",
               (double)mem->tn, rank, agreed);
   return agreed;
@@ -462,7 +462,10 @@ int lgnAllocKrylov(LGNMem mem)
     lgnFreeMatrices(mem);
     DestroyMatrix(&mem->A);
   }
-  if (mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != n) {
+  /* remade on every rank when one needs it (making them is collective) */
+  if (lgnMaxAll(mem, mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != n
+                         ? SUN_RCONST(1.0)
+                         : SUN_RCONST(0.0)) > SUN_RCONST(0.0)) {
     DestroyVector(&mem->kry_w);
     DestroyVector(&mem->kry_tmp);
   }
@@ -474,7 +477,9 @@ int lgnAllocKrylov(LGNMem mem)
   }
   if (mem->kry_w == NULL) mem->kry_w = lgnParallelNewVector(mem->par, n, mem->sunctx);
   if (mem->kry_tmp == NULL) mem->kry_tmp = lgnParallelNewVector(mem->par, n, mem->sunctx);
-  if (mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL) {
+  if (lgnAgree(mem, mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL
+                        ? LGN_MEM_FAIL
+                        : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeKrylov(mem, SUNFALSE);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -560,6 +565,7 @@ int lgnAllocRoots(LGNMem mem, int nrtfn)
 /* The state vectors, cloned from q0 and v0 (the sizes of the group). */
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
 {
+  int fail;
   lgnFreeWork(mem);
   lgnFreeState(mem);
   mem->nq    = mem->G->nq;
@@ -573,10 +579,12 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   mem->v1    = N_VClone(v0);
   mem->vdot1 = N_VClone(v0);
   mem->dq_v  = N_VClone(v0);
-  if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
+  /* every rank clones every vector (cloning an MPI vector is collective) */
+  fail = mem->nrtfn > 0 && (mem->q == NULL || mem->v == NULL ||
+                            lgnAllocRootVectors(mem) != LGN_SUCCESS);
+  if (fail || mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
       mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
-      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL ||
-      (mem->nrtfn > 0 && lgnAllocRootVectors(mem) != LGN_SUCCESS)) {
+      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
     lgnFreeState(mem);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -681,6 +689,21 @@ int lgnAllocWork(LGNMem mem)
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
+}
+
+/* The work space on every rank when one lacks it (a setter dropped it on
+ * that rank only: making its vectors is collective across ranks). A rank
+ * whose work space is made again also computes its initial values again,
+ * at the current state, as the rank whose model changed does. */
+int lgnEnsureWork(LGNMem mem)
+{
+  const sunbooleantype had = mem->work_done;
+  int flag;
+  if (lgnMaxAll(mem, had ? SUN_RCONST(0.0) : SUN_RCONST(1.0)) == SUN_RCONST(0.0))
+    return LGN_SUCCESS;
+  flag = lgnAllocWork(mem);
+  if (had) mem->ic_done = SUNFALSE;
+  return flag;
 }
 
 /* The BDF history and work arrays (lgn_bdf.c), once, in one block:

@@ -10,6 +10,7 @@
  * have no N_Vector operation.
  * ---------------------------------------------------------------------------*/
 
+#include <math.h>
 #include <stdlib.h>
 
 #include <lignum/lignum_config.h>
@@ -23,7 +24,9 @@
 #include <nvector/nvector_parallel.h>
 
 struct LGNParallelRec {
-  MPI_Comm comm;    /* the user's communicator (not owned)                 */
+  MPI_Comm comm;    /* a duplicate of the vectors' communicator (owned: the
+                       user may free q0 and v0, and Lignum's reductions
+                       never pair with the user's own)                   */
   int rank, size;
   N_Vector_ID type; /* SUNDIALS_NVEC_PARALLEL or SUNDIALS_NVEC_MPIPLUSX    */
 };
@@ -71,7 +74,7 @@ int lgnParallelCreate(N_Vector q0, N_Vector v0, const LGNErrSink *sink,
       lgnReport(sink, LGN_MEM_FAIL, func, "A memory request failed.");
       return LGN_MEM_FAIL;
     }
-    (*par)->comm = *(MPI_Comm *)cq;
+    MPI_Comm_dup(*(MPI_Comm *)cq, &(*par)->comm);
     (*par)->type = id;
     MPI_Comm_rank((*par)->comm, &(*par)->rank);
     MPI_Comm_size((*par)->comm, &(*par)->size);
@@ -87,6 +90,13 @@ int lgnParallelCreate(N_Vector q0, N_Vector v0, const LGNErrSink *sink,
 
 void lgnParallelFree(LGNParallel *par)
 {
+#ifdef LGN_HAVE_MPI
+  int finalized = 0;
+  if (*par != NULL) {
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Comm_free(&(*par)->comm);
+  }
+#endif
   free(*par);
   *par = NULL;
 }
@@ -119,11 +129,16 @@ N_Vector lgnParallelNewVector(LGNParallel par, sunindextype n, SUNContext ctx)
   }
   if (par != NULL) {
     /* MPIPlusX over a serial part; the clone owns its part, so every
-     * vector of the record is freed by N_VDestroy alone. Every rank makes
-     * both vectors, whatever fails, so that the collectives match. */
-    N_Vector local = N_VNew_Serial(n, ctx);
-    N_Vector made  = local != NULL ? N_VMake_MPIPlusX(par->comm, local, ctx) : NULL;
-    N_Vector clone = made != NULL ? N_VClone(made) : NULL;
+     * vector of the record is freed by N_VDestroy alone. Making and
+     * cloning are collective (a communicator is duplicated, the global
+     * length summed): the ranks agree first that each has its part. */
+    N_Vector local = N_VNew_Serial(n, ctx), made = NULL, clone = NULL;
+    int ok = local != NULL, all_ok = 0;
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, par->comm);
+    if (all_ok) made = N_VMake_MPIPlusX(par->comm, local, ctx);
+    ok = made != NULL;
+    MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, par->comm);
+    if (all_ok) clone = N_VClone(made);
     if (made != NULL) N_VDestroy(made);
     if (local != NULL) N_VDestroy(local);
     return clone;
@@ -147,6 +162,9 @@ void lgnParallelSum(const LGNParallel par, sunrealtype *x, int n)
 sunrealtype lgnParallelMax(const LGNParallel par, sunrealtype x)
 {
 #ifdef LGN_HAVE_MPI
+  /* a NaN counts as the largest, as on one process (MPI's MAX may drop it
+   * and other ranks' values with it) */
+  if (isnan(x)) x = (sunrealtype)INFINITY;
   if (par != NULL && par->size > 1)
     MPI_Allreduce(MPI_IN_PLACE, &x, 1, LGN_MPI_REAL, MPI_MAX, par->comm);
 #endif
@@ -173,4 +191,31 @@ int lgnParallelAgree(const LGNParallel par, int flag, int *rank)
 #endif
   (void)par;
   return flag;
+}
+
+/* x and -x reduced with MAX together: equal everywhere when max x = min x. */
+int lgnParallelSame(const LGNParallel par, const sunrealtype *x, int n, int *first)
+{
+  *first = -1;
+#ifdef LGN_HAVE_MPI
+  if (par != NULL && par->size > 1) {
+    sunrealtype both[2 * LGN_PARALLEL_MAXSAME];
+    int i;
+    if (n > LGN_PARALLEL_MAXSAME) n = LGN_PARALLEL_MAXSAME;
+    for (i = 0; i < n; i++) {
+      both[i]     = x[i];
+      both[n + i] = -x[i];
+    }
+    MPI_Allreduce(MPI_IN_PLACE, both, 2 * n, LGN_MPI_REAL, MPI_MAX, par->comm);
+    for (i = 0; i < n; i++)
+      if (both[i] != -both[n + i]) {
+        *first = i;
+        return 0;
+      }
+  }
+#endif
+  (void)par;
+  (void)x;
+  (void)n;
+  return 1;
 }

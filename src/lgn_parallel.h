@@ -39,9 +39,10 @@ static inline sunindextype lgnLocalLength(N_Vector x)
 }
 
 /* The run the vectors q0 and v0 belong to: *par = NULL for vectors without
- * a communicator (one process), else a new record. Collective over the
- * communicator. LGN_ILL_INPUT (reported for func) for an unsupported vector
- * type, vectors on different communicators, or MPI not built in. */
+ * a communicator (one process), else a new record on a duplicate of their
+ * communicator (collective). LGN_ILL_INPUT (reported for func) for an
+ * unsupported vector type, vectors on different communicators, or MPI not
+ * built in. lgnParallelFree frees the duplicate (collective too). */
 int lgnParallelCreate(N_Vector q0, N_Vector v0, const LGNErrSink *sink,
                       const char *func, LGNParallel *par);
 void lgnParallelFree(LGNParallel *par);
@@ -59,6 +60,11 @@ void lgnParallelSum(const LGNParallel par, sunrealtype *x, int n);
 
 /* The maximum of x over all ranks. Collective. */
 sunrealtype lgnParallelMax(const LGNParallel par, sunrealtype x);
+
+/* Are x[0 .. n-1] (n <= LGN_PARALLEL_MAXSAME) the same on every rank? If
+ * not, *first is the first that differs (else -1). Collective. */
+#define LGN_PARALLEL_MAXSAME 32
+int lgnParallelSame(const LGNParallel par, const sunrealtype *x, int n, int *first);
 
 /* The flag every rank continues with: a failure (< 0) on any rank before
  * a recoverable one (> 0) before success; among failures the most negative

@@ -271,7 +271,7 @@ static int CheckAndReturn(LGNMem mem, sunrealtype thi, sunrealtype *tret,
   sunbooleantype found = SUNFALSE;
   int flag = Check(mem, thi, &found);
   if (flag != LGN_SUCCESS || !found) return flag;
-  flag = StateAt(mem, mem->tlo, q, v);
+  flag = lgnAgree(mem, StateAt(mem, mem->tlo, q, v));
   if (flag != LGN_SUCCESS) return flag;
   *tret           = mem->tlo;
   mem->rt_pending = mem->tlo < mem->tn;

@@ -19,7 +19,13 @@
  *       gets a message, and nothing hangs (CTest's timeout);
  *   (d) a recoverable failure on the last rank: every rank retries the same
  *       step with a smaller one and goes on; the result is as accurate as
- *       the one-process run's (errors against a run at tolerance 1e-10).
+ *       the one-process run's (errors against a run at tolerance 1e-10);
+ *   (e) faults and misuse of one rank end alike on every rank: a NaN in its
+ *       q0 (LGN_ILL_INPUT from every LGNInit), another rtol on it
+ *       (LGN_ILL_INPUT from every LGNSolve), Phi_t set on one rank only and
+ *       a preconditioner failing once inside a Krylov solve on one rank (both
+ *       run through, with the same steps everywhere); and q0, v0 freed after
+ *       LGNInit (the same run).
  *
  * Generalized-alpha (modified kinematics) with full Newton and a dense LU
  * of each rank's block, BDF (orders up to 5) with modified Newton, and
@@ -52,7 +58,15 @@
 #define NV_TOP 6
 
 enum { VEC_SERIAL, VEC_MPIPLUSX, VEC_PARALLEL };
-enum { FAIL_NONE, FAIL_FATAL, FAIL_RECOVERABLE };
+/* what a rank does (Integrate's "inject"): nothing, a fault, a misuse */
+enum {
+  FAIL_NONE, FAIL_FATAL, FAIL_RECOVERABLE, /* the force callback fails     */
+  FAIL_NAN_Q0,    /* a NaN in this rank's q0                               */
+  FAIL_SETTING,   /* another rtol on this rank                             */
+  FREE_Q0,        /* q0 and v0 freed after LGNInit (every rank: no fault)  */
+  PHIT_HERE,      /* Phi_t (zero) set on this rank only                    */
+  PSOLVE_REC      /* the preconditioner fails once, recoverably            */
+};
 
 typedef struct {
   LGNBodies bodies;
@@ -95,6 +109,34 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
     return 1;
   }
   return LGNBodies_ForceFn(t, q, v, g, md->bodies);
+}
+
+static int ZeroPhit(sunrealtype t, N_Vector q, N_Vector phit, void *ud)
+{
+  (void)t;
+  (void)q;
+  (void)ud;
+  N_VConst(0.0, phit);
+  return 0;
+}
+
+/* no preconditioning (z = r), but it can fail once */
+static int Psolve(sunrealtype t, N_Vector q, N_Vector v, N_Vector r, N_Vector z,
+                  sunrealtype cM, sunrealtype cC, sunrealtype cK, sunrealtype delta, void *ud)
+{
+  Model *md = (Model *)ud;
+  (void)q;
+  (void)v;
+  (void)cM;
+  (void)cC;
+  (void)cK;
+  (void)delta;
+  if (md->inject == PSOLVE_REC && t > 0.15 && !md->injected) {
+    md->injected = 1;
+    return 1;
+  }
+  N_VScale(1.0, r, z);
+  return 0;
 }
 
 static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
@@ -192,6 +234,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     vd[NV_TOP * k + 5] = -4.61538 + 0.3 * u;
     vd[NV_TOP * k + 0] = vd[NV_TOP * k + 5] * 1.0;  /* u = Omega x X: tip fixed */
   }
+  if (inject == FAIL_NAN_Q0) qd[3] = NAN;
 
   mem = LGNCreate(ctx);
   run->nmsg = 0;
@@ -203,7 +246,8 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   if (!flag) flag = LGNSetForceFn(mem, Force);
   if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
-  if (!flag) flag = LGNSStolerances(mem, tol, tol);
+  if (!flag) flag = LGNSStolerances(mem, inject == FAIL_SETTING ? 2.0 * tol : tol, tol);
+  if (!flag && inject == PHIT_HERE) flag = LGNSetConstraintTimeFn(mem, ZeroPhit);
   if (method != 1) {
     if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
   } else {
@@ -211,14 +255,27 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
   }
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag && inject == FREE_Q0) {
+    /* the integrator keeps no reference to q0, v0 (nor to their
+     * communicator): freed, and the outputs go to new vectors */
+    N_Vector q2 = NewVector(kind, comm, nq, ctx), v2 = NewVector(kind, comm, nv, ctx);
+    FreeVector(kind, q);
+    FreeVector(kind, v);
+    q  = q2;
+    v  = v2;
+    qd = N_VGetArrayPointer(q);
+    vd = N_VGetArrayPointer(v);
+  }
   if (!flag) flag = LGNRootInit(mem, 1, Event);
-  if (method == 2) {
-    /* Krylov over vectors of the ranks (its norms are collective) */
+  if (method >= 2) {
+    /* Krylov over vectors of the ranks (its norms are collective); 3: a
+     * user preconditioner (none, really) that may fail */
     tmpl = NewVector(kind, comm, nv + m, ctx);
     A    = NULL;
-    LS   = SUNLinSol_SPGMR(tmpl, SUN_PREC_LEFT, 10, ctx);
+    LS   = SUNLinSol_SPGMR(tmpl, SUN_PREC_LEFT, method == 2 ? 10 : 40, ctx);
     if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
-    if (!flag) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
+    if (!flag && method == 2) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
+    if (!flag && method == 3) flag = LGNSetPreconditioner(mem, NULL, Psolve);
   } else {
     /* each rank solves its own block: the tops do not couple */
     tmpl = N_VNew_Serial(nv + m, ctx);
@@ -250,7 +307,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   LGNFree(&mem);
   SUNLinSolFree(LS);
   if (A != NULL) SUNMatDestroy(A);
-  if (method == 2)
+  if (method >= 2)
     FreeVector(kind, tmpl);
   else
     N_VDestroy(tmpl);
@@ -403,6 +460,62 @@ int main(int argc, char **argv)
                mname[method], (double)emax[0], (double)emax[1]);
       Check(emax[0] <= 3.0 * emax[1], rank, what);
     }
+    FreeRun(&par);
+    FreeRun(&one);
+  }
+
+  /* (e) faults and misuse of one rank end alike on every rank */
+  {
+    const int last = size - 1;
+    Run one = NewRun(N), par;
+    char what[200];
+    sunrealtype d, dmax;
+    Integrate(0, VEC_SERIAL, MPI_COMM_SELF, 0, N, FAIL_NONE, 1e-7, ctx_one, &one);
+
+    par = NewRun(K);
+    Integrate(0, VEC_MPIPLUSX, comm, u0, K, rank == last ? FAIL_NAN_Q0 : FAIL_NONE, 1e-7,
+              ctx_par, &par);
+    snprintf(what, sizeof what, "(e) a NaN in rank %d's q0: LGN_ILL_INPUT everywhere (%s)",
+             last, LGNGetReturnFlagName(par.flag));
+    Check(par.flag == LGN_ILL_INPUT && par.nmsg >= 1, rank, what);
+    FreeRun(&par);
+
+    par = NewRun(K);
+    Integrate(0, VEC_MPIPLUSX, comm, u0, K, rank == last ? FAIL_SETTING : FAIL_NONE, 1e-7,
+              ctx_par, &par);
+    snprintf(what, sizeof what, "(e) another rtol on rank %d: LGN_ILL_INPUT everywhere (%s)",
+             last, LGNGetReturnFlagName(par.flag));
+    Check(size == 1 ? par.flag == 0 : par.flag == LGN_ILL_INPUT && par.nmsg >= 1, rank, what);
+    FreeRun(&par);
+
+    par = NewRun(K);
+    Integrate(0, VEC_MPIPLUSX, comm, u0, K, FREE_Q0, 1e-7, ctx_par, &par);
+    d = MaxDiff(&par, &one, u0, K, N);
+    MPI_Allreduce(&d, &dmax, 1, MPI_DOUBLE, MPI_MAX, comm);
+    snprintf(what, sizeof what, "(e) q0, v0 freed after LGNInit: the same run (%.1e)",
+             (double)dmax);
+    Check(par.flag == 0 && dmax <= 1e-10 && par.nst == one.nst, rank, what);
+    FreeRun(&par);
+
+    par = NewRun(K);
+    Integrate(0, VEC_MPIPLUSX, comm, u0, K, rank == 0 ? PHIT_HERE : FAIL_NONE, 1e-7, ctx_par,
+              &par);
+    snprintf(what, sizeof what, "(e) Phi_t on rank 0 only: success, the same steps (%s)",
+             LGNGetReturnFlagName(par.flag));
+    Check(par.flag == 0 && SameOnAllRanks((double)par.nst, comm) &&
+              SameOnAllRanks(par.hlast, comm), rank, what);
+    FreeRun(&par);
+
+    par = NewRun(K);
+    Integrate(3, VEC_MPIPLUSX, comm, u0, K, rank == last ? PSOLVE_REC : FAIL_NONE, 1e-7,
+              ctx_par, &par);
+    if (rank == 0)
+      printf("  faults of one rank: preconditioner failing once on rank %d: %s, %ld steps, "
+             "%ld failed\n", last, LGNGetReturnFlagName(par.flag), par.nst, par.nfails);
+    snprintf(what, sizeof what, "(e) a preconditioner failing once on rank %d: retried "
+             "everywhere (%s, %ld failed)", last, LGNGetReturnFlagName(par.flag), par.nfails);
+    Check(par.flag == 0 && par.nfails >= 1 && SameOnAllRanks((double)par.nst, comm) &&
+              SameOnAllRanks((double)par.nfails, comm), rank, what);
     FreeRun(&par);
     FreeRun(&one);
   }
