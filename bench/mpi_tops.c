@@ -134,7 +134,7 @@ static int Run(MPI_Comm comm, int rank, int K, double t_end, SUNContext ctx, lon
     qd[7 * k + 1] = 1.0;
     vd[6 * k + 4] = 150.0 - 20.0 * u;
     vd[6 * k + 5] = -4.61538;
-    vd[6 * k + 0] = vd[6 * k + 5];
+    vd[6 * k + 0] = -vd[6 * k + 5]; /* u = Omega x X */
   }
   tmpl = N_VNew_Serial(nv + m, ctx);
   A    = SUNSparseMatrix(nv + m, nv + m, 40 * (nv + m), CSC_MAT, ctx);

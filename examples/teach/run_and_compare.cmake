@@ -3,7 +3,8 @@
 # other text equal), as SUNDIALS' examples are tested.
 #
 #   cmake -DEXE=<example> -DCOMPARE=<compare_output> -DANSWER=<name>.out
-#         -DOUTPUT=<file to write> [-DRTOL=1e-5] [-DATOL=1e-6] -P run_and_compare.cmake
+#         -DOUTPUT=<file to write> [-DRTOL=1e-5] [-DATOL=1e-6]
+#         [-DLAUNCH="mpiexec|-n|2"] -P run_and_compare.cmake
 #
 # The example must exit with 0; its output is kept in OUTPUT (to refresh an
 # answer file, copy it over <name>.out after checking it).
@@ -19,7 +20,12 @@ endif()
 if(NOT DEFINED ATOL)
   set(ATOL 1e-6)
 endif()
-execute_process(COMMAND ${EXE} RESULT_VARIABLE _rc OUTPUT_FILE ${OUTPUT} ERROR_VARIABLE _err)
+# LAUNCH: a launcher and its arguments separated by '|' (mpiexec|-n|2)
+set(_launch "")
+if(DEFINED LAUNCH AND NOT LAUNCH STREQUAL "")
+  string(REPLACE "|" ";" _launch "${LAUNCH}")
+endif()
+execute_process(COMMAND ${_launch} ${EXE} RESULT_VARIABLE _rc OUTPUT_FILE ${OUTPUT} ERROR_VARIABLE _err)
 if(NOT _rc EQUAL 0)
   message(FATAL_ERROR "${EXE} failed (${_rc}):\n${_err}")
 endif()

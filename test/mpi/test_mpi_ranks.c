@@ -232,7 +232,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     qd[NQ_TOP * k + 1] = 1.0;                       /* centre at (0, 1, 0) */
     vd[NV_TOP * k + 4] = 150.0 - 5.0 * u;           /* spin (body frame)   */
     vd[NV_TOP * k + 5] = -4.61538 + 0.3 * u;
-    vd[NV_TOP * k + 0] = vd[NV_TOP * k + 5] * 1.0;  /* u = Omega x X: tip fixed */
+    vd[NV_TOP * k + 0] = -vd[NV_TOP * k + 5];       /* u = Omega x X: tip fixed */
   }
   if (inject == FAIL_NAN_Q0) qd[3] = NAN;
 
