@@ -16,7 +16,9 @@
  *
  * The reductions are counted through MPI's profiling interface: this
  * program's MPI_Allreduce counts and calls PMPI_Allreduce.
- *   mpi_tops [--per-rank K1,K2,...] [--t-end T] [--csv FILE]
+ *   mpi_tops [--per-rank K1,K2,...] [--t-end T] [--repeat R] [--csv FILE]
+ * Timings: the best of R runs (default 3; one run above 1e5 bodies per
+ * rank), each the slowest rank's.
  * ---------------------------------------------------------------------------*/
 
 #define _POSIX_C_SOURCE 200809L
@@ -197,7 +199,8 @@ int main(int argc, char **argv)
   SUNContext ctx;
   int rank, size, i, nk = 0, fails = 0;
   int per_rank[16] = {1000, 10000, 100000};
-  double t_end = 0.02, lat;
+  double t_end = 0.03, lat;
+  int repeat = 3;
   const char *csv = "mpi_tops.csv";
   FILE *out = NULL;
 
@@ -213,6 +216,8 @@ int main(int argc, char **argv)
         s = *end == ',' ? end + 1 : end;
         if (end == s && *s) break;
       }
+    } else if (!strcmp(argv[i], "--repeat")) {
+      repeat = atoi(argv[i + 1]) > 0 ? atoi(argv[i + 1]) : 1;
     } else if (!strcmp(argv[i], "--t-end")) {
       t_end = atof(argv[i + 1]);
     } else if (!strcmp(argv[i], "--csv")) {
@@ -237,9 +242,15 @@ int main(int argc, char **argv)
   }
   for (i = 0; i < nk; i++) {
     long int nst = 0, nred = 0;
-    double sec = 0.0, sec_max, mb, mb_max;
-    int flag = Run(comm, rank, per_rank[i], t_end, ctx, &nst, &sec, &nred);
-    MPI_Allreduce(&sec, &sec_max, 1, MPI_DOUBLE, MPI_MAX, comm);
+    double sec = 0.0, sec_max = 0.0, sec_run, mb, mb_max;
+    int flag = 0, r;
+    /* the best of `repeat` runs (one above 1e5 bodies per rank): the
+     * slowest rank's time of each */
+    for (r = 0; r < (per_rank[i] >= 100000 ? 1 : repeat) && !flag; r++) {
+      flag = Run(comm, rank, per_rank[i], t_end, ctx, &nst, &sec, &nred);
+      MPI_Allreduce(&sec, &sec_run, 1, MPI_DOUBLE, MPI_MAX, comm);
+      sec_max = r == 0 ? sec_run : fmin(sec_max, sec_run);
+    }
     mb = PeakMB();
     MPI_Allreduce(&mb, &mb_max, 1, MPI_DOUBLE, MPI_MAX, comm);
     if (flag) fails++;
