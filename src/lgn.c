@@ -265,7 +265,7 @@ static int CheckSettings(LGNMem mem)
 /* Across ranks the settings that decide the steps must be the same on
  * every rank (else the ranks would part ways in a collective): refused
  * with LGN_ILL_INPUT on all, naming the first that differs. */
-static int CheckSameSettings(LGNMem mem)
+static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
 {
   static const char *names[] = {
     "the method family (LGNSetBDF / LGNSetNewmark ...)", "the BDF order",
@@ -275,17 +275,20 @@ static int CheckSameSettings(LGNMem mem)
     "alpha_f", "beta", "gamma", "the perturbed start", "the number of root functions",
     "the kind of linear solver (Krylov or direct)", "eplifac", "epcon",
     "the initial step", "hmin", "hmax", "maxnef", "maxncf", "the stop time",
-    "the acceptance of stalls", "the tolerances set"};
+    "the acceptance of stalls", "the tolerances set", "vector tolerances (LGNSVtolerances)",
+    "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)"};
   const sunrealtype x[] = {
     (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->step_control,
-    mem->h, mem->rtol, mem->atol, (sunrealtype)mem->maxcor, (sunrealtype)mem->newton_mode,
+    mem->h, mem->rtol, mem->atol_vec != NULL ? -SUN_RCONST(1.0) : mem->atol,
+    (sunrealtype)mem->maxcor, (sunrealtype)mem->newton_mode,
     (sunrealtype)mem->msbp, (sunrealtype)mem->mxstep, (sunrealtype)mem->constr_index,
     (sunrealtype)mem->kinematics, (sunrealtype)mem->predictor, mem->alpha_m, mem->alpha_f,
     mem->beta, mem->gamma, (sunrealtype)mem->pstart_on, (sunrealtype)mem->nrtfn,
     (sunrealtype)mem->krylov, mem->eplifac, mem->epcon, mem->h0_user, mem->hmin, mem->hmax,
     (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
     mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
-    (sunrealtype)mem->tols_set};
+    (sunrealtype)mem->tols_set, (sunrealtype)(mem->atol_vec != NULL), tout,
+    (sunrealtype)itask, mem->tn};
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");
@@ -302,16 +305,26 @@ static int CheckSameSettings(LGNMem mem)
  * space and consistent initial values. Across ranks, each stage is agreed
  * before the next (which may be collective), and what one rank must make
  * (work space, initial values) every rank makes. */
-static int CheckReadyToSolve(LGNMem mem)
+static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
 {
   int flag = lgnAgree(mem, CheckSettings(mem));
-  if (flag == LGN_SUCCESS) flag = CheckSameSettings(mem);
+  if (flag == LGN_SUCCESS) flag = CheckSameSettings(mem, tout, itask);
   if (flag != LGN_SUCCESS) return flag;
   /* Phi_t on any rank: every rank takes part in its error norm */
   mem->any_constr_time =
       lgnMaxAll(mem, mem->constr_time != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
       SUN_RCONST(0.0);
   flag = lgnEnsureWork(mem);
+  if (flag == LGN_SUCCESS && mem->nrtfn > 0)
+    flag = lgnAgree(mem, lgnAllocRootVectors(mem));
+  if (flag == LGN_SUCCESS && mem->atol_vec != NULL) {
+    /* vector tolerances: the multipliers' atol is the mean of all ranks' */
+    sunrealtype mean[2];
+    mean[0] = mem->atol_vec_sum;
+    mean[1] = (sunrealtype)mem->nv;
+    lgnSumAll(mem, mean, 2);
+    mem->atol = mean[0] / SUNMAX(mean[1], SUN_RCONST(1.0));
+  }
   if (flag != LGN_SUCCESS) return flag;
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
@@ -491,7 +504,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     CopyOut(mem, tret, q, v);
     return LGN_BAD_TOUT;
   }
-  flag = CheckReadyToSolve(mem);
+  flag = CheckReadyToSolve(mem, tout, itask);
   if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
     /* events: start, or the rest of the last step after a root */
     sunbooleantype done = SUNFALSE;

@@ -103,7 +103,7 @@ void lgnNewtonTolerances(LGNMem mem, sunrealtype h)
   if (mem->atol_vec != NULL) {
     /* per component in the configuration part; the multipliers with the
      * mean (LGNSVtolerances keeps it in atol) */
-    mem->nls_atolv = lgnData(mem->atol_vec);
+    mem->nls_atolv = mem->atol_vec;
   }
 }
 

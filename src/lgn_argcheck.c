@@ -30,7 +30,7 @@ int lgnCheckVec3(const LGNErrSink *sink, const sunrealtype *x, const char *name,
 int lgnCheckSerialVector(const LGNErrSink *sink, N_Vector x, sunindextype len,
                          const char *name, const char *func)
 {
-  if (x == NULL || N_VGetArrayPointer(x) == NULL || lgnLocalLength(x) != len) {
+  if (x == NULL || (N_VGetArrayPointer(x) == NULL && len > 0) || lgnLocalLength(x) != len) {
     lgnReport(sink, LGN_ILL_INPUT, func, "%s is NULL or does not have length %lld.", name,
               (long long)len);
     return LGN_ILL_INPUT;

@@ -34,7 +34,7 @@
 void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w)
 {
   const sunindextype nv = mem->nv;
-  const sunrealtype *atol = mem->atol_vec != NULL ? lgnData(mem->atol_vec) : NULL;
+  const sunrealtype *atol = mem->atol_vec;
   sunindextype i;
   for (i = 0; i < nv; i++)
     w[i] = SUN_RCONST(1.0) /

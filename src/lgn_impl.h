@@ -273,7 +273,8 @@ typedef struct LGNMemRec {
   /* ---- error control (LGN_STEP_ADAPTIVE; lgn_adapt.c, lgn_errtest.c) ---- */
   int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
   sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
-  N_Vector atol_vec;        /* per-component atol (NULL: the scalar atol)  */
+  sunrealtype *atol_vec;    /* per-component atol, nv (NULL: the scalar)   */
+  sunrealtype atol_vec_sum; /* ... the sum of its entries (this rank)      */
   sunrealtype epcon;        /* Newton tolerance / error-test tolerance     */
   sunrealtype h0_user;      /* LGNSetInitStep (0: estimated)               */
   sunrealtype hmin, hmax;   /* step size limits (hmax 0: none)             */

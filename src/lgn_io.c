@@ -8,6 +8,7 @@
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lgn_impl.h"
@@ -375,7 +376,7 @@ int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
   mem->atol     = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
   mem->tols_set = SUNTRUE;
   if (mem->atol_vec != NULL) {
-    N_VDestroy(mem->atol_vec); /* the scalar replaces the vector */
+    free(mem->atol_vec); /* the scalar replaces the vector */
     mem->atol_vec = NULL;
   }
   return LGN_SUCCESS;
@@ -423,44 +424,36 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   sunindextype i;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  /* every check ends in one flag that all ranks agree on before the
-   * collective clone and sum */
+  /* a local call across ranks too: the entries are copied into an array of
+   * this rank's length, and the multipliers' atol (their mean over all
+   * ranks) is formed by LGNSolve */
   if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
-    flag = LGN_ILL_INPUT;
-  } else {
-    flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
+    return LGN_ILL_INPUT;
   }
-  a = flag == LGN_SUCCESS ? N_VGetArrayPointer(atol) : NULL;
-  for (i = 0; flag == LGN_SUCCESS && i < mem->nv; i++) {
+  flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  a = N_VGetArrayPointer(atol);
+  for (i = 0; i < mem->nv; i++) {
     if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
                 (long long)i, (double)a[i]);
-      flag = LGN_ILL_INPUT;
+      return LGN_ILL_INPUT;
     }
     sum += a[i];
   }
-  flag = lgnAgree(mem, flag);
-  if (flag != LGN_SUCCESS) return flag;
-  if (lgnMaxAll(mem, mem->atol_vec == NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
-      SUN_RCONST(0.0)) {
-    if (mem->atol_vec != NULL) N_VDestroy(mem->atol_vec);
-    mem->atol_vec = N_VClone(atol);
-    if (mem->atol_vec == NULL) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
-    flag = lgnAgree(mem, mem->atol_vec == NULL ? LGN_MEM_FAIL : LGN_SUCCESS);
-    if (flag != LGN_SUCCESS) return flag;
+  if (mem->atol_vec == NULL) {
+    mem->atol_vec = (sunrealtype *)malloc((size_t)SUNMAX(mem->nv, 1) * sizeof(sunrealtype));
+    if (mem->atol_vec == NULL) {
+      LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
   }
-  N_VScale(SUN_RCONST(1.0), atol, mem->atol_vec);
+  memcpy(mem->atol_vec, a, (size_t)mem->nv * sizeof(sunrealtype));
+  mem->atol_vec_sum = sum;
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
-  {
-    /* the multipliers' atol: the mean over all ranks (a collective call) */
-    sunrealtype mean[2];
-    mean[0] = sum;
-    mean[1] = (sunrealtype)mem->nv;
-    lgnSumAll(mem, mean, 2);
-    mem->atol = mean[0] / mean[1];
-  }
+  mem->atol     = sum / (sunrealtype)SUNMAX(mem->nv, 1); /* this rank's mean */
   mem->tols_set = SUNTRUE;
   return LGN_SUCCESS;
 }

@@ -442,7 +442,8 @@ void lgnFreeAll(LGNMem mem)
   lgnFreeWork(mem);
   lgnFreeKrylov(mem, SUNTRUE);
   lgnFreeState(mem);
-  DestroyVector(&mem->atol_vec);
+  free(mem->atol_vec);
+  mem->atol_vec = NULL;
   lgnFreeRoots(mem);
   lgnParallelFree(&mem->par);
 }
@@ -529,8 +530,15 @@ void lgnFreeRoots(LGNMem mem)
 /* The scratch q and v handed to g: clones of the state (LGNInit done). */
 int lgnAllocRootVectors(LGNMem mem)
 {
-  if (mem->rt_q == NULL) mem->rt_q = N_VClone(mem->q);
-  if (mem->rt_v == NULL) mem->rt_v = N_VClone(mem->v);
+  /* made again on every rank when one lacks them (collective clones) */
+  if (lgnMaxAll(mem, mem->rt_q == NULL || mem->rt_v == NULL ? SUN_RCONST(1.0)
+                                                            : SUN_RCONST(0.0)) ==
+      SUN_RCONST(0.0))
+    return LGN_SUCCESS;
+  DestroyVector(&mem->rt_q);
+  DestroyVector(&mem->rt_v);
+  mem->rt_q = N_VClone(mem->q);
+  mem->rt_v = N_VClone(mem->v);
   if (mem->rt_q == NULL || mem->rt_v == NULL) {
     DestroyVector(&mem->rt_q);
     DestroyVector(&mem->rt_v);
@@ -539,9 +547,11 @@ int lgnAllocRootVectors(LGNMem mem)
   return LGN_SUCCESS;
 }
 
-/* Arrays for nrtfn > 0 root functions (directions 0, all active) and the
- * scratch vectors; on failure root finding is off. No message: the caller
- * (LGNRootInit) reports. */
+/* Arrays for nrtfn > 0 root functions (directions 0, all active); on
+ * failure root finding is off. No message: the caller (LGNRootInit)
+ * reports. The vectors handed to g are cloned by LGNSolve
+ * (lgnAllocRootVectors): cloning an MPI vector is collective, and
+ * LGNRootInit is not. */
 int lgnAllocRoots(LGNMem mem, int nrtfn)
 {
   int i;
@@ -549,8 +559,7 @@ int lgnAllocRoots(LGNMem mem, int nrtfn)
   mem->glo     = (sunrealtype *)calloc((size_t)(3 * nrtfn), sizeof(sunrealtype));
   mem->iroots  = (int *)calloc((size_t)(2 * nrtfn), sizeof(int));
   mem->gactive = (sunbooleantype *)calloc((size_t)nrtfn, sizeof(sunbooleantype));
-  if (mem->glo == NULL || mem->iroots == NULL || mem->gactive == NULL ||
-      lgnAllocRootVectors(mem) != LGN_SUCCESS) {
+  if (mem->glo == NULL || mem->iroots == NULL || mem->gactive == NULL) {
     lgnFreeRoots(mem);
     return LGN_MEM_FAIL;
   }
@@ -565,7 +574,6 @@ int lgnAllocRoots(LGNMem mem, int nrtfn)
 /* The state vectors, cloned from q0 and v0 (the sizes of the group). */
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
 {
-  int fail;
   lgnFreeWork(mem);
   lgnFreeState(mem);
   mem->nq    = mem->G->nq;
@@ -580,9 +588,7 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   mem->vdot1 = N_VClone(v0);
   mem->dq_v  = N_VClone(v0);
   /* every rank clones every vector (cloning an MPI vector is collective) */
-  fail = mem->nrtfn > 0 && (mem->q == NULL || mem->v == NULL ||
-                            lgnAllocRootVectors(mem) != LGN_SUCCESS);
-  if (fail || mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
+  if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
       mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
       mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
     lgnFreeState(mem);

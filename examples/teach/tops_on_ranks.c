@@ -167,6 +167,9 @@ int main(int argc, char **argv)
   if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, 1e-6, 1e-6);
+  /* a set-up error on one rank must stop every rank before the collective
+   * LGNInit: the flags combined (the most negative wins) */
+  MPI_Allreduce(MPI_IN_PLACE, &flag, 1, MPI_INT, MPI_MIN, comm);
   if (!flag) flag = LGNInit(mem, 0.0, q, v); /* collective */
 
   /* Step 6: the rank's block of the Newton system, its own dense LU */

@@ -212,8 +212,10 @@ LGN_EXPORT void *LGNCreate(SUNContext sunctx);
  *  The Lie group must have been set with LGNSetGroup.
  *  Vectors with a communicator (N_Vector_Parallel or MPIPlusX) make a run
  *  across MPI ranks: the group and the lengths are then the rank's part,
- *  and this call and LGNReInit, LGNSolve, LGNCalcIC and LGNSVtolerances are
- *  collective (user guide §11).
+ *  and this call and LGNReInit, LGNSolve, LGNCalcIC,
+ *  LGNSetInitialAcceleration and LGNFree are collective; the setters are
+ *  local, and LGNSolve refuses settings that differ between the ranks
+ *  (user guide §11).
  *  @param lgn_mem memory from LGNCreate
  *  @param t0 initial time
  *  @param q0 initial configuration (length nq of the group: a serial,

@@ -21,8 +21,9 @@
  *       step with a smaller one and goes on; the result is as accurate as
  *       the one-process run's (errors against a run at tolerance 1e-10);
  *   (e) faults and misuse of one rank end alike on every rank: a NaN in its
- *       q0 (LGN_ILL_INPUT from every LGNInit), another rtol on it
- *       (LGN_ILL_INPUT from every LGNSolve), Phi_t set on one rank only and
+ *       q0 (LGN_ILL_INPUT from every LGNInit), another rtol, another tout,
+ *       no LGNRootInit or vector tolerances on one rank only (LGN_ILL_INPUT
+ *       from every LGNSolve), Phi_t set on one rank only and
  *       a preconditioner failing once inside a Krylov solve on one rank (both
  *       run through, with the same steps everywhere); and q0, v0 freed after
  *       LGNInit (the same run).
@@ -65,7 +66,10 @@ enum {
   FAIL_SETTING,   /* another rtol on this rank                             */
   FREE_Q0,        /* q0 and v0 freed after LGNInit (every rank: no fault)  */
   PHIT_HERE,      /* Phi_t (zero) set on this rank only                    */
-  PSOLVE_REC      /* the preconditioner fails once, recoverably            */
+  PSOLVE_REC,     /* the preconditioner fails once, recoverably            */
+  FAIL_TOUT,      /* another tout on this rank                             */
+  FAIL_NOROOT,    /* no LGNRootInit on this rank                           */
+  FAIL_SVTOL      /* LGNSVtolerances on this rank only                     */
 };
 
 typedef struct {
@@ -266,7 +270,15 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     qd = N_VGetArrayPointer(q);
     vd = N_VGetArrayPointer(v);
   }
-  if (!flag) flag = LGNRootInit(mem, 1, Event);
+  if (!flag && inject != FAIL_NOROOT) flag = LGNRootInit(mem, 1, Event);
+  {
+    /* made on every rank: cloning an MPI vector is collective */
+    N_Vector atol = N_VClone(v);
+    N_VConst(tol, atol);
+    if (!flag && inject == FAIL_SVTOL)
+      flag = LGNSVtolerances(mem, tol, atol); /* a local call: no hang here */
+    N_VDestroy(atol);
+  }
   if (method >= 2) {
     /* Krylov over vectors of the ranks (its norms are collective); 3: a
      * user preconditioner (none, really) that may fail */
@@ -286,7 +298,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
 
   run->troot = -1.0;
   for (k = 1; k <= NOUT && !flag;) {
-    flag = LGNSolve(mem, k * TOUT, &t, q, v, LGN_NORMAL);
+    flag = LGNSolve(mem, k * TOUT + (inject == FAIL_TOUT ? 0.01 : 0.0), &t, q, v, LGN_NORMAL);
     if (flag == LGN_ROOT_RETURN) {
       if (!rootsfound++) run->troot = t;
       flag = 0;
@@ -487,6 +499,25 @@ int main(int argc, char **argv)
              last, LGNGetReturnFlagName(par.flag));
     Check(size == 1 ? par.flag == 0 : par.flag == LGN_ILL_INPUT && par.nmsg >= 1, rank, what);
     FreeRun(&par);
+
+    {
+      /* misuse that LGNSolve's check of the settings refuses on every rank
+       * (instead of a hang in a collective some ranks never reach) */
+      static const int misuse[3] = {FAIL_TOUT, FAIL_NOROOT, FAIL_SVTOL};
+      static const char *mname3[3] = {"another tout", "no LGNRootInit",
+                                      "LGNSVtolerances only"};
+      int j;
+      for (j = 0; j < 3; j++) {
+        par = NewRun(K);
+        Integrate(0, VEC_MPIPLUSX, comm, u0, K, rank == last ? misuse[j] : FAIL_NONE, 1e-7,
+                  ctx_par, &par);
+        snprintf(what, sizeof what, "(e) %s on rank %d: LGN_ILL_INPUT everywhere (%s)",
+                 mname3[j], last, LGNGetReturnFlagName(par.flag));
+        Check(size == 1 || (par.flag == LGN_ILL_INPUT && par.nmsg >= 1 &&
+                            SameOnAllRanks(par.tret, comm)), rank, what);
+        FreeRun(&par);
+      }
+    }
 
     par = NewRun(K);
     Integrate(0, VEC_MPIPLUSX, comm, u0, K, FREE_Q0, 1e-7, ctx_par, &par);
