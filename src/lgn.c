@@ -463,24 +463,20 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   return flag;
 }
 
-static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
-                 N_Vector v, int itask)
+/* LGNSolve's arguments (on this rank): tret, q and v, itask, a finite tout
+ * not behind the last step (LGN_BAD_TOUT: checked before anything is
+ * computed, so a refused call changes nothing; a tout inside the last step
+ * is interpolated, and an event may have returned there). */
+static int CheckSolveArguments(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                               N_Vector v, int itask)
 {
-  LGNMem mem;
-  sunrealtype troundoff, remaining, hstep;
-  long int nstloc = 0;
-  int flag = lgnAccessMem(lgn_mem, "LGNSolve", &mem);
-  if (flag != LGN_SUCCESS) return flag;
-  if (!mem->malloc_done) {
-    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
-    return LGN_NO_MALLOC;
-  }
+  int flag;
   if (tret == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "tret = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  flag = lgnCheckVector(mem, q, mem->nq, "q", __func__);
-  if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v, mem->nv, "v", __func__);
+  flag = lgnCheckVector(mem, q, mem->nq, "q", "LGNSolve");
+  if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v, mem->nv, "v", "LGNSolve");
   if (flag != LGN_SUCCESS) return flag;
   if (itask != LGN_NORMAL && itask != LGN_ONE_STEP) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
@@ -493,16 +489,35 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   }
   if (tout < (mem->dense_valid ? mem->tprev : mem->tn) -
                  SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(tout))) {
-    /* forward only (a tout inside the last step is interpolated, and an
-     * event may have returned there); checked before anything is computed,
-     * so a refused call changes nothing */
     LGN_ERROR(mem, LGN_BAD_TOUT,
               "tout = %.17g is behind the current time t = %.17g%s.", (double)tout,
               (double)mem->tn,
               itask == LGN_ONE_STEP ? " (LGN_ONE_STEP steps forward: give a tout ahead of t)"
                                     : "");
-    CopyOut(mem, tret, q, v);
     return LGN_BAD_TOUT;
+  }
+  return LGN_SUCCESS;
+}
+
+static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                 N_Vector v, int itask)
+{
+  LGNMem mem;
+  sunrealtype troundoff, remaining, hstep;
+  long int nstloc = 0;
+  int local, flag = lgnAccessMem(lgn_mem, "LGNSolve", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!mem->malloc_done) {
+    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
+    return LGN_NO_MALLOC;
+  }
+  /* the arguments, on each rank, then agreed: across ranks a refused call
+   * must return on every rank (the rest of LGNSolve is collective) */
+  local = CheckSolveArguments(mem, tout, tret, q, v, itask);
+  flag  = lgnAgree(mem, local);
+  if (flag != LGN_SUCCESS) {
+    if (local == LGN_SUCCESS || local == LGN_BAD_TOUT) CopyOut(mem, tret, q, v);
+    return flag;
   }
   flag = CheckReadyToSolve(mem, tout, itask);
   if (flag == LGN_SUCCESS && mem->nrtfn > 0) {

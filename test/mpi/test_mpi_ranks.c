@@ -69,7 +69,8 @@ enum {
   PSOLVE_REC,     /* the preconditioner fails once, recoverably            */
   FAIL_TOUT,      /* another tout on this rank                             */
   FAIL_NOROOT,    /* no LGNRootInit on this rank                           */
-  FAIL_SVTOL      /* LGNSVtolerances on this rank only                     */
+  FAIL_SVTOL,     /* LGNSVtolerances on this rank only                     */
+  FAIL_BADTOUT    /* a tout behind the current time on this rank           */
 };
 
 typedef struct {
@@ -298,7 +299,10 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
 
   run->troot = -1.0;
   for (k = 1; k <= NOUT && !flag;) {
-    flag = LGNSolve(mem, k * TOUT + (inject == FAIL_TOUT ? 0.01 : 0.0), &t, q, v, LGN_NORMAL);
+    flag = LGNSolve(mem,
+                    inject == FAIL_BADTOUT ? -1.0
+                                           : k * TOUT + (inject == FAIL_TOUT ? 0.01 : 0.0),
+                    &t, q, v, LGN_NORMAL);
     if (flag == LGN_ROOT_RETURN) {
       if (!rootsfound++) run->troot = t;
       flag = 0;
@@ -503,18 +507,20 @@ int main(int argc, char **argv)
     {
       /* misuse that LGNSolve's check of the settings refuses on every rank
        * (instead of a hang in a collective some ranks never reach) */
-      static const int misuse[3] = {FAIL_TOUT, FAIL_NOROOT, FAIL_SVTOL};
-      static const char *mname3[3] = {"another tout", "no LGNRootInit",
-                                      "LGNSVtolerances only"};
+      static const int misuse[4] = {FAIL_TOUT, FAIL_NOROOT, FAIL_SVTOL, FAIL_BADTOUT};
+      static const char *mname3[4] = {"another tout", "no LGNRootInit",
+                                      "LGNSVtolerances only", "a tout behind t"};
       int j;
-      for (j = 0; j < 3; j++) {
+      for (j = 0; j < 4; j++) {
+        const int expected = misuse[j] == FAIL_BADTOUT ? LGN_BAD_TOUT : LGN_ILL_INPUT;
         par = NewRun(K);
         Integrate(0, VEC_MPIPLUSX, comm, u0, K, rank == last ? misuse[j] : FAIL_NONE, 1e-7,
                   ctx_par, &par);
-        snprintf(what, sizeof what, "(e) %s on rank %d: LGN_ILL_INPUT everywhere (%s)",
-                 mname3[j], last, LGNGetReturnFlagName(par.flag));
-        Check(size == 1 || (par.flag == LGN_ILL_INPUT && par.nmsg >= 1 &&
-                            SameOnAllRanks(par.tret, comm)), rank, what);
+        snprintf(what, sizeof what, "(e) %s on rank %d: %s everywhere (%s)", mname3[j],
+                 last, LGNGetReturnFlagName(expected), LGNGetReturnFlagName(par.flag));
+        Check((size == 1 && misuse[j] != FAIL_BADTOUT) ||
+                  (par.flag == expected && par.nmsg >= 1 && SameOnAllRanks(par.tret, comm)),
+              rank, what);
         FreeRun(&par);
       }
     }
