@@ -164,9 +164,22 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
 }
 
 /* Refuse a step that cannot advance t in floating point (t + h == t):
- * it would "succeed" without moving. */
+ * it would "succeed" without moving; and a step so small that the scaling
+ * of the equations by h^2 (the index-3 rows, BDF's 1/c0^2) leaves the
+ * floating-point range: below the cube root of the smallest normal number
+ * (about 3e-103), where a step of 1e-150 returned velocities of 1e133 as
+ * success (found by the fuzz target). */
 int lgnCheckProgress(LGNMem mem, sunrealtype h)
 {
+  const sunrealtype hfloor = SUNRpowerR(SUN_SMALL_REAL, SUN_RCONST(1.0) / SUN_RCONST(3.0));
+  if (fabs(h) < hfloor) {
+    mem->hnext = SUN_RCONST(0.0); /* error control estimates anew next time */
+    LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
+              MSG_TIME "the step size h = %g is below %g: the scaling of the "
+              "equations by h^2 would leave the floating-point range.",
+              (double)mem->tn, (double)h, (double)hfloor);
+    return LGN_STEP_TOO_SMALL;
+  }
   if (mem->tn + h != mem->tn) return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
             MSG_TIME "the step size h = %g cannot advance t in floating point "
