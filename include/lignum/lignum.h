@@ -62,7 +62,7 @@ extern "C" {
 #define LGN_REPTD_CALLBACK_ERR -10  /**< a recoverable callback error persisted   */
 #define LGN_IC_FAIL            -11  /**< consistent initial values not computable */
 #define LGN_ERR_FAILURE        -12  /**< the error test failed repeatedly or at hmin */
-#define LGN_STEP_TOO_SMALL     -15  /**< t + h == t: the step cannot advance t   */
+#define LGN_STEP_TOO_SMALL     -15  /**< t + h == t, or h < 3e-103 (h^2 scaling) */
 
 /* usage errors -20 .. -29 */
 #define LGN_MEM_NULL           -20  /**< the memory argument is NULL              */
