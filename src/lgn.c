@@ -292,6 +292,8 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");
+  _Static_assert(sizeof x / sizeof x[0] <= LGN_PARALLEL_MAXSAME,
+                 "lgnParallelSame compares them all");
   if (mem->par == NULL) return LGN_SUCCESS;
   if (lgnParallelSame(mem->par, x, (int)(sizeof x / sizeof x[0]), &first))
     return LGN_SUCCESS;

@@ -63,7 +63,7 @@ sunrealtype lgnParallelMax(const LGNParallel par, sunrealtype x);
 
 /* Are x[0 .. n-1] (n <= LGN_PARALLEL_MAXSAME) the same on every rank? If
  * not, *first is the first that differs (else -1). Collective. */
-#define LGN_PARALLEL_MAXSAME 32
+#define LGN_PARALLEL_MAXSAME 64
 int lgnParallelSame(const LGNParallel par, const sunrealtype *x, int n, int *first);
 
 /* The flag every rank continues with: a failure (< 0) on any rank before
