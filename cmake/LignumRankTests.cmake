@@ -1,0 +1,48 @@
+# Tests of programs across MPI ranks (test/mpi, test/petsc, the example
+# tops_on_ranks):
+#
+#   lgn_add_rank_tests(<prefix> <target> <label>)
+#     <prefix>_np1 runs <target> without mpiexec (one rank), <prefix>_np2
+#     and <prefix>_np4 under mpiexec (when MPIEXEC_EXECUTABLE is found);
+#     the properties of lgn_rank_test_properties.
+#   lgn_rank_test_properties(<label> <tests...>)
+#     Open MPI refuses to run as root unless told (the variables below
+#     allow it and change nothing for other users) and --oversubscribe lets
+#     4 ranks run on fewer cores; ranks waiting in a collective yield the
+#     core; the tests run alone (RUN_SERIAL: beside other tests petsc_ls_np4,
+#     3 s alone, once passed its 240-second timeout and petsc_ls_np2 took
+#     118 s under ASan); LeakSanitizer is off, as it reports Open MPI's own
+#     allocations in plugins it unloads again (no suppression can name
+#     them), every other check of ASan and UBSan stays on.
+#   LGN_MPIEXEC_FLAGS: MPIEXEC_PREFLAGS, and --oversubscribe for Open MPI.
+
+set(LGN_MPIEXEC_FLAGS ${MPIEXEC_PREFLAGS})
+if(MPIEXEC_EXECUTABLE)
+  execute_process(COMMAND ${MPIEXEC_EXECUTABLE} --version
+    OUTPUT_VARIABLE _lgn_mpiexec_version ERROR_QUIET)
+  if(_lgn_mpiexec_version MATCHES "Open MPI|OpenRTE")
+    list(APPEND LGN_MPIEXEC_FLAGS --oversubscribe)
+  endif()
+endif()
+
+function(lgn_rank_test_properties label)
+  set_tests_properties(${ARGN} PROPERTIES
+    LABELS "${label}"
+    TIMEOUT 240
+    RUN_SERIAL TRUE
+    ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;OMPI_MCA_mpi_yield_when_idle=1;ASAN_OPTIONS=detect_leaks=0")
+endfunction()
+
+function(lgn_add_rank_tests prefix target label)
+  add_test(NAME ${prefix}_np1 COMMAND ${target})
+  set(_tests ${prefix}_np1)
+  if(MPIEXEC_EXECUTABLE)
+    foreach(_np 2 4)
+      add_test(NAME ${prefix}_np${_np}
+        COMMAND ${MPIEXEC_EXECUTABLE} ${MPIEXEC_NUMPROC_FLAG} ${_np} ${LGN_MPIEXEC_FLAGS}
+                $<TARGET_FILE:${target}> ${MPIEXEC_POSTFLAGS})
+      list(APPEND _tests ${prefix}_np${_np})
+    endforeach()
+  endif()
+  lgn_rank_test_properties("${label}" ${_tests})
+endfunction()
