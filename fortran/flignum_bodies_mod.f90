@@ -63,6 +63,21 @@ module flignum_bodies_mod
       type(c_ptr), value :: B
     end function LGNBodies_NumBodies
 
+    !> Bodies first_ghost ... (0-based) are ghosts of other MPI ranks' bodies:
+    !! no mass, inertia or weight here.
+    integer(c_int) function LGNBodies_SetGhosts(B, first_ghost) &
+        bind(c, name="LGNBodies_SetGhosts")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: B
+      integer(c_int), value :: first_ghost
+    end function LGNBodies_SetGhosts
+
+    !> Number of bodies that are not ghosts; 0 for c_null_ptr.
+    integer(c_int) function LGNBodies_NumOwnedBodies(B) bind(c, name="LGNBodies_NumOwnedBodies")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: B
+    end function LGNBodies_NumOwnedBodies
+
     !> Mass m > 0 and inertia (3x3 about the centre of mass in body axes,
     !! symmetric positive definite) of body k (0-based).
     integer(c_int) function LGNBodies_SetMass(B, k, m, inertia) &

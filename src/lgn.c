@@ -321,13 +321,17 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
     flag = lgnAgree(mem, lgnAllocRootVectors(mem));
   if (flag == LGN_SUCCESS && mem->atol_vec != NULL) {
     /* vector tolerances: the multipliers' atol is the mean of all ranks' */
-    sunrealtype mean[2];
-    mean[0] = mem->atol_vec_sum;
-    mean[1] = (sunrealtype)mem->nv;
+    sunrealtype mean[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)};
+    sunindextype i;
+    for (i = 0; i < mem->nv_own; i++) mean[0] += mem->atol_vec[i]; /* not the ghosts */
+    mean[1] = (sunrealtype)mem->nv_own;
     lgnSumAll(mem, mean, 2);
     mem->atol = mean[0] / SUNMAX(mean[1], SUN_RCONST(1.0));
   }
   if (flag != LGN_SUCCESS) return flag;
+  /* ghost bodies: the owners' state (q0 and v0's ghost entries are not
+   * read; the state changes on every rank alike from here on) */
+  lgnGhostsRefreshState(mem);
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   flag = lgnAgree(mem, flag);

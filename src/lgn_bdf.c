@@ -300,7 +300,7 @@ static sunrealtype PositionNoise(const LGNMem mem, const LGNStepCoeffs *c, const
 {
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
-  for (i = 0; i < mem->nv; i++) s += w[i] * w[i];
+  for (i = 0; i < mem->nv_own; i++) s += w[i] * w[i];
   lgnSumAll(mem, &s, 1); /* the weights' RMS over all ranks */
   return SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale * sqrt(s / mem->nv_all);
 }

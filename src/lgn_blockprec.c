@@ -74,7 +74,7 @@ LGNBlockPrec lgnBlockPrecCreate(sunindextype n, sunindextype nv, int nblocks,
 {
   LGNBlockPrec bp;
   int b;
-  if (nblocks < 1 || voff == NULL || n < nv || voff[0] != 0 || voff[nblocks] != nv)
+  if (nblocks < 1 || voff == NULL || n < nv || voff[0] != 0 || voff[nblocks] > nv)
     return NULL;
   for (b = 0; b < nblocks; b++)
     if (voff[b + 1] <= voff[b]) return NULL;
@@ -124,18 +124,20 @@ static int Build(LGNBlockPrec bp, const sunindextype *colptr,
     return -1;
   }
   for (b = 0; b < bp->nblocks; b++) FreeBlock(&bp->blk[b], &bp->common);
+  /* velocities past the last range (ghost bodies): in no block (-1) */
+  for (i = 0; i < n; i++) owner[i] = -1;
   for (b = 0; b < bp->nblocks; b++)
     for (i = bp->voff[b]; i < bp->voff[b + 1]; i++) owner[i] = b;
-  /* a constraint row: the block of its first velocity column (columns in
-   * increasing order: the first one seen); one without any, block 0 */
-  for (i = nv; i < n; i++) owner[i] = -1;
-  for (j = 0; j < nv; j++)
+  /* a constraint row: the block of its first velocity column in a block
+   * (columns in increasing order: the first one seen); one without any,
+   * block 0 */
+  for (j = 0; j < bp->voff[bp->nblocks]; j++)
     for (p = colptr[j]; p < colptr[j + 1]; p++)
       if (rowind[p] >= nv && owner[rowind[p]] < 0) owner[rowind[p]] = owner[j];
   for (i = nv; i < n; i++)
     if (owner[i] < 0) owner[i] = 0;
   /* local numbering: in increasing global order within each block */
-  for (i = 0; i < n; i++) loc[i] = bp->blk[owner[i]].n++;
+  for (i = 0; i < n; i++) loc[i] = owner[i] >= 0 ? bp->blk[owner[i]].n++ : -1;
   for (b = 0; b < bp->nblocks && flag == 0; b++) {
     Block *k = &bp->blk[b];
     k->glob = (sunindextype *)malloc((size_t)k->n * sizeof(sunindextype));
@@ -144,11 +146,12 @@ static int Build(LGNBlockPrec bp, const sunindextype *colptr,
     if (k->glob == NULL || k->work == NULL || k->Ap == NULL) flag = -1;
   }
   if (flag == 0) {
-    for (i = 0; i < n; i++) bp->blk[owner[i]].glob[loc[i]] = i;
+    for (i = 0; i < n; i++)
+      if (owner[i] >= 0) bp->blk[owner[i]].glob[loc[i]] = i;
     /* count, then place: the entries of column j within j's block */
     for (j = 0; j < n; j++)
       for (p = colptr[j]; p < colptr[j + 1]; p++)
-        if (owner[rowind[p]] == owner[j]) bp->blk[owner[j]].Ap[loc[j] + 1]++;
+        if (owner[j] >= 0 && owner[rowind[p]] == owner[j]) bp->blk[owner[j]].Ap[loc[j] + 1]++;
     for (b = 0; b < bp->nblocks && flag == 0; b++) {
       Block *k = &bp->blk[b];
       SuiteSparse_long c;
@@ -161,8 +164,11 @@ static int Build(LGNBlockPrec bp, const sunindextype *colptr,
   }
   if (flag == 0) {
     for (j = 0; j < n; j++) {
-      Block *k = &bp->blk[owner[j]];
-      SuiteSparse_long q = k->Ap[loc[j]];
+      Block *k;
+      SuiteSparse_long q;
+      if (owner[j] < 0) continue;
+      k = &bp->blk[owner[j]];
+      q = k->Ap[loc[j]];
       for (p = colptr[j]; p < colptr[j + 1]; p++)
         if (owner[rowind[p]] == owner[j]) {
           k->Ai[q]    = (SuiteSparse_long)loc[rowind[p]];

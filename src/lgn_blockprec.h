@@ -16,11 +16,12 @@ typedef struct LGNBlockPrecRec *LGNBlockPrec;
 
 #if defined(LGN_HAVE_KLU)
 
-/* A preconditioner for n x n matrices whose first nv unknowns are split
- * into nblocks contiguous ranges voff[b] <= i < voff[b+1] (voff[0] = 0,
- * voff[nblocks] = nv, increasing); the other n - nv unknowns (constraint
- * rows) are given to blocks at the first setup. NULL when memory is
- * refused. */
+/* A preconditioner for n x n matrices whose first nv unknowns are the
+ * velocities, split into nblocks contiguous ranges voff[b] <= i < voff[b+1]
+ * (voff[0] = 0, increasing, voff[nblocks] <= nv: velocities past it, the
+ * ghost bodies of a run across ranks, belong to no block and are left
+ * out); the other n - nv unknowns (constraint rows) are given to blocks at
+ * the first setup. NULL when memory is refused. */
 LGNBlockPrec lgnBlockPrecCreate(sunindextype n, sunindextype nv, int nblocks,
                                 const sunindextype *voff);
 void lgnBlockPrecFree(LGNBlockPrec *bp);

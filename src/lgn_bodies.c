@@ -66,6 +66,7 @@ struct LGNBodiesRec {
   LGNErrSink err;
   LGNGroup G;
   int nb;
+  int first_ghost;       /* bodies from here on are ghosts (nb: none)  */
   sunindextype *qoff, *voff;
   sunbooleantype *se3;
   sunrealtype *mass;     /* nb          */
@@ -153,6 +154,7 @@ LGNBodies LGNBodies_Create(LGNGroup G)
     return NULL;
   }
   B->nb      = nb;
+  B->first_ghost = nb;
   B->qoff    = (sunindextype *)malloc((size_t)nb * sizeof *B->qoff);
   B->voff    = (sunindextype *)malloc((size_t)nb * sizeof *B->voff);
   B->se3     = (sunbooleantype *)malloc((size_t)nb * sizeof *B->se3);
@@ -222,8 +224,37 @@ static int CheckBody(const struct LGNBodiesRec *B, int k, const char *func)
     BErr(B, LGN_ILL_INPUT, func, "k = %d illegal (0..%d).", k, B->nb - 1);
     return LGN_ILL_INPUT;
   }
+  if (k >= B->first_ghost) {
+    BErr(B, LGN_ILL_INPUT, func,
+         "k = %d illegal: a ghost body (LGNBodies_SetGhosts); its owner's rank "
+         "holds its mass.", k);
+    return LGN_ILL_INPUT;
+  }
   return LGN_SUCCESS;
 }
+
+int LGNBodies_SetGhosts(LGNBodies B, int first_ghost)
+{
+  int k;
+  if (B == NULL) return NullBodies(__func__);
+  if (first_ghost < 1 || first_ghost > B->nb) {
+    BErr(B, LGN_ILL_INPUT, __func__, "first_ghost = %d illegal (1..%d).", first_ghost, B->nb);
+    return LGN_ILL_INPUT;
+  }
+  for (k = first_ghost; k < B->nb; k++) { /* no mass, inertia or weight */
+    B->mass[k] = SUN_RCONST(0.0);
+    memset(B->inertia + 9 * (size_t)k, 0, 9 * sizeof(sunrealtype));
+  }
+  for (k = B->first_ghost; k < first_ghost; k++) { /* ghosts no more: defaults */
+    sunrealtype *J = B->inertia + 9 * (size_t)k;
+    B->mass[k] = SUN_RCONST(1.0);
+    J[0] = J[4] = J[8] = SUN_RCONST(1.0);
+  }
+  B->first_ghost = first_ghost;
+  return LGN_SUCCESS;
+}
+
+int LGNBodies_NumOwnedBodies(LGNBodies B) { return B != NULL ? B->first_ghost : 0; }
 
 static int CheckMassValue(const struct LGNBodiesRec *B, sunrealtype m, const char *func)
 {

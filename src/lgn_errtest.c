@@ -41,12 +41,12 @@ void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w)
            ((atol != NULL ? atol[i] : mem->atol) + mem->rtol * fabs(incr[i]));
 }
 
-/* sqrt( (1/nv) sum_i (x_i w_i)^2 ), over all ranks */
+/* sqrt( (1/nv) sum_i (x_i w_i)^2 ), over all ranks (owned entries: no ghosts) */
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w)
 {
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
-  for (i = 0; i < mem->nv; i++) s += (x[i] * w[i]) * (x[i] * w[i]);
+  for (i = 0; i < mem->nv_own; i++) s += (x[i] * w[i]) * (x[i] * w[i]);
   lgnSumAll(mem, &s, 1);
   return sqrt(s / mem->nv_all);
 }

@@ -82,6 +82,14 @@ typedef struct LGNMemRec {
   sunrealtype m_all;        /* of the weighted RMS norms                  */
   sunbooleantype any_constr_time; /* Phi_t set on some rank (on one process:
                                      on this one); set by LGNSolve         */
+  /* ghost bodies (LGNSetHalo, lgn_ghosts.c; NULL: none): the local arrays
+   * hold the owned bodies, then the ghosts; nv, nq count both */
+  struct LGNHaloRec *halo;
+  sunindextype nv_own, nq_own; /* the owned entries (nv, nq without halo) */
+  N_Vector hx_b, hx_x;      /* a solve's owned right-hand side, solution:
+                               nv_own + m, of the user's type            */
+  sunrealtype *hx_ext;      /* nv + m scratch: Krylov products, preconditioner */
+  sunrealtype *hx_ext2;     /* nv + m scratch                               */
 
   /* ---- model ---- */
   LGNGroup G;               /* configuration space (not owned)            */
@@ -402,6 +410,18 @@ void lgnFreeRoots(LGNMem mem);
 /* Report an error from inside a function: fills in line, function and file. */
 #define LGN_ERROR(mem, code, ...) \
   lgnProcessError((mem), (code), __LINE__, __func__, __FILE__, __VA_ARGS__)
+
+/* ---- lgn_ghosts.c: ghost bodies of a run across ranks (LGNSetHalo) ----- */
+
+/* The solve's unknowns of the owned bodies and the multipliers (nv_own + m)
+ * from a right-hand side of nv + m local rows: the ghosts' rows added to
+ * their owners' (fold), or the owned entries only (restrict). */
+void lgnGhostsFold(LGNMem mem, const sunrealtype *ext, sunrealtype *owned);
+void lgnGhostsRestrict(LGNMem mem, const sunrealtype *ext, sunrealtype *owned);
+/* ... and back: the ghosts' entries from their owners (collective). */
+void lgnGhostsExpand(LGNMem mem, const sunrealtype *owned, sunrealtype *ext);
+/* The ghosts' entries of the state (q, v, vdot, a) from their owners. */
+void lgnGhostsRefreshState(LGNMem mem);
 
 /* ---- lgn_model.c: M, g, B and the residuals ----------------------------- */
 

@@ -99,28 +99,37 @@ static sunbooleantype HasPreconditioner(const LGNMem mem)
   return mem->psolve != NULL || mem->bp_nblocks > 0;
 }
 
+/* The owned bodies (leaves): all of them, or those before the ghosts. */
+static int OwnedBodies(const LGNMem mem)
+{
+  int b = 0;
+  while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
+  return b;
+}
+
 /* The block preconditioner for the current sizes and group: the bodies
- * (leaves) of the partition as velocity offsets. */
+ * (leaves) of the partition as velocity offsets; with ghost bodies, the
+ * owned ones (the ghosts' unknowns are other ranks'). */
 static int MakeBlockPreconditioner(LGNMem mem)
 {
 #if defined(LGN_HAVE_KLU)
-  const int nb = mem->bp_nblocks;
+  const int nb = mem->bp_nblocks, nbody = OwnedBodies(mem);
   const sunindextype n = mem->nv + mem->m;
   sunindextype *voff;
   int b;
   if (lgnBlockPrecFits(mem->bp, n, mem->nv, nb)) return LGN_SUCCESS;
   lgnBlockPrecFree(&mem->bp);
-  if (nb > mem->nblk) {
+  if (nb > nbody) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
-              "%d blocks for the block preconditioner but only %d bodies "
-              "(leaves of the Lie group).", nb, mem->nblk);
+              "%d blocks for the block preconditioner but only %d %sbodies "
+              "(leaves of the Lie group).", nb, nbody, mem->halo != NULL ? "owned " : "");
     return LGN_ILL_INPUT;
   }
-  if (mem->bp_bodies != NULL && mem->bp_bodies[nb] != (long int)mem->nblk) {
+  if (mem->bp_bodies != NULL && mem->bp_bodies[nb] != (long int)nbody) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The block preconditioner's partition ends at body %ld, but "
-              "there are %d bodies (leaves of the Lie group).",
-              mem->bp_bodies[nb], mem->nblk);
+              "there are %d %sbodies (leaves of the Lie group).",
+              mem->bp_bodies[nb], nbody, mem->halo != NULL ? "owned " : "");
     return LGN_ILL_INPUT;
   }
   voff = (sunindextype *)malloc((size_t)(nb + 1) * sizeof *voff);
@@ -131,7 +140,7 @@ static int MakeBlockPreconditioner(LGNMem mem)
   for (b = 0; b <= nb; b++) {
     const long int body = mem->bp_bodies != NULL
                               ? mem->bp_bodies[b]
-                              : (long int)(((long long)b * mem->nblk) / nb);
+                              : (long int)(((long long)b * nbody) / nb);
     voff[b] = mem->blk_voff[body];
   }
   mem->bp = lgnBlockPrecCreate(n, mem->nv, nb, voff);
@@ -190,14 +199,39 @@ int lgnKrylovCheck(LGNMem mem)
  * ATimes and the preconditioner, as the Krylov solver calls them
  * ===========================================================================*/
 
-/* z = A v with the assembled iteration matrix. */
+/* z = A v with the assembled iteration matrix. With ghost bodies v and z
+ * hold the owned unknowns: A is this rank's part of the sum over the ranks
+ * (lgn_ghosts.c), so v's ghost entries come from their owners, and the
+ * product's ghost rows go to them. */
 static int ATimes(void *A_data, N_Vector v, N_Vector z)
 {
   LGNMem mem = (LGNMem)A_data;
   mem->njtimes++;
+  if (mem->halo != NULL) {
+    lgnGhostsExpand(mem, lgnData(v), mem->hx_ext);
+    lgnMatvec(mem->A, mem->hx_ext, mem->hx_ext2, SUNFALSE);
+    lgnGhostsFold(mem, mem->hx_ext2, lgnData(z));
+    return 0;
+  }
   lgnMatvec(mem->A, lgnData(v), lgnData(z), SUNFALSE);
   return 0;
 }
+
+#if defined(LGN_HAVE_KLU)
+/* The block solve with ghost bodies: r and z hold the owned unknowns, the
+ * blocks index the rank's whole matrix (ghost entries: in no block). */
+static int BlockSolveOwned(LGNMem mem, const sunrealtype *r, sunrealtype *z)
+{
+  const sunindextype nvo = mem->nv_own, nv = mem->nv, m = mem->m;
+  int ret;
+  memcpy(mem->hx_ext, r, (size_t)nvo * sizeof(sunrealtype));
+  memset(mem->hx_ext + nvo, 0, (size_t)(nv - nvo) * sizeof(sunrealtype));
+  memcpy(mem->hx_ext + nv, r + nvo, (size_t)m * sizeof(sunrealtype));
+  ret = lgnBlockPrecSolve(mem->bp, mem->hx_ext, mem->hx_ext);
+  lgnGhostsRestrict(mem, mem->hx_ext, z);
+  return ret;
+}
+#endif
 
 /* The user's setup at the matrix's iterate and scalings, or the blocks'
  * factorisations. Returns the callback's sign convention. */
@@ -224,6 +258,7 @@ static int PreconditionerSolve(LGNMem mem, N_Vector r, N_Vector z, sunrealtype t
 {
   if (mem->bp_nblocks > 0 && mem->bp != NULL) {
 #if defined(LGN_HAVE_KLU)
+    if (mem->halo != NULL) return BlockSolveOwned(mem, lgnData(r), lgnData(z));
     return lgnBlockPrecSolve(mem->bp, lgnData(r), lgnData(z));
 #else
     return -1;
@@ -283,7 +318,7 @@ int lgnKrylovSetup(LGNMem mem)
  * The next solve is Newton's. */
 void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c)
 {
-  const sunindextype nv = mem->nv, m = mem->m;
+  const sunindextype nv = mem->nv_own, m = mem->m; /* the solver's unknowns */
   const sunrealtype h = c->h, rtol = mem->nls_rtol, atol = mem->nls_atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;

@@ -271,6 +271,16 @@ static int CheckLinearSolver(LGNMem mem)
     if (ret != LGN_SUCCESS) return ret;
   }
   sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
+  if (mem->halo != NULL && !mem->krylov &&
+      (!sparse || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_CUSTOM)) {
+    /* a rank's matrix is its part of a sum: only a solver across ranks
+     * can solve with the sum */
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "Ghost bodies (LGNSetHalo) couple the ranks' matrices: use a Krylov "
+              "solver (LGNSetLinearSolver(mem, LS, NULL)) or LGNLinSol_PETScSubdomain "
+              "with a sparse matrix, not a solver of one rank's matrix.");
+    return LGN_LS_MISMATCH;
+  }
   rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
   cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
   if (rows != n || cols != n) {
@@ -464,9 +474,36 @@ int lgnLsSetup(LGNMem mem)
   return LGN_SUCCESS;
 }
 
+/* With ghost bodies: b's rows folded to the owned unknowns, the solve
+ * across ranks, and x's ghost entries from their owners (lgn_ghosts.c). */
+static int SolveWithGhosts(LGNMem mem, N_Vector x, N_Vector b)
+{
+  int ret;
+  lgnGhostsFold(mem, lgnData(b), lgnData(mem->hx_b));
+  if (mem->krylov) {
+    ret = lgnKrylovSolve(mem, mem->hx_x, mem->hx_b);
+  } else {
+    ret = SUNLinSolSolve(mem->LS, mem->A, mem->hx_x, mem->hx_b, SUN_RCONST(0.0));
+    mem->last_lin_flag = ret;
+    if (ret != 0) {
+      LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the linear solve failed (%d).",
+                (double)mem->tn, ret);
+      ret = LGN_LSOLVE_FAIL;
+    }
+  }
+  /* the expansion is collective: every rank takes part, whatever failed */
+  ret = lgnAgree(mem, ret);
+  if (ret == LGN_SUCCESS) lgnGhostsExpand(mem, lgnData(mem->hx_x), lgnData(x));
+  return ret;
+}
+
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
   int ret;
+  if (mem->halo != NULL) {
+    mem->nlsolve++;
+    return SolveWithGhosts(mem, x, b);
+  }
   if (mem->krylov) {
     mem->nlsolve++;
     return lgnKrylovSolve(mem, x, b);

@@ -25,6 +25,7 @@
 
 #include "groups/lgn_group_impl.h"
 #include "lgn_blockprec.h"
+#include "lgn_halo.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
@@ -410,6 +411,10 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->dq_r);
   DestroyVector(&mem->dq_z);
   DestroyVector(&mem->phit);
+  DestroyVector(&mem->hx_b);
+  DestroyVector(&mem->hx_x);
+  free(mem->hx_ext);
+  mem->hx_ext = mem->hx_ext2 = NULL;
   free(mem->sigma);
   mem->sigma = NULL;
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
@@ -459,12 +464,14 @@ void lgnFreeAll(LGNMem mem)
 int lgnAllocKrylov(LGNMem mem)
 {
   const sunindextype n = mem->nv + mem->m;
+  /* the Krylov solver's vectors: the owned unknowns (all but the ghosts) */
+  const sunindextype nk = mem->nv_own + mem->m;
   if (mem->own_A && mem->A != NULL && SUNSparseMatrix_Rows(mem->A) != n) {
     lgnFreeMatrices(mem);
     DestroyMatrix(&mem->A);
   }
   /* remade on every rank when one needs it (making them is collective) */
-  if (lgnMaxAll(mem, mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != n
+  if (lgnMaxAll(mem, mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != nk
                          ? SUN_RCONST(1.0)
                          : SUN_RCONST(0.0)) > SUN_RCONST(0.0)) {
     DestroyVector(&mem->kry_w);
@@ -476,8 +483,8 @@ int lgnAllocKrylov(LGNMem mem)
     mem->A     = SUNSparseMatrix(n, n, SUNMAX(10 * n, 1), CSC_MAT, mem->sunctx);
     mem->own_A = mem->A != NULL ? SUNTRUE : SUNFALSE;
   }
-  if (mem->kry_w == NULL) mem->kry_w = lgnParallelNewVector(mem->par, n, mem->sunctx);
-  if (mem->kry_tmp == NULL) mem->kry_tmp = lgnParallelNewVector(mem->par, n, mem->sunctx);
+  if (mem->kry_w == NULL) mem->kry_w = lgnParallelNewVector(mem->par, nk, mem->sunctx);
+  if (mem->kry_tmp == NULL) mem->kry_tmp = lgnParallelNewVector(mem->par, nk, mem->sunctx);
   if (lgnAgree(mem, mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL
                         ? LGN_MEM_FAIL
                         : LGN_SUCCESS) != LGN_SUCCESS) {
@@ -578,6 +585,8 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   lgnFreeState(mem);
   mem->nq    = mem->G->nq;
   mem->nv    = mem->G->nv;
+  mem->nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
+  mem->nv_own = mem->nv;
   mem->q     = N_VClone(q0);
   mem->q1    = N_VClone(q0);
   mem->dq_q  = N_VClone(q0);
@@ -619,7 +628,12 @@ int lgnAllocWork(LGNMem mem)
   if (!fail) {
     /* the sizes of the weighted RMS norms: nv and m of all ranks */
     sunrealtype sizes[3];
-    sizes[0] = (sunrealtype)nv;
+    mem->nv_own = nv;
+    mem->nq_own = mem->nq;
+#if defined(LGN_HAVE_MPI)
+    if (mem->halo != NULL) lgnHaloOwnedLengths(mem->halo, &mem->nq_own, &mem->nv_own);
+#endif
+    sizes[0] = (sunrealtype)mem->nv_own;
     sizes[1] = (sunrealtype)m;
     sizes[2] = m == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
     lgnSumAll(mem, sizes, 3);
@@ -646,6 +660,13 @@ int lgnAllocWork(LGNMem mem)
     fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
             mem->dq_r == NULL || mem->rhs == NULL ||
             mem->sol == NULL);
+    if (mem->halo != NULL) { /* the owned unknowns of a solve (lgn_ghosts.c) */
+      mem->hx_b   = lgnParallelNewVector(mem->par, mem->nv_own + m, ctx);
+      mem->hx_x   = lgnParallelNewVector(mem->par, mem->nv_own + m, ctx);
+      mem->hx_ext = (sunrealtype *)malloc((size_t)(2 * (nv + m)) * sizeof(sunrealtype));
+      fail = fail || mem->hx_b == NULL || mem->hx_x == NULL || mem->hx_ext == NULL;
+      if (mem->hx_ext != NULL) mem->hx_ext2 = mem->hx_ext + nv + m;
+    }
     if (m > 0) {
       mem->lambda  = lgnParallelNewVector(mem->par, m, ctx);
       mem->lambda1 = lgnParallelNewVector(mem->par, m, ctx);

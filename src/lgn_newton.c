@@ -111,7 +111,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
                            const sunrealtype *delta, const sunrealtype *dmu,
                            NewtonTest *t)
 {
-  const sunindextype nv = mem->nv, m = mem->m;
+  const sunindextype nv = mem->nv_own, m = mem->m; /* owned: not the ghosts */
   const sunrealtype h = c->h, rtol = mem->nls_rtol, atol = mem->nls_atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;

@@ -102,6 +102,9 @@ void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c)
   mem->hlast = c->h;
   mem->nst++;
   mem->dense_valid = SUNTRUE; /* q1, v1, vdot1 now hold the step's start */
+  /* ghost bodies: the copies took the owners' corrections; now they take
+   * the owners' values exactly (lgn_ghosts.c) */
+  lgnGhostsRefreshState(mem);
 }
 
 /* Undo a perturbed start (v_0, a_0 from saved) after a failed attempt. */

@@ -93,6 +93,26 @@ LGN_EXPORT void LGNBodies_Destroy(LGNBodies *B);
 LGN_EXPORT int LGNBodies_NumBodies(LGNBodies B);
 
 /**
+ * Mark bodies first_ghost ... (the last) as ghosts: copies of other MPI
+ * ranks' bodies that this rank's force elements (and joints) touch
+ * (lignum_halo.h). A ghost has no mass, inertia or weight here (its
+ * owner's rank counts them): its rows of M and g hold only what this
+ * rank's force elements put on it, and it adds nothing to the energies
+ * but through them. LGNBodies_SetMass and LGNBodies_SetPrincipalInertia
+ * refuse ghosts. Calling it again with a larger first_ghost gives the
+ * bodies that are no longer ghosts mass 1 and inertia I.
+ * @param B           the body set
+ * @param first_ghost the first ghost, 1 ... LGNBodies_NumBodies(B) (that
+ *                    number: no ghosts)
+ * @return LGN_SUCCESS or LGN_ILL_INPUT.
+ */
+LGN_EXPORT int LGNBodies_SetGhosts(LGNBodies B, int first_ghost);
+
+/** Number of bodies that are not ghosts (all of them unless
+ *  LGNBodies_SetGhosts was called); 0 for B = NULL. */
+LGN_EXPORT int LGNBodies_NumOwnedBodies(LGNBodies B);
+
+/**
  * Mass and inertia of body k.
  * @param B      the body set
  * @param k      the body (0-based leaf of the group)

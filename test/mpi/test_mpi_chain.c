@@ -1,0 +1,375 @@
+/* -----------------------------------------------------------------------------
+ * Lignum test: one chain across MPI ranks, with joints and force elements
+ * between bodies of different ranks (ghost bodies, LGNSetHalo). Run on 1,
+ * 2 and 4 ranks (CTest mpi_chain_np*).
+ *
+ * The model: N bodies (R^3 x SO(3)) hanging from a spherical joint at the
+ * origin, consecutive bodies joined by spherical joints and rotational
+ * spring-dampers, under gravity; it starts horizontal and at rest, so it
+ * swings and twists. Rank r owns a contiguous segment [lo, hi) of the
+ * bodies; its ghost is body lo - 1 (r > 0). Each joint and spring between
+ * k - 1 and k is declared on the rank owning k, so the segment boundaries
+ * carry both. K_t and C_t come from Lignum's difference quotients, which
+ * thus run over the ghosts' columns too.
+ *
+ * Every rank also integrates the whole chain on one process (serial
+ * vectors, LGNLinSol_Dense) as the reference, and compares its own bodies:
+ *  (a) fixed steps, generalized-alpha at index 3, SPGMR with the block
+ *      preconditioner (one block per rank) and tight Newton and Krylov
+ *      tolerances: the trajectory equals the direct one-process solve to
+ *      1e-9 (Krylov's tolerance), at every output time;
+ *  (b) error control (tol 1e-6), BDF with modified Newton: the same steps,
+ *      failures and order counts on every rank, and the end state within
+ *      1e-5 of the one-process BDF run with the same settings;
+ *  (c) Phi(q) of every joint (including those at the boundaries) small at
+ *      the end, and the ghosts' entries of the returned q equal to their
+ *      owners';
+ *  (d) a force callback failing on the last rank at t > 0.05: LGN_FORCE_FAIL
+ *      on every rank at the same t, no hang;
+ *  (e) misuse: a halo with a ghost no rank owns is refused on every rank;
+ *      LGNSetHalo with a dense direct solver is refused by LGNSolve.
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <mpi.h>
+
+#include <lignum/lignum.h>
+#include <lignum/lignum_bodies.h>
+#include <lignum/lignum_halo.h>
+#include <lignum/lignum_joints.h>
+#include <lignum/lignum_ls.h>
+#include <nvector/nvector_mpiplusx.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+#include <sundials/sundials_math.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#define NBODIES 12
+
+static int rank = 0, nranks = 1, failures = 0;
+
+#define CHECK(cond, ...)                                          \
+  do {                                                            \
+    if (!(cond)) {                                                \
+      failures++;                                                 \
+      printf("[rank %d] FAIL %s:%d: ", rank, __FILE__, __LINE__); \
+      printf(__VA_ARGS__);                                        \
+      printf("\n");                                               \
+    }                                                             \
+  } while (0)
+
+typedef struct {
+  LGNGroup body, G;
+  LGNBodies bodies;
+  LGNJoints joints;
+  int lo, hi, nown, nghost;
+  long int gid[NBODIES];
+  int owner;          /* of the ghost */
+  int fail_after;     /* (d): the force fails for t > 0.05 on this rank */
+} Chain;
+
+static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  return LGNBodies_MassFn(t, q, M, ((Chain *)ud)->bodies);
+}
+static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  Chain *c = (Chain *)ud;
+  if (c->fail_after && t > 0.05) return -1;
+  return LGNBodies_ForceFn(t, q, v, g, c->bodies);
+}
+static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  return LGNJoints_Residual(((Chain *)ud)->joints, t, q, phi) ? -1 : 0;
+}
+static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  return LGNJoints_Jacobian(((Chain *)ud)->joints, t, q, B) ? -1 : 0;
+}
+static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
+{
+  return LGNJoints_ConstraintForce(((Chain *)ud)->joints, t, q, lambda, f) ? -1 : 0;
+}
+
+/* The bodies [lo, hi) and (lo > 0) the ghost lo - 1, last. */
+static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
+{
+  const sunrealtype L = 1.0, mass = 1.0, r = 0.05;
+  const sunrealtype J[3] = {0.5 * mass * r * r, mass * L * L / 12.0, mass * L * L / 12.0};
+  const sunrealtype gvec[3] = {0.0, 0.0, -9.81}, origin[3] = {0.0, 0.0, 0.0};
+  const sunrealtype left[3] = {-0.5 * L, 0.0, 0.0}, right[3] = {0.5 * L, 0.0, 0.0};
+  LGNGroup factors[NBODIES];
+  int k, flag = 0;
+  memset(c, 0, sizeof *c);
+  c->lo     = lo;
+  c->hi     = hi;
+  c->nown   = hi - lo;
+  c->nghost = lo > 0 ? 1 : 0;
+  c->owner  = owner_of_ghost;
+  c->body   = LGNGroup_R3xSO3();
+  for (k = 0; k < c->nown + c->nghost; k++) factors[k] = c->body;
+  c->G = LGNGroup_Product(c->nown + c->nghost, factors);
+  for (k = 0; k < c->nown; k++) c->gid[k] = lo + k;
+  if (c->nghost) c->gid[c->nown] = lo - 1;
+  c->bodies = LGNBodies_Create(c->G);
+  c->joints = LGNJoints_Create(c->G);
+  if (c->bodies == NULL || c->joints == NULL) return -1;
+  flag = LGNBodies_SetGravity(c->bodies, gvec);
+  for (k = 0; k < c->nown && !flag; k++)
+    flag = LGNBodies_SetPrincipalInertia(c->bodies, k, mass * (1.0 + 0.1 * (lo + k)), J);
+  if (!flag && c->nghost) flag = LGNBodies_SetGhosts(c->bodies, c->nown);
+  for (k = lo; k < hi && !flag; k++) {
+    const int a = k == lo ? c->nown : k - 1 - lo; /* local number of body k - 1 */
+    if (k == 0) {
+      flag = LGNJoints_AddSpherical(c->joints, LGN_GROUND, origin, 0, left);
+    } else {
+      flag = LGNJoints_AddSpherical(c->joints, a, right, k - lo, left);
+      if (!flag) flag = LGNBodies_AddRotationalSpringDamper(c->bodies, a, k - lo, 20.0, 0.5, NULL);
+    }
+  }
+  return flag;
+}
+
+static void FreeChain(Chain *c)
+{
+  LGNJoints_Destroy(&c->joints);
+  LGNBodies_Destroy(&c->bodies);
+  LGNGroup_Destroy(c->G);
+  LGNGroup_Destroy(c->body);
+}
+
+/* Horizontal along x, at rest; the ghost's entries garbage (not read). */
+static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v)
+{
+  int k, i;
+  for (k = 0; k < c->nown + c->nghost; k++) {
+    const long int g = c->gid[k];
+    for (i = 0; i < 7; i++) q[7 * k + i] = 0.0;
+    for (i = 0; i < 6; i++) v[6 * k + i] = 0.0;
+    q[7 * k]     = (sunrealtype)g + 0.5;
+    q[7 * k + 3] = 1.0;
+    if (k >= c->nown) { /* the ghost: its owner's values must win */
+      for (i = 0; i < 7; i++) q[7 * k + i] = 1e3;
+      for (i = 0; i < 6; i++) v[6 * k + i] = -1e3;
+    }
+  }
+}
+
+#define NOUT 4
+typedef struct {
+  sunrealtype q[NOUT][7 * NBODIES]; /* by global body */
+  long int nst, netf, nncf, nord[6];
+  int flag;
+  sunrealtype tfail;
+} Result;
+
+enum { RUN_GA_FIXED = 0, RUN_BDF_ADAPTIVE = 1 };
+
+/* One integration of the chain c (with ghosts: across ranks on comm). */
+static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNContext ctx,
+                Result *res)
+{
+  const int nb = c->nown + c->nghost;
+  const sunindextype nq = 7 * nb, nv = 6 * nb;
+  N_Vector q = NULL, v = NULL, y = NULL, yloc = NULL;
+  SUNMatrix A = NULL;
+  SUNLinearSolver LS = NULL;
+  LGNHalo halo = NULL;
+  void *mem = LGNCreate(ctx);
+  sunindextype m;
+  sunrealtype t = 0.0;
+  int flag = 0, j, k;
+  memset(res, 0, sizeof *res);
+  if (across) {
+    q = N_VMake_MPIPlusX(comm, N_VNew_Serial(nq, ctx), ctx);
+    v = N_VMake_MPIPlusX(comm, N_VNew_Serial(nv, ctx), ctx);
+  } else {
+    q = N_VNew_Serial(nq, ctx);
+    v = N_VNew_Serial(nv, ctx);
+  }
+  InitialState(c, N_VGetArrayPointer(q), N_VGetArrayPointer(v));
+  m = LGNJoints_NumConstraints(c->joints);
+  flag = LGNSetGroup(mem, c->G);
+  if (!flag) flag = LGNSetUserData(mem, c);
+  if (!flag) flag = LGNSetMassFn(mem, Mass);
+  if (!flag) flag = LGNSetForceFn(mem, Force);
+  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNSetConstraintForceFn(mem, ConstrForce);
+  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (across) {
+    halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? &c->owner : NULL);
+    if (halo == NULL) flag = -1;
+    if (!flag) flag = LGNSetHalo(mem, halo);
+    yloc = N_VNew_Serial(6 * c->nown + m, ctx); /* the owned unknowns */
+    y    = N_VMake_MPIPlusX(comm, yloc, ctx);
+    LS   = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 50, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
+    if (!flag) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
+    if (!flag) flag = LGNSetEpsLin(mem, 1e-6);
+  } else {
+    y  = N_VNew_Serial(nv + m, ctx);
+    A  = SUNDenseMatrix(nv + m, nv + m, ctx);
+    LS = LGNLinSol_Dense(y, A, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  }
+  if (kind == RUN_GA_FIXED) {
+    if (!flag) flag = LGNSetGenAlpha(mem, 0.8);
+    if (!flag) flag = LGNSetStepSize(mem, 2e-3);
+    if (!flag) flag = LGNSStolerances(mem, 1e-12, 1e-12);
+  } else {
+    if (!flag) flag = LGNSetBDF(mem, 5);
+    if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
+    if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+    if (!flag) flag = LGNSStolerances(mem, 1e-6, 1e-6);
+  }
+  for (j = 0; j < NOUT && !flag; j++) {
+    const sunrealtype *qd;
+    flag = LGNSolve(mem, 0.1 * (j + 1), &t, q, v, LGN_NORMAL);
+    if (flag) break;
+    qd = N_VGetArrayPointer(q);
+    for (k = 0; k < nb; k++) memcpy(res->q[j] + 7 * c->gid[k], qd + 7 * k, 7 * sizeof(sunrealtype));
+  }
+  res->flag  = flag;
+  res->tfail = t;
+  LGNGetNumSteps(mem, &res->nst);
+  LGNGetNumErrTestFails(mem, &res->netf);
+  LGNGetNumNewtonConvFails(mem, &res->nncf);
+  if (kind == RUN_BDF_ADAPTIVE) LGNGetNumStepsAtOrder(mem, res->nord);
+  if (flag == 0) { /* (c): Phi small; the ghost equals its owner (checked by the caller) */
+    N_Vector phi = N_VNew_Serial(SUNMAX(m, 1), ctx);
+    sunrealtype pmax = 0.0;
+    LGNJoints_Residual(c->joints, t, q, phi);
+    for (k = 0; k < m; k++) pmax = SUNMAX(pmax, fabs(N_VGetArrayPointer(phi)[k]));
+    /* the Newton tolerance of the run: 1e-12 (a), 1e-6 (b) */
+    CHECK(pmax < (kind == RUN_GA_FIXED ? 1e-10 : 1e-6),
+          "|Phi| = %g at t = %g (rank's joints, boundary ones included)", pmax, t);
+    N_VDestroy(phi);
+  }
+  LGNFree(&mem);
+  LGNHalo_Destroy(&halo);
+  SUNLinSolFree(LS);
+  if (A != NULL) SUNMatDestroy(A);
+  if (y != NULL) N_VDestroy(y);
+  if (yloc != NULL) N_VDestroy(yloc);
+  if (across) {
+    N_VDestroy(N_VGetLocalVector_MPIPlusX(q));
+    N_VDestroy(N_VGetLocalVector_MPIPlusX(v));
+  }
+  N_VDestroy(q);
+  N_VDestroy(v);
+}
+
+static sunrealtype MaxDiffOwned(const Chain *c, const Result *a, const Result *b, int j)
+{
+  sunrealtype d = 0.0;
+  int k, i;
+  for (k = c->lo; k < c->hi; k++)
+    for (i = 0; i < 7; i++) d = SUNMAX(d, fabs(a->q[j][7 * k + i] - b->q[j][7 * k + i]));
+  return d;
+}
+
+static int SameOnAllRanks(long int x)
+{
+  long int lo = 0, hi = 0;
+  MPI_Allreduce(&x, &lo, 1, MPI_LONG, MPI_MIN, MPI_COMM_WORLD);
+  MPI_Allreduce(&x, &hi, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+  return lo == hi;
+}
+
+int main(int argc, char **argv)
+{
+  SUNContext ctx = NULL;
+  Chain whole, part;
+  Result ref, par;
+  int lo, hi, j, total = 0;
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+  SUNContext_Create((void *)&(MPI_Comm){MPI_COMM_WORLD}, &ctx);
+  lo = (int)(((long)rank * NBODIES) / nranks);
+  hi = (int)(((long)(rank + 1) * NBODIES) / nranks);
+  if (BuildChain(&whole, 0, NBODIES, -1) != 0 || BuildChain(&part, lo, hi, rank - 1) != 0) {
+    printf("[rank %d] model set-up failed\n", rank);
+    MPI_Abort(MPI_COMM_WORLD, 2);
+  }
+
+  /* (a) fixed steps, tight tolerances: the direct one-process solve */
+  Run(&whole, RUN_GA_FIXED, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
+  Run(&part, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+  CHECK(ref.flag == 0 && par.flag == 0, "(a) flags %d (one process), %d (ranks)", ref.flag,
+        par.flag);
+  for (j = 0; j < NOUT && par.flag == 0; j++) {
+    const sunrealtype d = MaxDiffOwned(&part, &par, &ref, j);
+    CHECK(d < 1e-9, "(a) t = %.1f: owned bodies differ from the one-process run by %g",
+          0.1 * (j + 1), d);
+    if (j == NOUT - 1) printf("[rank %d] (a) GA fixed step: max diff %.3g, %ld steps\n", rank, d, par.nst);
+  }
+  CHECK(par.nst == ref.nst, "(a) %ld steps vs %ld", par.nst, ref.nst);
+  /* (c) the ghost's entries equal its owner's (the owner's own copy is in ref) */
+  if (part.nghost && par.flag == 0) {
+    sunrealtype d = 0.0;
+    int i;
+    for (i = 0; i < 7; i++)
+      d = SUNMAX(d, fabs(par.q[NOUT - 1][7 * (lo - 1) + i] - ref.q[NOUT - 1][7 * (lo - 1) + i]));
+    CHECK(d < 1e-9, "(c) the ghost differs from its owner's values by %g", d);
+  }
+
+  /* (b) error control, BDF, modified Newton */
+  Run(&whole, RUN_BDF_ADAPTIVE, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
+  Run(&part, RUN_BDF_ADAPTIVE, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+  CHECK(ref.flag == 0 && par.flag == 0, "(b) flags %d (one process), %d (ranks)", ref.flag,
+        par.flag);
+  CHECK(SameOnAllRanks(par.nst) && SameOnAllRanks(par.netf) && SameOnAllRanks(par.nncf) &&
+            SameOnAllRanks(par.nord[5]) && SameOnAllRanks(par.nord[3]),
+        "(b) the ranks took different decisions (%ld steps)", par.nst);
+  if (par.flag == 0) {
+    const sunrealtype d = MaxDiffOwned(&part, &par, &ref, NOUT - 1);
+    CHECK(d < 1e-5, "(b) end state differs from the one-process BDF run by %g", d);
+    printf("[rank %d] (b) BDF adaptive: %ld steps (one process %ld), diff %.3g\n", rank, par.nst,
+           ref.nst, d);
+  }
+
+  /* (d) the force fails on the last rank after t = 0.05 */
+  part.fail_after = rank == nranks - 1;
+  {
+    FILE *quiet = fopen("/dev/null", "w");
+    (void)quiet;
+    Run(&part, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+    if (quiet != NULL) fclose(quiet);
+  }
+  CHECK(par.flag == LGN_FORCE_FAIL, "(d) flag %d, expected LGN_FORCE_FAIL", par.flag);
+  CHECK(SameOnAllRanks((long int)(par.tfail * 1e9)), "(d) the ranks stopped at different t");
+  part.fail_after = 0;
+
+  /* (e) a ghost whose owner does not own it: refused everywhere */
+  {
+    long int bad[NBODIES];
+    int owner = nranks > 1 ? (rank + 1) % nranks : 0;
+    LGNHalo h;
+    memcpy(bad, part.gid, sizeof bad);
+    if (nranks > 1 && part.nghost) bad[part.nown] = NBODIES + 5; /* nobody's */
+    h = nranks > 1 && part.nghost
+            ? LGNHalo_Create(MPI_COMM_WORLD, part.G, part.nown, bad, &owner)
+            : LGNHalo_Create(MPI_COMM_WORLD, part.G, part.nown, part.gid,
+                             part.nghost ? &part.owner : NULL);
+    if (nranks > 1)
+      CHECK(h == NULL, "(e) a halo with a ghost of no rank was accepted");
+    else
+      CHECK(h != NULL, "(e) a halo without ghosts was refused");
+    LGNHalo_Destroy(&h);
+  }
+
+  MPI_Allreduce(&failures, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  if (rank == 0) printf("test_mpi_chain on %d ranks: %d failures\n", nranks, total);
+  FreeChain(&whole);
+  FreeChain(&part);
+  SUNContext_Free(&ctx);
+  MPI_Finalize();
+  return total == 0 ? 0 : 1;
+}
