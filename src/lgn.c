@@ -98,6 +98,7 @@ static int CheckNormalisable(LGNMem mem, N_Vector q0, const char *func)
     return LGN_MEM_FAIL;
   }
   memcpy(q, lgnData(q0), nq * sizeof(sunrealtype));
+  lgnGhostsClear(mem, q, NULL); /* ghosts: their owners' values count */
   ok = LGNGroup_Normalize(mem->G, q) == 0 && lgnAllFinite(q, mem->G->nq);
   free(q);
   if (!ok) {
@@ -115,6 +116,7 @@ static int CheckNormalisable(LGNMem mem, N_Vector q0, const char *func)
 static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
                              N_Vector v0, const char *func)
 {
+  sunindextype nq_own, nv_own;
   int flag;
   if (mem->G == NULL) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
@@ -124,12 +126,12 @@ static int CheckInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
   flag = lgnCheckVector(mem, q0, mem->G->nq, "q0", func);
   if (flag == LGN_SUCCESS) flag = lgnCheckVector(mem, v0, mem->G->nv, "v0", func);
   if (flag != LGN_SUCCESS) return flag;
-  if (!lgnAllFinite(N_VGetArrayPointer(q0), lgnLocalLength(q0)) ||
-      !lgnAllFinite(N_VGetArrayPointer(v0), lgnLocalLength(v0))) {
+  lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
+  if (!lgnAllFinite(N_VGetArrayPointer(q0), nq_own) ||
+      !lgnAllFinite(N_VGetArrayPointer(v0), nv_own)) {
     lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
                     "%s has a NaN or Inf entry.",
-                    lgnAllFinite(N_VGetArrayPointer(q0), lgnLocalLength(q0)) ? "v0"
-                                                                                : "q0");
+                    lgnAllFinite(N_VGetArrayPointer(q0), nq_own) ? "v0" : "q0");
     return LGN_ILL_INPUT;
   }
   if (!isfinite(t0)) {
@@ -147,6 +149,8 @@ static void SetInitialState(LGNMem mem, sunrealtype t0, N_Vector q0,
 {
   N_VScale(SUN_RCONST(1.0), q0, mem->q);
   N_VScale(SUN_RCONST(1.0), v0, mem->v);
+  /* ghosts: placeholders until LGNSolve brings their owners' values */
+  lgnGhostsClear(mem, lgnData(mem->q), lgnData(mem->v));
   (void)LGNGroup_Normalize(mem->G, lgnData(mem->q));
   mem->tn         = t0;
   mem->user_vdot0 = SUNFALSE;
@@ -168,6 +172,12 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
   lgnParallelFree(&mem->par);
   flag = lgnParallelCreate(q0, v0, &mem->err, __func__, &mem->par);
   if (flag != LGN_SUCCESS) return flag;
+  if (mem->halo != NULL && mem->par == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "Ghost bodies (LGNSetHalo) need a run across ranks: q0 and v0 must "
+              "be N_Vector_Parallel or MPIPlusX vectors.");
+    return LGN_ILL_INPUT;
+  }
   flag = lgnAgree(mem, CheckInitialState(mem, t0, q0, v0, __func__));
   if (flag != LGN_SUCCESS) return flag;
 
@@ -207,6 +217,8 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
  * solver (checked on each rank alone). */
 static int CheckSettings(LGNMem mem)
 {
+  int flag = lgnGhostsCheck(mem);
+  if (flag != LGN_SUCCESS) return flag;
   if (mem->mass == NULL) {
     LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");
     return LGN_MISSING_FN;
@@ -276,7 +288,8 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
     "the kind of linear solver (Krylov or direct)", "eplifac", "epcon",
     "the initial step", "hmin", "hmax", "maxnef", "maxncf", "the stop time",
     "the acceptance of stalls", "the tolerances set", "vector tolerances (LGNSVtolerances)",
-    "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)"};
+    "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)",
+    "ghost bodies (LGNSetHalo)"};
   const sunrealtype x[] = {
     (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->step_control,
     mem->h, mem->rtol, mem->atol_vec != NULL ? -SUN_RCONST(1.0) : mem->atol,
@@ -288,7 +301,7 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
     (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
     mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
     (sunrealtype)mem->tols_set, (sunrealtype)(mem->atol_vec != NULL), tout,
-    (sunrealtype)itask, mem->tn};
+    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL)};
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");

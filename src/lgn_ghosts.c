@@ -61,14 +61,35 @@ void lgnGhostsRefreshState(LGNMem mem)
   lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, lgnData(mem->a));
 }
 
+void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv)
+{
+  *nq = mem->G->nq;
+  *nv = mem->G->nv;
+  if (mem->halo != NULL) lgnHaloOwnedLengths(mem->halo, nq, nv);
+}
+
+void lgnGhostsClear(const LGNMem mem, sunrealtype *q, sunrealtype *v)
+{
+  if (mem->halo != NULL) lgnHaloClearGhosts(mem->halo, q, v);
+}
+
+int lgnGhostsCheck(LGNMem mem)
+{
+  if (mem->halo == NULL || lgnHaloGroup(mem->halo) == mem->G) return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "The halo (LGNSetHalo) was made for another group than the one of "
+            "LGNSetGroup: make it for the rank's group of owned and ghost bodies.");
+  return LGN_ILL_INPUT;
+}
+
 int LGNSetHalo(void *lgn_mem, LGNHalo H)
 {
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->malloc_done) {
-    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
-    return LGN_NO_MALLOC;
+  if (mem->G == NULL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, MSG_NO_GROUP);
+    return LGN_ILL_INPUT;
   }
   if (H != NULL && lgnHaloGroup(H) != mem->G) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
@@ -76,7 +97,7 @@ int LGNSetHalo(void *lgn_mem, LGNHalo H)
               "make the halo with the rank's group of owned and ghost bodies.");
     return LGN_ILL_INPUT;
   }
-  if (H != NULL && mem->par == NULL) {
+  if (H != NULL && mem->malloc_done && mem->par == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "H needs a run across ranks: q0 and v0 of LGNInit must be "
               "N_Vector_Parallel or MPIPlusX vectors.");
@@ -164,5 +185,21 @@ void lgnGhostsExpand(LGNMem mem, const sunrealtype *owned, sunrealtype *ext)
   (void)ext;
 }
 void lgnGhostsRefreshState(LGNMem mem) { (void)mem; }
+int lgnGhostsCheck(LGNMem mem)
+{
+  (void)mem;
+  return LGN_SUCCESS;
+}
+void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv)
+{
+  *nq = mem->G->nq;
+  *nv = mem->G->nv;
+}
+void lgnGhostsClear(const LGNMem mem, sunrealtype *q, sunrealtype *v)
+{
+  (void)mem;
+  (void)q;
+  (void)v;
+}
 
 #endif

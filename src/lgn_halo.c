@@ -455,6 +455,20 @@ void lgnHaloReverse(LGNHalo H, const sunrealtype *src, sunrealtype *owned)
     }
 }
 
+void lgnHaloClearGhosts(const LGNHalo H, sunrealtype *q, sunrealtype *v)
+{
+  int b;
+  sunindextype i;
+  for (b = H->nowned; b < H->nbodies; b++) {
+    if (q != NULL) { /* R^3 x SO(3) and SE(3) alike: (x, p), p scalar first */
+      for (i = H->qoff[b]; i < H->qoff[b + 1]; i++) q[i] = SUN_RCONST(0.0);
+      q[H->qoff[b] + 3] = SUN_RCONST(1.0);
+    }
+    if (v != NULL)
+      for (i = H->voff[b]; i < H->voff[b + 1]; i++) v[i] = SUN_RCONST(0.0);
+  }
+}
+
 int LGNHalo_UpdateGhosts(LGNHalo H, int kind, sunrealtype *x)
 {
   if (H == NULL || x == NULL ||

@@ -34,6 +34,11 @@ void lgnHaloForward(LGNHalo H, int kind, sunrealtype *x);
  * the order of their lists). Collective. */
 void lgnHaloReverse(LGNHalo H, const sunrealtype *src, sunrealtype *owned);
 
+/* The ghosts' entries of a configuration q <- the identity (x = 0, unit
+ * quaternion), of a velocity-type v <- 0: placeholders until the owners'
+ * values arrive (either may be NULL). */
+void lgnHaloClearGhosts(const LGNHalo H, sunrealtype *q, sunrealtype *v);
+
 /* The communicator of the halo (a duplicate of the one given). */
 MPI_Comm lgnHaloComm(const LGNHalo H);
 #endif

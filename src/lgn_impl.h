@@ -422,6 +422,15 @@ void lgnGhostsRestrict(LGNMem mem, const sunrealtype *ext, sunrealtype *owned);
 void lgnGhostsExpand(LGNMem mem, const sunrealtype *owned, sunrealtype *ext);
 /* The ghosts' entries of the state (q, v, vdot, a) from their owners. */
 void lgnGhostsRefreshState(LGNMem mem);
+/* LGN_ILL_INPUT (reported) when the halo was made for another group than
+ * the integrator's (LGNSetGroup after LGNSetHalo). */
+int lgnGhostsCheck(LGNMem mem);
+/* The entries of q (nq) and v (nv) of the rank's own bodies: all of them
+ * without a halo. */
+void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv);
+/* The ghosts' entries of q <- identity, of v <- 0 (placeholders until the
+ * owners' values arrive; either may be NULL). */
+void lgnGhostsClear(const LGNMem mem, sunrealtype *q, sunrealtype *v);
 
 /* ---- lgn_model.c: M, g, B and the residuals ----------------------------- */
 

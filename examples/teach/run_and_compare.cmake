@@ -4,7 +4,7 @@
 #
 #   cmake -DEXE=<example> -DCOMPARE=<compare_output> -DANSWER=<name>.out
 #         -DOUTPUT=<file to write> [-DRTOL=1e-5] [-DATOL=1e-6]
-#         [-DLAUNCH="mpiexec|-n|2"] -P run_and_compare.cmake
+#         [-DLAUNCH="mpiexec|-n|2"] [-DARGS="--a|1"] -P run_and_compare.cmake
 #
 # The example must exit with 0; its output is kept in OUTPUT (to refresh an
 # answer file, copy it over <name>.out after checking it).
@@ -25,7 +25,12 @@ set(_launch "")
 if(DEFINED LAUNCH AND NOT LAUNCH STREQUAL "")
   string(REPLACE "|" ";" _launch "${LAUNCH}")
 endif()
-execute_process(COMMAND ${_launch} ${EXE} RESULT_VARIABLE _rc OUTPUT_FILE ${OUTPUT} ERROR_VARIABLE _err)
+# ARGS: the example's arguments separated by '|'
+set(_args "")
+if(DEFINED ARGS AND NOT ARGS STREQUAL "")
+  string(REPLACE "|" ";" _args "${ARGS}")
+endif()
+execute_process(COMMAND ${_launch} ${EXE} ${_args} RESULT_VARIABLE _rc OUTPUT_FILE ${OUTPUT} ERROR_VARIABLE _err)
 if(NOT _rc EQUAL 0)
   message(FATAL_ERROR "${EXE} failed (${_rc}):\n${_err}")
 endif()

@@ -156,6 +156,7 @@ static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v)
     if (k >= c->nown) { /* the ghost: its owner's values must win */
       for (i = 0; i < 7; i++) q[7 * k + i] = 1e3;
       for (i = 0; i < 6; i++) v[6 * k + i] = -1e3;
+      if (c->lo % 2 == 1) q[7 * k + 3] = q[7 * k + 4] = q[7 * k + 5] = q[7 * k + 6] = 0.0;
     }
   }
 }
@@ -201,11 +202,14 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
   if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
   if (!flag) flag = LGNSetConstraintForceFn(mem, ConstrForce);
   if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  /* (a) the halo before LGNInit (the ghost's entries of q0, v0 unread),
+   * (b) after it (they must be a group element then: 1e3's normalise) */
+  if (across) halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? &c->owner : NULL);
+  if (across && halo == NULL) flag = -1;
+  if (!flag && across && kind == RUN_GA_FIXED) flag = LGNSetHalo(mem, halo);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   if (across) {
-    halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? &c->owner : NULL);
-    if (halo == NULL) flag = -1;
-    if (!flag) flag = LGNSetHalo(mem, halo);
+    if (!flag && kind != RUN_GA_FIXED) flag = LGNSetHalo(mem, halo);
     yloc = N_VNew_Serial(6 * c->nown + m, ctx); /* the owned unknowns */
     y    = N_VMake_MPIPlusX(comm, yloc, ctx);
     LS   = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 50, ctx);
