@@ -143,8 +143,10 @@ static void FreeChain(Chain *c)
   LGNGroup_Destroy(c->body);
 }
 
-/* Horizontal along x, at rest; the ghost's entries garbage (not read). */
-static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v)
+/* Horizontal along x, at rest; the ghost's entries garbage: with the halo
+ * set before LGNInit (unread) not even a group element (zero quaternion),
+ * after it (checked by LGNInit) one that normalises. */
+static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v, int unread)
 {
   int k, i;
   for (k = 0; k < c->nown + c->nghost; k++) {
@@ -156,7 +158,7 @@ static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v)
     if (k >= c->nown) { /* the ghost: its owner's values must win */
       for (i = 0; i < 7; i++) q[7 * k + i] = 1e3;
       for (i = 0; i < 6; i++) v[6 * k + i] = -1e3;
-      if (c->lo % 2 == 1) q[7 * k + 3] = q[7 * k + 4] = q[7 * k + 5] = q[7 * k + 6] = 0.0;
+      if (unread) q[7 * k + 3] = q[7 * k + 4] = q[7 * k + 5] = q[7 * k + 6] = 0.0;
     }
   }
 }
@@ -193,7 +195,7 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
     q = N_VNew_Serial(nq, ctx);
     v = N_VNew_Serial(nv, ctx);
   }
-  InitialState(c, N_VGetArrayPointer(q), N_VGetArrayPointer(v));
+  InitialState(c, N_VGetArrayPointer(q), N_VGetArrayPointer(v), kind == RUN_GA_FIXED);
   m = LGNJoints_NumConstraints(c->joints);
   flag = LGNSetGroup(mem, c->G);
   if (!flag) flag = LGNSetUserData(mem, c);
