@@ -44,8 +44,19 @@ static int CheckModel(LGNMem mem, const char *func)
 static int PrepareModel(LGNMem mem, const char *func)
 {
   int flag = lgnAgree(mem, CheckModel(mem, func));
+  if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnGhostsCheck(mem));
+  /* ghost bodies on every rank or on none (their exchanges are collective) */
+  if (flag == LGN_SUCCESS &&
+      lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) !=
+          -lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(-1.0) : SUN_RCONST(0.0))) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "Ghost bodies (LGNSetHalo) are set on some ranks only: set them on "
+                    "every rank or on none.");
+    flag = LGN_ILL_INPUT;
+  }
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag != LGN_SUCCESS) return flag;
+  lgnGhostsRefreshState(mem); /* the owners' state (collective) */
   flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   return lgnAgree(mem, flag);

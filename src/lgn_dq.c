@@ -183,9 +183,8 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
  * Sparse matrices: by column colours
  * ===========================================================================*/
 
-/* Symmetric pattern blocks u M u M^T (u B^T B) of size nv x nv into P. */
-static int BuildPattern(LGNMem mem, const LGNCsc *Mt, sunbooleantype with_BtB,
-                        LGNCsc *P)
+/* Symmetric pattern blocks u M u M^T u B^T B of size nv x nv into P. */
+static int BuildPattern(LGNMem mem, const LGNCsc *Mt, LGNCsc *P)
 {
   struct LGNSparseWorkRec *sp = mem->sp;
   const sunindextype nv = mem->nv;
@@ -205,7 +204,7 @@ static int BuildPattern(LGNMem mem, const LGNCsc *Mt, sunbooleantype with_BtB,
     for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) lgnColumnAddRow(&cb, i);
     for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) lgnColumnAddRow(&cb, sp->M.rowind[p]);
     for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) lgnColumnAddRow(&cb, Mt->rowind[p]);
-    if (with_BtB && mem->m > 0)
+    if (mem->m > 0)
       for (p = sp->B.colptr[j]; p < sp->B.colptr[j + 1]; p++) {
         const sunindextype r = sp->B.rowind[p];
         for (q = sp->Bt.colptr[r]; q < sp->Bt.colptr[r + 1]; q++)
@@ -227,8 +226,10 @@ int lgnBuildDQPatterns(LGNMem mem)
   int flag;
   memset(&Mt, 0, sizeof Mt);
   flag = lgnCscTranspose(&sp->M, &Mt);
-  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNTRUE, &sp->Kdq);
-  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, SUNFALSE, &sp->Cdq);
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, &sp->Kdq);
+  /* C_t too on B^T B: a damper between two jointed bodies couples them (a
+   * pattern of blocks u M alone mixed its columns into other colours) */
+  if (flag == LGN_SUCCESS) flag = BuildPattern(mem, &Mt, &sp->Cdq);
   if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Kdq, sp->mark, &sp->Kcol);
   if (flag == LGN_SUCCESS) flag = lgnColorColumns(&sp->Cdq, sp->mark, &sp->Ccol);
   lgnCscFree(&Mt);

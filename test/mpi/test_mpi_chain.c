@@ -27,7 +27,9 @@
  *  (d) a force callback failing on the last rank at t > 0.05: LGN_FORCE_FAIL
  *      on every rank at the same t, no hang;
  *  (e) misuse: a halo with a ghost no rank owns is refused on every rank;
- *      LGNSetHalo with a dense direct solver is refused by LGNSolve.
+ *  (f) index 2, exact kinematics, full Newton, from a start off the
+ *      constraints projected by LGNCalcIC (q and v): the trajectory equals
+ *      the one-process run's to 1e-9.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -146,7 +148,8 @@ static void FreeChain(Chain *c)
 /* Horizontal along x, at rest; the ghost's entries garbage: with the halo
  * set before LGNInit (unread) not even a group element (zero quaternion),
  * after it (checked by LGNInit) one that normalises. */
-static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v, int unread)
+static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v, int unread,
+                         int inconsistent)
 {
   int k, i;
   for (k = 0; k < c->nown + c->nghost; k++) {
@@ -155,6 +158,11 @@ static void InitialState(const Chain *c, sunrealtype *q, sunrealtype *v, int unr
     for (i = 0; i < 6; i++) v[6 * k + i] = 0.0;
     q[7 * k]     = (sunrealtype)g + 0.5;
     q[7 * k + 3] = 1.0;
+    if (inconsistent) { /* (f): off the constraints, and moving */
+      q[7 * k + 1] = 1e-3 * cos((double)g);
+      v[6 * k + 2] = 0.1 * sin((double)g);
+      v[6 * k + 4] = 0.2 * cos(2.0 * (double)g);
+    }
     if (k >= c->nown) { /* the ghost: its owner's values must win */
       for (i = 0; i < 7; i++) q[7 * k + i] = 1e3;
       for (i = 0; i < 6; i++) v[6 * k + i] = -1e3;
@@ -171,7 +179,7 @@ typedef struct {
   sunrealtype tfail;
 } Result;
 
-enum { RUN_GA_FIXED = 0, RUN_BDF_ADAPTIVE = 1 };
+enum { RUN_GA_FIXED = 0, RUN_BDF_ADAPTIVE = 1, RUN_INDEX2_CALCIC = 2 };
 
 /* One integration of the chain c (with ghosts: across ranks on comm). */
 static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNContext ctx,
@@ -195,7 +203,8 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
     q = N_VNew_Serial(nq, ctx);
     v = N_VNew_Serial(nv, ctx);
   }
-  InitialState(c, N_VGetArrayPointer(q), N_VGetArrayPointer(v), kind == RUN_GA_FIXED);
+  InitialState(c, N_VGetArrayPointer(q), N_VGetArrayPointer(v), kind == RUN_GA_FIXED,
+               kind == RUN_INDEX2_CALCIC);
   m = LGNJoints_NumConstraints(c->joints);
   flag = LGNSetGroup(mem, c->G);
   if (!flag) flag = LGNSetUserData(mem, c);
@@ -208,10 +217,10 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
    * (b) after it (they must be a group element then: 1e3's normalise) */
   if (across) halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? &c->owner : NULL);
   if (across && halo == NULL) flag = -1;
-  if (!flag && across && kind == RUN_GA_FIXED) flag = LGNSetHalo(mem, halo);
+  if (!flag && across && kind != RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   if (across) {
-    if (!flag && kind != RUN_GA_FIXED) flag = LGNSetHalo(mem, halo);
+    if (!flag && kind == RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
     yloc = N_VNew_Serial(6 * c->nown + m, ctx); /* the owned unknowns */
     y    = N_VMake_MPIPlusX(comm, yloc, ctx);
     LS   = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 50, ctx);
@@ -228,6 +237,15 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
     if (!flag) flag = LGNSetGenAlpha(mem, 0.8);
     if (!flag) flag = LGNSetStepSize(mem, 2e-3);
     if (!flag) flag = LGNSStolerances(mem, 1e-12, 1e-12);
+  } else if (kind == RUN_INDEX2_CALCIC) {
+    /* (f) index 2, exact kinematics, full Newton, an inconsistent start
+     * projected by LGNCalcIC */
+    if (!flag) flag = LGNSetGenAlpha(mem, 0.9);
+    if (!flag) flag = LGNSetConstraintIndex(mem, LGN_CONSTR_INDEX2);
+    if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
+    if (!flag) flag = LGNSetStepSize(mem, 2e-3);
+    if (!flag) flag = LGNSStolerances(mem, 1e-12, 1e-12);
+    if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_QV);
   } else {
     if (!flag) flag = LGNSetBDF(mem, 5);
     if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
@@ -252,8 +270,9 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
     sunrealtype pmax = 0.0;
     LGNJoints_Residual(c->joints, t, q, phi);
     for (k = 0; k < m; k++) pmax = SUNMAX(pmax, fabs(N_VGetArrayPointer(phi)[k]));
-    /* the Newton tolerance of the run: 1e-12 (a), 1e-6 (b) */
-    CHECK(pmax < (kind == RUN_GA_FIXED ? 1e-10 : 1e-6),
+    /* the Newton tolerance of the run: 1e-12 (a), 1e-6 (b); index 2 (f):
+     * the drift of Phi, O(h^2) per unit time */
+    CHECK(pmax < (kind == RUN_GA_FIXED ? 1e-10 : kind == RUN_BDF_ADAPTIVE ? 1e-6 : 1e-3),
           "|Phi| = %g at t = %g (rank's joints, boundary ones included)", pmax, t);
     N_VDestroy(phi);
   }
@@ -339,6 +358,18 @@ int main(int argc, char **argv)
     CHECK(d < 1e-5, "(b) end state differs from the one-process BDF run by %g", d);
     printf("[rank %d] (b) BDF adaptive: %ld steps (one process %ld), diff %.3g\n", rank, par.nst,
            ref.nst, d);
+  }
+
+  /* (f) index 2, exact kinematics, LGNCalcIC from an inconsistent start */
+  Run(&whole, RUN_INDEX2_CALCIC, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
+  Run(&part, RUN_INDEX2_CALCIC, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+  CHECK(ref.flag == 0 && par.flag == 0, "(f) flags %d (one process), %d (ranks)", ref.flag,
+        par.flag);
+  for (j = 0; j < NOUT && par.flag == 0; j++) {
+    const sunrealtype d = MaxDiffOwned(&part, &par, &ref, j);
+    CHECK(d < 1e-9, "(f) t = %.1f: owned bodies differ from the one-process run by %g",
+          0.1 * (j + 1), d);
+    if (j == NOUT - 1) printf("[rank %d] (f) index 2 + LGNCalcIC: max diff %.3g\n", rank, d);
   }
 
   /* (d) the force fails on the last rank after t = 0.05 */
