@@ -63,6 +63,21 @@ static int PrecType(SUNLinearSolver LS)
   }
 }
 
+/* The local length of the vectors LS was made for (a clone of its template
+ * y, in the contents SUNDIALS publishes for its own solvers; -1: unknown). */
+static sunindextype TemplateLength(SUNLinearSolver LS)
+{
+  N_Vector x = NULL;
+  switch (SUNLinSolGetID(LS)) {
+  case SUNLINEARSOLVER_SPGMR: x = ((SUNLinearSolverContent_SPGMR)LS->content)->vtemp; break;
+  case SUNLINEARSOLVER_SPFGMR: x = ((SUNLinearSolverContent_SPFGMR)LS->content)->vtemp; break;
+  case SUNLINEARSOLVER_SPBCGS: x = ((SUNLinearSolverContent_SPBCGS)LS->content)->vtemp; break;
+  case SUNLINEARSOLVER_SPTFQMR: x = ((SUNLinearSolverContent_SPTFQMR)LS->content)->vtemp1; break;
+  default: break;
+  }
+  return x != NULL ? lgnLocalLength(x) : -1;
+}
+
 /* LGNSetLinearSolver with a matrix-free solver (A = NULL, checked there). */
 int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS)
 {
@@ -162,7 +177,19 @@ static int MakeBlockPreconditioner(LGNMem mem)
 int lgnKrylovCheck(LGNMem mem)
 {
   const sunbooleantype prec = HasPreconditioner(mem);
-  int flag = lgnAllocKrylov(mem), ret;
+  const sunindextype len = TemplateLength(mem->LS), n = mem->nv_own + mem->m;
+  int flag, ret;
+  if (len >= 0 && len != n) {
+    /* its vectors would be read and written past their ends */
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The Krylov solver was made for vectors of local length %lld, but this "
+              "rank's unknowns are %lld (%s%lld velocities + m = %lld constraints): "
+              "make it with a template of that length.",
+              (long long)len, (long long)n, mem->halo != NULL ? "the owned bodies' " : "",
+              (long long)mem->nv_own, (long long)mem->m);
+    return LGN_LS_MISMATCH;
+  }
+  flag = lgnAllocKrylov(mem);
   if (flag != LGN_SUCCESS) return flag;
   if (prec && (mem->kry_pretype == SUN_PREC_NONE ||
                (mem->kry_pretype == SUN_PREC_RIGHT &&

@@ -27,6 +27,8 @@
  *  (d) a force callback failing on the last rank at t > 0.05: LGN_FORCE_FAIL
  *      on every rank at the same t, no hang;
  *  (e) misuse: a halo with a ghost no rank owns is refused on every rank;
+ *      a dense solver of the rank's matrix, and a Krylov template whose
+ *      length counts the ghosts' unknowns, give LGN_LS_MISMATCH everywhere;
  *  (f) index 2, exact kinematics, full Newton, from a start off the
  *      constraints projected by LGNCalcIC (q and v): the trajectory equals
  *      the one-process run's to 1e-9.
@@ -180,6 +182,10 @@ typedef struct {
 } Result;
 
 enum { RUN_GA_FIXED = 0, RUN_BDF_ADAPTIVE = 1, RUN_INDEX2_CALCIC = 2 };
+/* (e) misuse of the linear solver with a halo: none, a dense solver of the
+ * rank's matrix, a Krylov template with the ghosts' unknowns too */
+enum { SOLVER_RIGHT = 0, SOLVER_DENSE = 1, SOLVER_WRONG_LENGTH = 2 };
+static int misuse = SOLVER_RIGHT;
 
 /* One integration of the chain c (with ghosts: across ranks on comm). */
 static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNContext ctx,
@@ -219,9 +225,15 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
   if (across && halo == NULL) flag = -1;
   if (!flag && across && kind != RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
-  if (across) {
+  if (across && misuse == SOLVER_DENSE) {
+    y  = N_VNew_Serial(nv + m, ctx);
+    A  = SUNDenseMatrix(nv + m, nv + m, ctx);
+    LS = LGNLinSol_Dense(y, A, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  } else if (across) {
     if (!flag && kind == RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
-    yloc = N_VNew_Serial(6 * c->nown + m, ctx); /* the owned unknowns */
+    /* the owned unknowns (with the ghosts': wrong) */
+    yloc = N_VNew_Serial(6 * (misuse == SOLVER_WRONG_LENGTH ? nb : c->nown) + m, ctx);
     y    = N_VMake_MPIPlusX(comm, yloc, ctx);
     LS   = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 50, ctx);
     if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
@@ -272,7 +284,8 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
     for (k = 0; k < m; k++) pmax = SUNMAX(pmax, fabs(N_VGetArrayPointer(phi)[k]));
     /* the Newton tolerance of the run: 1e-12 (a), 1e-6 (b); index 2 (f):
      * the drift of Phi, O(h^2) per unit time */
-    CHECK(pmax < (kind == RUN_GA_FIXED ? 1e-10 : kind == RUN_BDF_ADAPTIVE ? 1e-6 : 1e-3),
+    CHECK(misuse != SOLVER_RIGHT ||
+              pmax < (kind == RUN_GA_FIXED ? 1e-10 : kind == RUN_BDF_ADAPTIVE ? 1e-6 : 1e-3),
           "|Phi| = %g at t = %g (rank's joints, boundary ones included)", pmax, t);
     N_VDestroy(phi);
   }
@@ -400,6 +413,19 @@ int main(int argc, char **argv)
     else
       CHECK(h != NULL, "(e) a halo without ghosts was refused");
     LGNHalo_Destroy(&h);
+  }
+
+  /* (e) a solver of one rank's matrix, and a Krylov template that counts
+   * the ghosts: LGN_LS_MISMATCH on every rank (with ghosts somewhere) */
+  if (nranks > 1) {
+    misuse = SOLVER_DENSE;
+    Run(&part, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+    CHECK(par.flag == LGN_LS_MISMATCH, "(e) dense solver with a halo: flag %d", par.flag);
+    misuse = SOLVER_WRONG_LENGTH;
+    Run(&part, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+    CHECK(par.flag == LGN_LS_MISMATCH, "(e) Krylov template of the wrong length: flag %d",
+          par.flag);
+    misuse = SOLVER_RIGHT;
   }
 
   MPI_Allreduce(&failures, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
