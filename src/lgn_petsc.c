@@ -569,9 +569,12 @@ static PetscInt NullColumnGathered(const PetscLUContent *c)
   long long lcol;
   IS all = NULL;
   Mat *sub = NULL;
+  const int silenced = PetscPushErrorHandler(PetscReturnErrorHandler, NULL) == 0;
+  int ok;
   InitSeqContent(&seq, c);
-  if (PetscPushErrorHandler(PetscReturnErrorHandler, NULL) != 0) return -1;
-  if (ISCreateStride(PETSC_COMM_SELF, c->rank == 0 ? (PetscInt)c->N : 0, 0, 1, &all) == 0 &&
+  /* the index set is local: agreed on before the collective gather */
+  ok = ISCreateStride(PETSC_COMM_SELF, c->rank == 0 ? (PetscInt)c->N : 0, 0, 1, &all) == 0;
+  if (AgreeFlag(c->comm, ok ? SUNLS_SUCCESS : SUNLS_MEM_FAIL, NULL) == SUNLS_SUCCESS &&
       MatCreateSubMatrices(c->P, 1, &all, &all, MAT_INITIAL_MATRIX, &sub) == 0 &&
       c->rank == 0) {
     seq.P = sub[0]; /* borrowed: MatDestroySubMatrices frees it */
@@ -582,7 +585,7 @@ static PetscInt NullColumnGathered(const PetscLUContent *c)
   (void)ISDestroy(&all);
   (void)VecDestroy(&seq.pb);
   (void)VecDestroy(&seq.px);
-  (void)PetscPopErrorHandler();
+  if (silenced) (void)PetscPopErrorHandler();
   lcol = (long long)col;
   if (MPI_Bcast(&lcol, 1, MPI_LONG_LONG, 0, c->comm) != MPI_SUCCESS) return -1;
   return (PetscInt)lcol;
