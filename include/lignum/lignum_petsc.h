@@ -86,11 +86,15 @@ extern "C" {
  *          is not initialised, PETSc could not be initialised or was built
  *          without MUMPS, or memory was refused.
  *  Notes: SUNLinSolSetup returns SUNLS_SUCCESS, SUNLS_LUFACT_FAIL (singular,
- *  see above), SUNLS_ILL_INPUT for a matrix that is not sparse N x N,
- *  SUNLS_MEM_NULL, or SUNLS_PACKAGE_FAIL_UNREC when a PETSc call fails
+ *  see above), SUNLS_ILL_INPUT for a matrix that is not sparse N x N or
+ *  whose index arrays are invalid (reported), SUNLS_MEM_NULL,
+ *  SUNLS_MEM_FAIL, or SUNLS_PACKAGE_FAIL_UNREC when a PETSc call fails
  *  (PETSc prints its own traceback). SUNLinSolSolve returns
  *  SUNLS_ILL_INPUT (and leaves x alone) before a successful setup or after
- *  a failed one, or for vectors of another length; x may be b. */
+ *  a failed one, or for vectors of another length; x may be b. A failure
+ *  found on some ranks only (a bad matrix or vector, memory) is agreed on
+ *  with one MPI_Allreduce and returned on every rank, so that no rank
+ *  waits for the others. */
 LGN_EXPORT SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm comm,
                                            SUNContext sunctx);
 
