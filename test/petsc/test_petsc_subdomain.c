@@ -449,6 +449,30 @@ static void SplitStats(const Problem *pb, int m, long long st[3])
   MPI_Allreduce(mine, st, 3, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
 }
 
+/* Is global column col (0-based) where a null vector z of the singular
+ * D (rows 0 and N-1 equal: a one-dimensional null space) is largest?
+ * z from D with row N-1 replaced by e_col^T: D z = 0 except that row, and
+ * z_col = 1 (a regular system only if z_col can be nonzero). Returns
+ * |z_col| / max |z| (0 when that system is singular). */
+static double NullColumnShare(const double *D, sunindextype N, sunindextype col, SUNContext ctx)
+{
+  double *Dm = (double *)malloc((size_t)(N * N) * sizeof *Dm);
+  double *e = (double *)calloc((size_t)N, sizeof *e), *z = (double *)malloc((size_t)N * sizeof *z);
+  double zmax = 0.0, share = 0.0;
+  sunindextype k;
+  memcpy(Dm, D, (size_t)(N * N) * sizeof *Dm);
+  for (k = 0; k < N; k++) Dm[(N - 1) + k * N] = k == col ? 1.0 : 0.0;
+  e[N - 1] = 1.0;
+  if (col >= 0 && col < N && DenseSolve(Dm, N, e, z, ctx) == 0) {
+    for (k = 0; k < N; k++) zmax = fmax(zmax, fabs(z[k]));
+    share = zmax > 0.0 ? fabs(z[col]) / zmax : 0.0;
+  }
+  free(Dm);
+  free(e);
+  free(z);
+  return share;
+}
+
 static const char *Name(int fmt, int vt)
 {
   static const char *names[4] = {"CSR Parallel", "CSR MPIPlusX", "CSC Parallel", "CSC MPIPlusX"};
@@ -526,6 +550,12 @@ static void RandomSystems(SUNContext ctx)
           CHECK(col >= 1 && col <= N && SameOnAll(col),
                 "singular: last flag %lld, a global column, the same on every rank",
                 (long long)col);
+          {
+            const double share = NullColumnShare(pb.D[3], N, col - 1, ctx);
+            CHECK(share > 0.999,
+                  "singular: the null vector's largest entry is at global column %lld "
+                  "(|z_col|/max|z| = %.3f)", (long long)(col - 1), share);
+          }
           if (rank == 0 && s == 0 && kind == 0 && fmt == 0 && !empty)
             printf("(c) singular global matrix: SUNLS_LUFACT_FAIL, last flag %lld\n",
                    (long long)col);
