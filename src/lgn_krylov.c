@@ -178,7 +178,7 @@ int lgnKrylovCheck(LGNMem mem)
 {
   const sunbooleantype prec = HasPreconditioner(mem);
   const sunindextype len = TemplateLength(mem->LS), n = mem->nv_own + mem->m;
-  int flag, ret;
+  int flag = LGN_SUCCESS, ret;
   if (len >= 0 && len != n) {
     /* its vectors would be read and written past their ends */
     LGN_ERROR(mem, LGN_LS_MISMATCH,
@@ -187,8 +187,11 @@ int lgnKrylovCheck(LGNMem mem)
               "make it with a template of that length.",
               (long long)len, (long long)n, mem->halo != NULL ? "the owned bodies' " : "",
               (long long)mem->nv_own, (long long)mem->m);
-    return LGN_LS_MISMATCH;
+    flag = LGN_LS_MISMATCH;
   }
+  /* agreed before lgnAllocKrylov, which is collective */
+  flag = lgnAgree(mem, flag);
+  if (flag != LGN_SUCCESS) return flag;
   flag = lgnAllocKrylov(mem);
   if (flag != LGN_SUCCESS) return flag;
   if (prec && (mem->kry_pretype == SUN_PREC_NONE ||

@@ -1062,33 +1062,49 @@ static int OwnedRange(MPI_Comm comm, sunindextype n_own, sunindextype *lo, sunin
   return 0;
 }
 
-/* global_index: the owned prefix lo, lo+1, ..., then ghosts in [0, N).
- * This rank's entries; 1 if fine, else reported and 0. */
+/* global_index: each owned index lo ... lo + n_own - 1 once (anywhere),
+ * the others (ghosts) in [0, N) outside the owned range. This rank's
+ * entries; 1 if fine, else reported and 0. */
 static int GlobalIndexOk(const sunindextype *gi, sunindextype n_own, sunindextype n_loc,
                          sunindextype lo, sunindextype N, const char *func)
 {
-  sunindextype k;
+  sunindextype k, seen = 0;
+  char *mark;
   if (N < 1 || N > (sunindextype)PETSC_MAX_INT) {
     Report(func, "The ranks own %lld unknowns in all (y's local lengths): 1 to %lld needed.",
            (long long)N, (long long)PETSC_MAX_INT);
     return 0;
   }
-  for (k = 0; k < n_own; k++)
-    if (gi[k] != lo + k) {
-      Report(func,
-             "global_index[%lld] = %lld, but this rank owns the global unknowns %lld .. %lld "
-             "(the owned lengths of the ranks before it, summed): the first n_own = %lld "
-             "entries of global_index must be them in order.",
-             (long long)k, (long long)gi[k], (long long)lo, (long long)(lo + n_own - 1),
-             (long long)n_own);
-      return 0;
-    }
-  for (k = n_own; k < n_loc; k++)
+  mark = (char *)calloc((size_t)(n_own > 0 ? n_own : 1), 1);
+  if (mark == NULL) {
+    Report(func, "A memory request failed.");
+    return 0;
+  }
+  for (k = 0; k < n_loc; k++) {
     if (gi[k] < 0 || gi[k] >= N) {
-      Report(func, "global_index[%lld] = %lld (a ghost) is outside [0, %lld).", (long long)k,
+      Report(func, "global_index[%lld] = %lld is outside [0, %lld).", (long long)k,
              (long long)gi[k], (long long)N);
-      return 0;
+      break;
     }
+    if (gi[k] >= lo && gi[k] < lo + n_own) {
+      if (mark[gi[k] - lo]) {
+        Report(func, "global_index[%lld] = %lld: an owned index given twice.", (long long)k,
+               (long long)gi[k]);
+        break;
+      }
+      mark[gi[k] - lo] = 1;
+      seen++;
+    }
+  }
+  free(mark);
+  if (k < n_loc) return 0;
+  if (seen != n_own) {
+    Report(func,
+           "global_index holds %lld of this rank's %lld owned unknowns %lld .. %lld (the "
+           "owned lengths of the ranks before it, summed): each must appear once.",
+           (long long)seen, (long long)n_own, (long long)lo, (long long)(lo + n_own - 1));
+    return 0;
+  }
   return 1;
 }
 

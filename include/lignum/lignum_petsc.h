@@ -100,8 +100,8 @@ LGN_EXPORT SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm com
 
 /** Create a direct linear solver over PETSc for a matrix assembled from
  *  subdomain matrices: each rank holds a SUNSparseMatrix A_r over its
- *  local unknowns, its owned unknowns followed by ghost unknowns (owned by
- *  other ranks), and the global matrix is the sum over the ranks of
+ *  local unknowns, its owned unknowns and ghost unknowns (owned by other
+ *  ranks), and the global matrix is the sum over the ranks of
  *  P_r^T A_r P_r, where P_r maps local index k to the global index
  *  global_index[k] (additive, finite-element assembly: an entry in a
  *  ghost row is added to the owner's row, entries that meet at one global
@@ -149,14 +149,17 @@ LGN_EXPORT SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm com
  *                communicator is the solver's
  *  @param A      this rank's subdomain SUNSparseMatrix, CSR or CSC, square
  *                n_loc x n_loc with n_loc >= n_own and n_loc >= 1; its
- *                rows and columns are the local unknowns (owned first,
- *                then ghosts); its pattern may change between setups
+ *                rows and columns are the local unknowns (owned and
+ *                ghosts, in any order); its pattern may change between
+ *                setups
  *  @param global_index  array of n_loc global indices, the global unknown
- *                of each local row and column: entries 0 .. n_own-1 must
- *                be lo_r, lo_r + 1, ..., lo_r + n_own - 1 in order (checked
- *                collectively); the others (ghosts) any indices in
- *                [0, N), normally owned by other ranks. Copied: it may be
- *                freed after this call
+ *                of each local row and column: each owned index lo_r,
+ *                ..., lo_r + n_own - 1 exactly once, anywhere (checked
+ *                collectively; Lignum's subdomain matrices hold the
+ *                ghosts' velocities between the owned velocities and the
+ *                multipliers, LGNGetGlobalIndices), the others (ghosts)
+ *                indices in [0, N) outside that range, owned by other
+ *                ranks. Copied: it may be freed after this call
  *  @param sunctx SUNDIALS context
  *  @return the solver (free it with SUNLinSolFree, collectively), or NULL
  *          on every rank, with a message naming the argument (on stderr,
@@ -165,8 +168,8 @@ LGN_EXPORT SUNLinearSolver LGNLinSol_PETSc(N_Vector y, SUNMatrix A, MPI_Comm com
  *          not an N_Vector_Parallel or MPIPlusX (a serial vector is
  *          refused: use LGNLinSol_PETSc), A is not a square
  *          SUNSparseMatrix of at least max(n_own, 1) rows, global_index
- *          does not start with this rank's owned indices or has a ghost
- *          outside [0, N), N is 0 or beyond PETSc's index range, MPI is
+ *          misses one of this rank's owned indices, holds one twice, or
+ *          has an index outside [0, N), N is 0 or beyond PETSc's index range, MPI is
  *          not initialised, PETSc could not be initialised, or memory was
  *          refused.
  *  Notes: SUNLinSolSetup(S, A) takes the rank's subdomain matrix (of the

@@ -29,6 +29,8 @@
  *  (e) misuse: a halo with a ghost no rank owns is refused on every rank;
  *      a dense solver of the rank's matrix, and a Krylov template whose
  *      length counts the ghosts' unknowns, give LGN_LS_MISMATCH everywhere;
+ *  (g) with PETSc: MUMPS on the sum of the ranks' subdomain matrices
+ *      (LGNLinSol_PETScSubdomain, LGNGetGlobalIndices): (a) to 1e-10;
  *  (f) index 2, exact kinematics, full Newton, from a start off the
  *      constraints projected by LGNCalcIC (q and v): the trajectory equals
  *      the one-process run's to 1e-9.
@@ -44,9 +46,14 @@
 
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
+#include <lignum/lignum_config.h>
 #include <lignum/lignum_halo.h>
 #include <lignum/lignum_joints.h>
 #include <lignum/lignum_ls.h>
+#if defined(LGN_HAVE_PETSC)
+#include <lignum/lignum_petsc.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#endif
 #include <nvector/nvector_mpiplusx.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
@@ -184,7 +191,7 @@ typedef struct {
 enum { RUN_GA_FIXED = 0, RUN_BDF_ADAPTIVE = 1, RUN_INDEX2_CALCIC = 2 };
 /* (e) misuse of the linear solver with a halo: none, a dense solver of the
  * rank's matrix, a Krylov template with the ghosts' unknowns too */
-enum { SOLVER_RIGHT = 0, SOLVER_DENSE = 1, SOLVER_WRONG_LENGTH = 2 };
+enum { SOLVER_RIGHT = 0, SOLVER_DENSE = 1, SOLVER_WRONG_LENGTH = 2, SOLVER_MUMPS = 3 };
 static int misuse = SOLVER_RIGHT;
 
 /* One integration of the chain c (with ghosts: across ranks on comm). */
@@ -225,6 +232,22 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
   if (across && halo == NULL) flag = -1;
   if (!flag && across && kind != RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
+#if defined(LGN_HAVE_PETSC)
+  if (across && misuse == SOLVER_MUMPS) { /* (g) the sum of the ranks' matrices */
+    sunindextype n = 0, *idx = NULL;
+    if (!flag) flag = LGNSetHalo(mem, halo);
+    if (!flag) flag = LGNGetSubdomainSize(mem, &n);
+    idx  = (sunindextype *)malloc((size_t)SUNMAX(n, 1) * sizeof(sunindextype));
+    if (!flag) flag = LGNGetGlobalIndices(mem, idx);
+    yloc = N_VNew_Serial(6 * c->nown + m, ctx);
+    y    = N_VMake_MPIPlusX(comm, yloc, ctx);
+    A    = SUNSparseMatrix(n, n, 1, CSC_MAT, ctx);
+    LS   = flag ? NULL : LGNLinSol_PETScSubdomain(y, A, idx, ctx);
+    if (!flag && LS == NULL) flag = -1;
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+    free(idx);
+  } else
+#endif
   if (across && misuse == SOLVER_DENSE) {
     y  = N_VNew_Serial(nv + m, ctx);
     A  = SUNDenseMatrix(nv + m, nv + m, ctx);
@@ -414,6 +437,21 @@ int main(int argc, char **argv)
       CHECK(h != NULL, "(e) a halo without ghosts was refused");
     LGNHalo_Destroy(&h);
   }
+
+#if defined(LGN_HAVE_PETSC)
+  /* (g) MUMPS on the sum of the ranks' subdomain matrices */
+  misuse = SOLVER_MUMPS;
+  Run(&whole, RUN_GA_FIXED, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
+  Run(&part, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+  misuse = SOLVER_RIGHT;
+  CHECK(par.flag == 0, "(g) MUMPS across the ranks: flag %d", par.flag);
+  for (j = 0; j < NOUT && par.flag == 0; j++) {
+    const sunrealtype d = MaxDiffOwned(&part, &par, &ref, j);
+    CHECK(d < 1e-10, "(g) t = %.1f: owned bodies differ from the one-process run by %g",
+          0.1 * (j + 1), d);
+    if (j == NOUT - 1) printf("[rank %d] (g) MUMPS: max diff %.3g\n", rank, d);
+  }
+#endif
 
   /* (e) a solver of one rank's matrix, and a Krylov template that counts
    * the ghosts: LGN_LS_MISMATCH on every rank (with ghosts somewhere) */

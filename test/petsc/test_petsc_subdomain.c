@@ -24,7 +24,8 @@
  *      another rank on several ranks): SUNLS_LUFACT_FAIL on every rank with
  *      the same valid global column, no solve after it, then the same
  *      pattern with a regular matrix solves right again;
- *  (d) misuse: a wrong owned prefix or a ghost out of range on one rank
+ *  (d) misuse: an owned index twice (another missing) or a ghost out of
+ *      range on one rank
  *      only, A = NULL on one rank only (NULL on every rank, no hang), NULL
  *      arguments, a serial y; a bad matrix or vector on one rank only in
  *      setup or solve (the same flag on every rank, and the solver works
@@ -713,14 +714,18 @@ static void Misuse(SUNContext ctx)
         "A = NULL on the last rank only: NULL on every rank");
   CHECK(LGNLinSol_PETScSubdomain(x, rank == last ? Ad : A, pb.S.gidx, ctx) == NULL,
         "a dense A on the last rank only");
-  /* the owned prefix wrong on the last rank only (two indices swapped) */
+  /* an owned index twice (and so another missing) on the last rank only */
   memcpy(gi, pb.S.gidx, (size_t)pb.S.n_loc * sizeof *gi);
-  if (rank == last && pb.S.n_own >= 2) {
-    gi[0] = pb.S.gidx[1];
-    gi[1] = pb.S.gidx[0];
+  if (rank == last && pb.S.n_own >= 2) gi[1] = pb.S.gidx[0];
+  {
+    /* collective: every rank calls; refused if the last rank could spoil */
+    int spoilt = rank == last && pb.S.n_own >= 2;
+    SUNLinearSolver bad;
+    MPI_Allreduce(MPI_IN_PLACE, &spoilt, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    bad = LGNLinSol_PETScSubdomain(x, A, gi, ctx);
+    CHECK(!spoilt || bad == NULL, "an owned index twice on the last rank: NULL on every rank");
+    if (bad != NULL) SUNLinSolFree(bad);
   }
-  CHECK(LGNLinSol_PETScSubdomain(x, A, gi, ctx) == NULL,
-        "a wrong owned prefix on the last rank: NULL on every rank");
   /* a ghost out of range on rank 0 only (if it has one) */
   memcpy(gi, pb.S.gidx, (size_t)pb.S.n_loc * sizeof *gi);
   if (rank == 0) gi[pb.S.n_loc - 1] = pb.S.n_loc > pb.S.n_own ? pb.N : -1;
