@@ -230,7 +230,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   const int nh = mem->bdf_nhist;
   const sunrealtype t1 = mem->tn + h;
   const sunrealtype *X = mem->bdf_x, *V = mem->bdf_v;
-  const sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING && nh > 1;
+  sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING && nh > 1;
   sunrealtype tau[LGN_BDF_MAXHIST + 1], d[LGN_BDF_MAXHIST + 1], dp[LGN_BDF_MAXHIST + 1];
   sunrealtype *xp = mem->bdf_xpred, *vp = mem->bdf_vpred;
   sunbooleantype used_old = SUNFALSE;
@@ -263,6 +263,12 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     for (j = 0; j <= kp; j++) mem->bdf_vpgain += fabs(d[j]) * mem->bdf_vgain[j];
   }
 
+  /* the fixed leading coefficient extrapolates P' from the predictor's
+   * nodes: with spacings more than a factor 4 apart (a switch from error
+   * control to a fixed step 40 times longer was seen to diverge at order 4)
+   * the step takes the variable coefficients */
+  if (flc && SpacingOrder(mem, h, kp + 1) < kp + 1) flc = SUNFALSE;
+  mem->bdf_step_flc = flc;
   if (flc) {
     /* fixed leading coefficient (IDA): xdot = P'(t_{n+1}) + c0 (x - P(t_{n+1}))
      * with c0 = alpha_s / h, so r_x = sum_j (dp_j - c0 d_j) x_{n-j} (the same
@@ -361,7 +367,7 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
   sunindextype i;
   int flag;
   mem->bdf_sigck = SUN_RCONST(1.0);
-  if (mem->bdf_nhist > 1 && mem->bdf_form == LGN_BDF_FIXED_LEADING) {
+  if (mem->bdf_nhist > 1 && mem->bdf_step_flc) {
     /* IDA's error test (IDASetCoeffs, IDATestError): ck |y - y_pred| with
      *   ck = max(|alpha_k + alpha_0 - alpha_s|, alpha_k),
      *   alpha_j = h / psi_{j+1}, alpha_0 = sum_{j<=k} h / psi_j,
@@ -671,6 +677,13 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
      * into its coefficients */
     landing  = mem->tstop_set && mem->tn + h * BDF_LAND_STRETCH >= mem->tstop;
     if (landing) h = mem->tstop - mem->tn;
+    /* and one that would leave less than a step (up to 1.1 h) takes half
+     * the rest, so that the landing step is not short: a landing step
+     * below a quarter of the one before forces order 1 (SpacingOrder),
+     * whose error test then failed and cut h by 1e-3 (tol 1e-13 on the
+     * heavy top) */
+    else if (mem->tstop_set && mem->tn + SUN_RCONST(2.0) * h * BDF_LAND_STRETCH > mem->tstop)
+      h = SUN_RCONST(0.5) * (mem->tstop - mem->tn);
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     /* order k needs k + 1 points for its estimate (or the Taylor start) */

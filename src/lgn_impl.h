@@ -116,6 +116,7 @@ typedef struct LGNMemRec {
   int bdf_ns;               /* FLC: consecutive steps at this h and order (IDA's ns) */
   sunrealtype bdf_hused;    /* FLC: the last step's size                   */
   sunrealtype bdf_sigck;    /* FLC: sigma_k / ck of the attempt (IDA)      */
+  sunbooleantype bdf_step_flc; /* the attempt used the fixed leading coefficient */
   sunbooleantype lsetup_recoverable; /* a singular setup is retried with a
                                         smaller step: no message (BDF)     */
   int bdf_order;            /* the order of the next step                  */

@@ -183,6 +183,11 @@ static double ComError(const Run *r, const LGNRefHeavyTop *ref)
   return e;
 }
 
+static const char *FormName(int form)
+{
+  return form == LGN_BDF_FIXED_LEADING ? "fixed leading coefficient" : "variable coefficients";
+}
+
 /* Slope of log(y) against log(x). */
 static double Fit(const double *x, const double *y, int n)
 {
@@ -195,9 +200,11 @@ static double Fit(const double *x, const double *y, int n)
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-/* (a) fixed steps of order k, history started under error control. */
-static double FixedStepError(SUNContext ctx, int k, double h, double t_end,
-                             const LGNRefHeavyTop *ref)
+/* (a) fixed steps of order k, history started under error control (in the
+ * form `form`); ratio 1: the constant step h; ratio r != 1: the steps
+ * alternate h, r h, h, r h ... (the last one shortened to land on t_end). */
+static double FixedStepError(SUNContext ctx, int form, int k, double h, double ratio,
+                             double t_end, const LGNRefHeavyTop *ref)
 {
   const double t_start = 0.02;
   Run r;
@@ -205,6 +212,7 @@ static double FixedStepError(SUNContext ctx, int k, double h, double t_end,
   double e = HUGE_VAL;
   int flag = RunCreate(&r, ctx);
   if (!flag) flag = LGNSetBDF(r.mem, k);
+  if (!flag) flag = LGNSetBDFForm(r.mem, form);
   if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(r.mem, 1e-13, 1e-13);
   if (!flag) flag = LGNSetStopTime(r.mem, t_start);
@@ -212,7 +220,16 @@ static double FixedStepError(SUNContext ctx, int k, double h, double t_end,
   if (flag == LGN_TSTOP_RETURN) flag = LGN_SUCCESS;
   if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_FIXED);
   if (!flag) flag = LGNSetStepSize(r.mem, h);
-  if (!flag) flag = LGNSolve(r.mem, t_end, &t, r.q, r.v, LGN_NORMAL);
+  if (!flag && ratio == 1.0) flag = LGNSolve(r.mem, t_end, &t, r.q, r.v, LGN_NORMAL);
+  if (!flag && ratio != 1.0) {
+    long int n;
+    for (n = 0; !flag && t < t_end - 1e-12; n++) {
+      const double hn = fmin(n % 2 == 0 ? h : ratio * h, t_end - t);
+      flag = LGNSetStepSize(r.mem, hn);
+      if (!flag) flag = LGNSolve(r.mem, t_end + 1.0, &t, r.q, r.v, LGN_ONE_STEP);
+    }
+    if (!flag && fabs(t - t_end) > 1e-12) flag = -99;
+  }
   if (!flag) e = ComError(&r, ref);
   else printf("order %d, h %g: flag %d\n", k, h, flag);
   RunFree(&r);
@@ -221,14 +238,15 @@ static double FixedStepError(SUNContext ctx, int k, double h, double t_end,
 
 /* (b) one error-controlled run to t = 1 (maxord 0: generalized-alpha,
  * exact kinematics): error, steps, steps per order. */
-static double AdaptiveRun(SUNContext ctx, int maxord, int newton, double tol,
-                          const LGNRefHeavyTop *ref, long int *nst, long int nord[6])
+static double AdaptiveRunForm(SUNContext ctx, int form, int maxord, int newton, double tol,
+                              const LGNRefHeavyTop *ref, long int *nst, long int nord[6])
 {
   Run r;
   sunrealtype t;
   double e = HUGE_VAL;
   int flag = RunCreate(&r, ctx), i;
   if (!flag) flag = maxord > 0 ? LGNSetBDF(r.mem, maxord) : LGNSetGenAlpha(r.mem, 0.9);
+  if (!flag && maxord > 0) flag = LGNSetBDFForm(r.mem, form);
   if (!flag && maxord == 0) flag = LGNSetKinematics(r.mem, LGN_KINEMATICS_EXACT);
   if (!flag) flag = LGNSetNewtonMode(r.mem, newton);
   if (!flag) flag = LGNSetStepControl(r.mem, LGN_STEP_ADAPTIVE);
@@ -243,6 +261,12 @@ static double AdaptiveRun(SUNContext ctx, int maxord, int newton, double tol,
   for (i = 0; nord != NULL && maxord == 0 && i < 6; i++) CHECK(nord[i] == 0, "no BDF orders");
   RunFree(&r);
   return e;
+}
+
+static double AdaptiveRun(SUNContext ctx, int maxord, int newton, double tol,
+                          const LGNRefHeavyTop *ref, long int *nst, long int nord[6])
+{
+  return AdaptiveRunForm(ctx, LGN_BDF_VARIABLE_COEFF, maxord, newton, tol, ref, nst, nord);
 }
 
 /* (d) x'' = -w^2 x on R^1, BDF of fixed step h and order k (ramping 1, 2,
@@ -460,26 +484,60 @@ int main(void)
   SUNContext ctx;
   LGNRefHeavyTop ref03, ref1;
   const double t03 = 0.3, t1 = 1.0;
-  int k, i;
+  const int forms[2] = {LGN_BDF_VARIABLE_COEFF, LGN_BDF_FIXED_LEADING};
+  int k, i, f;
 
   SUNContext_Create(NULL, &ctx);
   CHECK(lgnref_heavy_top(&t03, 1, &ref03, LGNREF_FEHLBERG_8) == 0, "reference");
   CHECK(lgnref_heavy_top(&t1, 1, &ref1, LGNREF_FEHLBERG_8) == 0, "reference");
 
   /* (a) orders of the fixed-step formulas: the fit over the four smallest
-   * steps (the largest is outside the asymptotic range for order 1) */
-  printf("(a) fixed steps: |x - x_ref| at t = 0.3\n");
-  for (k = 1; k <= 5; k++) {
-    double hs[5] = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, err[5], p;
-    for (i = 0; i < 5; i++) err[i] = FixedStepError(ctx, k, hs[i], t03, &ref03);
-    p = Fit(hs + 1, err + 1, 4);
-    printf("  order %d: %.3e %.3e %.3e %.3e %.3e, fitted order %.3f\n", k, err[0], err[1],
-           err[2], err[3], err[4], p);
-    CHECK(fabs(p - k) <= 0.2, "fixed-step order %d: fitted %.3f", k, p);
+   * steps (the largest is outside the asymptotic range for order 1), both
+   * forms (they differ only where the history's spacing changes, at the
+   * switch to fixed steps) */
+  for (f = 0; f < 2; f++) {
+    printf("(a) fixed steps, %s: |x - x_ref| at t = 0.3\n", FormName(forms[f]));
+    for (k = 1; k <= 5; k++) {
+      double hs[5] = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4}, err[5], p;
+      for (i = 0; i < 5; i++) err[i] = FixedStepError(ctx, forms[f], k, hs[i], 1.0, t03, &ref03);
+      p = Fit(hs + 1, err + 1, 4);
+      printf("  order %d: %.3e %.3e %.3e %.3e %.3e, fitted order %.3f\n", k, err[0], err[1],
+             err[2], err[3], err[4], p);
+      CHECK(fabs(p - k) <= 0.2, "%s, fixed-step order %d: fitted %.3f", FormName(forms[f]), k,
+            p);
+    }
   }
 
-  /* (b) error control: maxord 4 and 5, full and modified Newton */
+  /* (l) non-uniform steps: h and 0.6 h alternating (step ratios 0.6 and
+   * 1.67 throughout), both forms keep order k (+- 0.2), and from order 2 on
+   * they are different formulas (errors at the smallest h differ by more
+   * than 1 %; at order 1 both are backward Euler) */
   {
+    double err_vc[5][4];
+    for (f = 0; f < 2; f++) {
+      printf("(l) alternating steps h, 0.6 h, %s: |x - x_ref| at t = 0.3\n",
+             FormName(forms[f]));
+      for (k = 1; k <= 5; k++) {
+        double hs[4] = {2e-3, 1e-3, 5e-4, 2.5e-4}, err[4], p;
+        for (i = 0; i < 4; i++) err[i] = FixedStepError(ctx, forms[f], k, hs[i], 0.6, t03, &ref03);
+        p = Fit(hs, err, 4);
+        printf("  order %d: %.3e %.3e %.3e %.3e, fitted order %.3f\n", k, err[0], err[1], err[2],
+               err[3], p);
+        CHECK(fabs(p - k) <= 0.2, "%s, alternating steps, order %d: fitted %.3f",
+              FormName(forms[f]), k, p);
+        if (f == 0)
+          for (i = 0; i < 4; i++) err_vc[k - 1][i] = err[i];
+        else if (k >= 2)
+          CHECK(fabs(err[3] - err_vc[k - 1][3]) > 0.01 * err_vc[k - 1][3],
+                "order %d: the forms differ on alternating steps (%.4e against %.4e)", k,
+                err[3], err_vc[k - 1][3]);
+      }
+    }
+  }
+
+  /* (b) error control: maxord 4 and 5, full and modified Newton, both
+   * forms */
+  for (f = 0; f < 2; f++) {
     const double tols[4] = {1e-6, 1e-7, 1e-8, 1e-9};
     int mode;
     for (mode = 0; mode < 4; mode++) {
@@ -488,10 +546,10 @@ int main(void)
       double err[4], p, err_nm;
       static double err4_tight[2]; /* maxord 4 at tol 1e-9, full / modified */
       long int nst[4], nst_nm, nord[6], used = 0;
-      printf("(b) error control, maxord %d, %s Newton\n", maxord,
+      printf("(b) error control, %s, maxord %d, %s Newton\n", FormName(forms[f]), maxord,
              newton == LGN_NEWTON_FULL ? "full" : "modified");
       for (i = 0; i < 4; i++) {
-        err[i] = AdaptiveRun(ctx, maxord, newton, tols[i], &ref1, &nst[i], nord);
+        err[i] = AdaptiveRunForm(ctx, forms[f], maxord, newton, tols[i], &ref1, &nst[i], nord);
         for (k = 1; k <= 5; k++) used |= nord[k] > 0 ? 1L << k : 0;
         printf("  tol %.0e: error %.3e, %5ld steps (orders 1-5: %ld %ld %ld %ld %ld)\n",
                tols[i], err[i], nst[i], nord[1], nord[2], nord[3], nord[4], nord[5]);
@@ -500,12 +558,12 @@ int main(void)
       printf("  error ~ tol^%.3f\n", p);
       CHECK(used == (maxord == 4 ? 0x1eL : 0x3eL), "every order 1 ... %d used (mask %lx)",
             maxord, used);
-      CHECK(p > 0.8 && p < 1.2, "maxord %d: tolerance proportionality: exponent %.3f", maxord,
-            p);
+      CHECK(p > 0.8 && p < 1.2, "%s, maxord %d: tolerance proportionality: exponent %.3f",
+            FormName(forms[f]), maxord, p);
       if (maxord == 5) /* order 5 is worth its name at tight tolerances */
         CHECK(err[3] <= 2.0 * err4_tight[mode % 2],
-              "maxord 5 at tol 1e-9: %.3e against maxord 4's %.3e", err[3],
-              err4_tight[mode % 2]);
+              "%s, maxord 5 at tol 1e-9: %.3e against maxord 4's %.3e", FormName(forms[f]),
+              err[3], err4_tight[mode % 2]);
       if (maxord == 4) {
         err4_tight[mode % 2] = err[3];
         /* against generalized-alpha (exact kinematics) at tol 1e-9: a
@@ -516,6 +574,35 @@ int main(void)
               "BDF4 %.2e in %ld steps against generalized-alpha %.2e in %ld", err[3], nst[3],
               err_nm, nst_nm);
       }
+    }
+  }
+
+  /* (n) half decades, fixed leading coefficient: the error at tol 3.16e-7,
+   * 3.16e-8, 3.16e-9 within a factor 3 of the geometric mean of the errors
+   * at its decade neighbours (maxord 4 and 5, modified Newton). With IDA's
+   * growth rule (keep h while the estimate allows less than 2 h) the step
+   * settled anywhere within a factor 2 and the errors of neighbouring
+   * tolerances were 3 to 8 times off (doc/theory.md section 8). */
+  {
+    int maxord;
+    for (maxord = 4; maxord <= 5; maxord++) {
+      double err[7], worst = 1.0;
+      long int nst;
+      printf("(n) half decades, fixed leading coefficient, maxord %d, modified Newton:\n  ",
+             maxord);
+      for (i = 0; i < 7; i++) {
+        const double tol = pow(10.0, -6.0 - 0.5 * i);
+        err[i] = AdaptiveRunForm(ctx, LGN_BDF_FIXED_LEADING, maxord, LGN_NEWTON_MODIFIED, tol,
+                                 &ref1, &nst, NULL);
+        printf("%.2e: %.3e  ", tol, err[i]);
+      }
+      for (i = 1; i < 7; i += 2) {
+        const double gm = sqrt(err[i - 1] * err[i + 1]);
+        worst = fmax(worst, fmax(err[i] / gm, gm / err[i]));
+      }
+      printf("\n  largest factor off the neighbours' geometric mean: %.2f\n", worst);
+      CHECK(worst <= 3.0, "maxord %d: half-decade error %.2f times off its neighbours", maxord,
+            worst);
     }
   }
 
