@@ -353,6 +353,100 @@ static double Textbook(SUNContext ctx, int k, double h, int nsteps)
   return diff;
 }
 
+/* (m) the fixed leading coefficient on R^1, written out in IDA's modified
+ * divided differences (Brenan, Campbell and Petzold, section 5.2): steps
+ * alternating h and 0.7 h, order kk = min(k, points) as Lignum's fixed-step
+ * start; with psi_i = t_{n+1} - t_{n-i}, phi*_i = [y_n .. y_{n-i}]
+ * prod_{j<i} psi_j and gamma_i = sum_{j<i} 1 / psi_j, the predictor
+ * y_p = sum_{i<=kp} phi*_i, y_p' = sum_{1<=i<=kp} gamma_i phi*_i through the
+ * last kp + 1 = min(kk + 1, points) points (at the first step the Taylor
+ * step, phi*_1 = h y'_0), and y' = y_p' + c (y - y_p), c = sum_{j<=kk} 1/j
+ * / h, for y = (x, v), x' = v, v' = -4 x, solved exactly (2 x 2). Returns
+ * max(|x_N - x_lignum|, |v_N - v_lignum|). */
+static double TextbookFLC(SUNContext ctx, int k, double h, int nsteps)
+{
+  double t[64], x[64], v[64], diff;
+  LGNGroup G = LGNGroup_Rn(1);
+  N_Vector q = N_VNew_Serial(1, ctx), vv = N_VNew_Serial(1, ctx), y = N_VNew_Serial(1, ctx);
+  SUNMatrix A = SUNDenseMatrix(1, 1, ctx);
+  SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
+  void *mem = LGNCreate(ctx);
+  sunrealtype tt;
+  int n, i, j, kk, kp, flag;
+  t[0] = 0.0;
+  x[0] = 1.0;
+  v[0] = 0.5;
+  for (n = 0; n < nsteps; n++) {
+    const double hn = n % 2 == 0 ? h : 0.7 * h;
+    double xp = 0, vp = 0, xdp = 0, vdp = 0, c = 0, dx[8], dv[8], psi[8];
+    kk = n + 1 < k ? n + 1 : k;
+    kp = kk < n ? kk : n;
+    t[n + 1] = t[n] + hn;
+    for (j = 1; j <= kk; j++) c += 1.0 / j;
+    c /= hn;
+    if (n == 0) { /* Taylor: y_p = y_0 + h y'_0, y_p' = y'_0 */
+      xp = x[0] + hn * v[0];
+      vp = v[0] - hn * 4.0 * x[0];
+      xdp = v[0];
+      vdp = -4.0 * x[0];
+    } else {
+      /* divided differences over t_n, t_{n-1}, ..., t_{n-kp} */
+      for (i = 0; i <= kp; i++) {
+        dx[i] = x[n - i];
+        dv[i] = v[n - i];
+      }
+      for (i = 1; i <= kp; i++)
+        for (j = kp; j >= i; j--) {
+          dx[j] = (dx[j - 1] - dx[j]) / (t[n - j + i] - t[n - j]);
+          dv[j] = (dv[j - 1] - dv[j]) / (t[n - j + i] - t[n - j]);
+        }
+      for (i = 0; i <= kp; i++) psi[i] = t[n + 1] - t[n - i];
+      for (i = 0; i <= kp; i++) {
+        double prod = 1.0, gam = 0.0;
+        for (j = 0; j < i; j++) {
+          prod *= psi[j];
+          gam += 1.0 / psi[j];
+        }
+        xp += dx[i] * prod;
+        vp += dv[i] * prod;
+        xdp += gam * dx[i] * prod;
+        vdp += gam * dv[i] * prod;
+      }
+    }
+    /* x' = v:     xdp + c (x - xp) = v
+     * v' = -4 x:  vdp + c (v - vp) = -4 x */
+    x[n + 1] = (c * c * xp + c * vp - c * xdp - vdp) / (c * c + 4.0);
+    v[n + 1] = xdp + c * (x[n + 1] - xp);
+  }
+  NV_Ith_S(q, 0) = x[0];
+  NV_Ith_S(vv, 0) = v[0];
+  flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetMassFn(mem, KMass);
+  if (!flag) flag = LGNSetForceFn(mem, KForce);
+  if (!flag) flag = LGNSetStiffnessFn(mem, KStiff);
+  if (!flag) flag = LGNSetDampingFn(mem, KDamp);
+  if (!flag) flag = LGNInit(mem, 0.0, q, vv);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  if (!flag) flag = LGNSetBDF(mem, k);
+  if (!flag) flag = LGNSetBDFForm(mem, LGN_BDF_FIXED_LEADING);
+  if (!flag) flag = LGNSStolerances(mem, 1e-14, 1e-14);
+  for (n = 0; !flag && n < nsteps; n++) {
+    flag = LGNSetStepSize(mem, n % 2 == 0 ? h : 0.7 * h);
+    if (!flag) flag = LGNSolve(mem, 1e9, &tt, q, vv, LGN_ONE_STEP);
+  }
+  diff = flag || fabs(tt - t[nsteps]) > 1e-12
+             ? HUGE_VAL
+             : fmax(fabs(NV_Ith_S(q, 0) - x[nsteps]), fabs(NV_Ith_S(vv, 0) - v[nsteps]));
+  LGNFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(q);
+  N_VDestroy(vv);
+  N_VDestroy(y);
+  LGNGroup_Destroy(G);
+  return diff;
+}
+
 /* The oscillator of (d) on R^1 (x0 = 1, v0 = 0.5). */
 static void *OscillatorCreate(SUNContext ctx, LGNGroup G, N_Vector q, N_Vector v,
                               SUNLinearSolver *LS, SUNMatrix *A, N_Vector *y)
@@ -720,6 +814,15 @@ int main(void)
     CHECK(d <= 1e-13, "order %d: textbook difference %.2e", k, d);
   }
 
+  /* (m) R^1: the fixed leading coefficient written out (IDA's divided
+   * differences), non-uniform steps */
+  for (k = 1; k <= 5; k++) {
+    const double d = TextbookFLC(ctx, k, 0.05, 40);
+    printf("(m) order %d on R^1, steps 0.05 and 0.035: |Lignum - textbook FLC BDF| after 40 "
+           "steps = %.2e\n", k, d);
+    CHECK(d <= 1e-13, "order %d: FLC textbook difference %.2e", k, d);
+  }
+
   /* (e) bad input and the way back to the Newmark family */
   {
     Run r;
@@ -730,6 +833,12 @@ int main(void)
     CHECK(LGNSetBDF(r.mem, 0) == LGN_ILL_INPUT, "maxord 0 refused");
     CHECK(LGNSetBDF(r.mem, 6) == LGN_ILL_INPUT, "maxord 6 refused");
     CHECK(LGNSetBDF(NULL, 3) == LGN_MEM_NULL, "NULL memory");
+    CHECK(LGNSetBDFForm(r.mem, 0) == LGN_ILL_INPUT, "form 0 refused");
+    CHECK(LGNSetBDFForm(r.mem, LGN_KINEMATICS_EXACT) == LGN_ILL_INPUT, "another constant refused");
+    CHECK(LGNSetBDFForm(NULL, LGN_BDF_FIXED_LEADING) == LGN_MEM_NULL, "NULL memory (form)");
+    CHECK(LGNSetBDFForm(r.mem, LGN_BDF_VARIABLE_COEFF) == LGN_SUCCESS &&
+              LGNSetBDFForm(r.mem, LGN_BDF_FIXED_LEADING) == LGN_SUCCESS,
+          "both forms accepted");
     RunFree(&r);
     /* the statistics name the orders */
     {
