@@ -14,11 +14,14 @@
  *
  *   bdf_forms [file.csv]    the table on stdout, the same rows as CSV
  *                           (default bdf_forms.csv)
+ *   bdf_forms --perturb tol the steps and errors at tol (1 + i 1e-13),
+ *                           i = 0 ... 5: the controller's sensitivity
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <lignum/lignum.h>
@@ -147,6 +150,29 @@ static Result HeavyTop(SUNContext ctx, int form, int maxord, int newton, double 
 
 #define NTOL 9
 
+/* --perturb tol: maxord 4 and 5, modified Newton, each form at tol (1 + i
+ * 1e-13), i = 0 ... 5: steps and error of each run (a controller whose
+ * decisions are robust gives the same steps). */
+static int Perturb(double tol, const LGNRefHeavyTop *ref)
+{
+  SUNContext ctx;
+  int f, k, i;
+  SUNContext_Create(NULL, &ctx);
+  printf("tol %g (1 + i 1e-13), i = 0 ... 5: steps / error at t = 1, modified Newton\n", tol);
+  for (f = 0; f < 2; f++)
+    for (k = 4; k <= 5; k++) {
+      printf("%-3s maxord %d:", f ? "FLC" : "VC", k);
+      for (i = 0; i < 6; i++) {
+        const Result r = HeavyTop(ctx, f ? LGN_BDF_FIXED_LEADING : LGN_BDF_VARIABLE_COEFF, k,
+                                  LGN_NEWTON_MODIFIED, tol * (1.0 + 1e-13 * i), ref);
+        printf(" %ld/%.3e", r.nst, r.err);
+      }
+      printf("\n");
+    }
+  SUNContext_Free(&ctx);
+  return 0;
+}
+
 int main(int argc, char **argv)
 {
   const char *csv_name = argc > 1 ? argv[1] : "bdf_forms.csv";
@@ -158,6 +184,7 @@ int main(int argc, char **argv)
   int f, k, nm, i;
   for (i = 0; i < NTOL; i++) tols[i] = pow(10.0, -6.0 - 0.5 * i);
   if (lgnref_heavy_top(&t_end, 1, &ref, LGNREF_FEHLBERG_8) != 0) return 1;
+  if (argc == 3 && !strcmp(argv[1], "--perturb")) return Perturb(atof(argv[2]), &ref);
   csv = fopen(csv_name, "w");
   if (csv == NULL) {
     fprintf(stderr, "bdf_forms: cannot write %s\n", csv_name);

@@ -360,9 +360,10 @@ LGN_EXPORT int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
  * of variable order 1 ... maxord and variable step in the local chart of the
  * last step, q = q_n o exp(x) (doc/theory.md, "BDF"). Under error control
  * (LGN_STEP_ADAPTIVE) the order and the step follow the local error of the
- * positions, as in IDA; with a fixed step (LGN_STEP_FIXED) the order rises
- * from 1 to maxord over the first steps. Multipliers and velocities are not
- * in the error test. The kinematics setting does not apply (BDF uses
+ * positions and velocities, as in IDA; with a fixed step (LGN_STEP_FIXED)
+ * the order rises from 1 to maxord over the first steps. The multipliers
+ * are not in the error test. LGNSetBDFForm chooses the variable-coefficient
+ * (default) or the fixed-leading-coefficient form. The kinematics setting does not apply (BDF uses
  * v = T(x) xdot exactly); LGNSetNewmark, LGNSetGenAlpha and
  * LGNSetGenAlphaParams select the Newmark family again. Needs the group's
  * compose_log operation (every built-in group has it).
@@ -380,7 +381,10 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
  * xdot_{n+1} = xdot_pred + c0 (x_{n+1} - x_pred) with c0 = (sum_{j<=k} 1/j)/h
  * and the predictor the polynomial through the last k + 1 points, with IDA's
  * error estimate and order selection (doc/theory.md, "BDF"). The default is
- * LGN_BDF_FIXED_LEADING. A change starts the BDF history anew.
+ * LGN_BDF_VARIABLE_COEFF: on the heavy top the fixed leading coefficient
+ * follows the tolerance more regularly at maxord 4, but at maxord 5 its
+ * order and step decisions at loose tolerances change with perturbations
+ * of 1e-13 (doc/theory.md). A change starts the BDF history anew.
  * @param lgn_mem the integrator memory
  * @param form    LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING
  * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form
