@@ -22,8 +22,25 @@
  * table of lgn_kinematics.c). The predictor is the polynomial through the
  * last k + 1 points (at the start, the Taylor step x = h v_n, v = v_n + h vdot_n).
  *
- * Local error (positions, and velocities times h; the multipliers are left
- * out, as IDA leaves algebraic variables out with IDASetSuppressAlg):
+ * That is the variable-coefficient form (LGN_BDF_VARIABLE_COEFF, the
+ * default). The fixed-leading-coefficient form (LGN_BDF_FIXED_LEADING,
+ * IDA's) keeps c0 = alpha_s / h, alpha_s = sum_{j<=k} 1/j, and takes the
+ * rest from the predictor P (degree k through the last k + 1 points):
+ *
+ *   xdot_{n+1} = P_x'(t_{n+1}) + c0 (x - P_x(t_{n+1})),  the same for v, vdot,
+ *
+ * i.e. r_x = sum_j (p_j' - c0 p_j) x_{n-j} with p_j the predictor's weights
+ * (the derivative of the polynomial through x_{n+1} and P at the equally
+ * spaced t_{n+1} - j h). Its error test is IDA's ck |y - y_pred| and its
+ * order estimates E_j = j! h^{j+1} |[y_{n+1}, ..., y_{n-j}]| (LocalError,
+ * OrderEstimatesOf), its order rules IDA's on terr_j = (j + 1) E_j
+ * (LowerOrderFLC, SelectOrderFLC), and its step grows from 1.5 h on. A step
+ * whose predictor nodes' spacings differ by more than a factor 4 (a switch
+ * to fixed steps) takes the variable coefficients.
+ *
+ * Local error of the variable coefficients (positions, and velocities times
+ * h; the multipliers are left out, as IDA leaves algebraic variables out
+ * with IDASetSuppressAlg):
  *   LTE_k = (x_{n+1} - x_pred) / (c0 psi_{k+1}),  psi_j = t_{n+1} - t_{n+1-j},
  * and the same with v, times h (the norm is the larger of the two, both
  * projected on the constraints' tangent space; doc/theory.md section 8 for
@@ -40,7 +57,8 @@
  * when the factor lies in (1, 2), cut to [0.5, 0.9] h when below 1. At the
  * start the order rises by one every step (while the estimates allow).
  * Under error control a step that would leave less than a tenth of itself
- * before the stop time stretches to land on it.
+ * before the stop time stretches to land on it, and one that would leave
+ * less than one more step takes half the rest (no short landing step).
  * Error test failures: the first lowers the order if E_{k-1} <= E_k and cuts
  * h by 0.9 (2 E)^{-1/(k+1)} in [0.25, 0.9], the second by 0.25, the third
  * also drops to order 1; Newton failures cut h by 0.25.
