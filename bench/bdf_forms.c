@@ -16,6 +16,8 @@
  *                           (default bdf_forms.csv)
  *   bdf_forms --perturb tol the steps and errors at tol (1 + i 1e-13),
  *                           i = 0 ... 5: the controller's sensitivity
+ *   bdf_forms --run VC|FLC maxord tol   one run (modified Newton), e.g.
+ *                           under valgrind --tool=callgrind
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -185,6 +187,16 @@ int main(int argc, char **argv)
   for (i = 0; i < NTOL; i++) tols[i] = pow(10.0, -6.0 - 0.5 * i);
   if (lgnref_heavy_top(&t_end, 1, &ref, LGNREF_FEHLBERG_8) != 0) return 1;
   if (argc == 3 && !strcmp(argv[1], "--perturb")) return Perturb(atof(argv[2]), &ref);
+  if (argc == 5 && !strcmp(argv[1], "--run")) { /* one run, e.g. under callgrind */
+    const int form = !strcmp(argv[2], "FLC") ? LGN_BDF_FIXED_LEADING : LGN_BDF_VARIABLE_COEFF;
+    Result r;
+    SUNContext_Create(NULL, &ctx);
+    r = HeavyTop(ctx, form, atoi(argv[3]), LGN_NEWTON_MODIFIED, atof(argv[4]), &ref);
+    printf("%s maxord %s tol %s: error %.3e, %ld steps, %ld Newton, %ld Jacobians, %ld etf\n",
+           argv[2], argv[3], argv[4], r.err, r.nst, r.nni, r.nje, r.netf);
+    SUNContext_Free(&ctx);
+    return r.flag != 0;
+  }
   csv = fopen(csv_name, "w");
   if (csv == NULL) {
     fprintf(stderr, "bdf_forms: cannot write %s\n", csv_name);
