@@ -524,8 +524,8 @@ static sunbooleantype LowerOrder(const sunrealtype E[4], int k)
  * (IDATestError). Lower at k = 2 when terr_1 <= terr_2 / 2 (IDA), at k > 2
  * when terr_{k-1} <= terr_k. IDA also asks terr_{k-2} <= terr_k at k > 2:
  * on the heavy top that keeps order 5 with steps too long (error ~ tol^0.6
- * at maxord 5, bench/bdf_forms), as it did in the variable-coefficient
- * form (LowerOrder). */
+ * ... tol^0.7 at maxord 5, bench/bdf_forms), as it did in the
+ * variable-coefficient form (LowerOrder). */
 static sunbooleantype LowerOrderFLC(const sunrealtype E[4], int k)
 {
   const sunrealtype tk = (sunrealtype)(k + 1) * E[2], tkm1 = (sunrealtype)k * E[1];
