@@ -94,6 +94,9 @@ module flignum_mod
   ! Newton predictor
   integer(c_int), parameter :: LGN_PREDICTOR_ZERO = 120
   integer(c_int), parameter :: LGN_PREDICTOR_EXTRAPOLATE = 121
+  ! BDF form (LGNSetBDFForm)
+  integer(c_int), parameter :: LGN_BDF_VARIABLE_COEFF = 160
+  integer(c_int), parameter :: LGN_BDF_FIXED_LEADING = 161
 
   ! Newton variants
   integer(c_int), parameter :: LGN_NEWTON_FULL     = 110
@@ -984,6 +987,14 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: maxord
     end function LGNSetBDF
+
+    !> The form of the BDF formulas on non-uniform steps:
+    !> LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING.
+    integer(c_int) function LGNSetBDFForm(lgn_mem, form) bind(c, name="LGNSetBDFForm")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: form
+    end function LGNSetBDFForm
 
     !> Number of steps taken.
     integer(c_int) function LGNGetNumSteps(lgn_mem, nsteps) bind(c, name="LGNGetNumSteps")

@@ -42,6 +42,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->msbp         = LGN_MSBP_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
+  mem->bdf_form     = LGN_BDF_VARIABLE_COEFF;
   mem->own_klu_solves = SUNFALSE;
   mem->step_control = LGN_STEP_FIXED;
   mem->accept_stalls = SUNTRUE;
@@ -281,6 +282,7 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
 {
   static const char *names[] = {
     "the method family (LGNSetBDF / LGNSetNewmark ...)", "the BDF order",
+    "the BDF form",
     "the step control", "the step size", "rtol", "atol", "the Newton iterations",
     "the Newton mode", "the setups of modified Newton", "mxstep",
     "the constraint index", "the kinematics", "the predictor", "alpha_m",
@@ -291,7 +293,8 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
     "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)",
     "ghost bodies (LGNSetHalo)"};
   const sunrealtype x[] = {
-    (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->step_control,
+    (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->bdf_form,
+    (sunrealtype)mem->step_control,
     mem->h, mem->rtol, mem->atol_vec != NULL ? -SUN_RCONST(1.0) : mem->atol,
     (sunrealtype)mem->maxcor, (sunrealtype)mem->newton_mode,
     (sunrealtype)mem->msbp, (sunrealtype)mem->mxstep, (sunrealtype)mem->constr_index,

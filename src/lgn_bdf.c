@@ -22,8 +22,25 @@
  * table of lgn_kinematics.c). The predictor is the polynomial through the
  * last k + 1 points (at the start, the Taylor step x = h v_n, v = v_n + h vdot_n).
  *
- * Local error (positions, and velocities times h; the multipliers are left
- * out, as IDA leaves algebraic variables out with IDASetSuppressAlg):
+ * That is the variable-coefficient form (LGN_BDF_VARIABLE_COEFF, the
+ * default). The fixed-leading-coefficient form (LGN_BDF_FIXED_LEADING,
+ * IDA's) keeps c0 = alpha_s / h, alpha_s = sum_{j<=k} 1/j, and takes the
+ * rest from the predictor P (degree k through the last k + 1 points):
+ *
+ *   xdot_{n+1} = P_x'(t_{n+1}) + c0 (x - P_x(t_{n+1})),  the same for v, vdot,
+ *
+ * i.e. r_x = sum_j (p_j' - c0 p_j) x_{n-j} with p_j the predictor's weights
+ * (the derivative of the polynomial through x_{n+1} and P at the equally
+ * spaced t_{n+1} - j h). Its error test is IDA's ck |y - y_pred| and its
+ * order estimates E_j = j! h^{j+1} |[y_{n+1}, ..., y_{n-j}]| (LocalError,
+ * OrderEstimatesOf), its order rules IDA's on terr_j = (j + 1) E_j
+ * (LowerOrderFLC, SelectOrderFLC), and its step grows from 1.5 h on. A step
+ * whose predictor nodes' spacings differ by more than a factor 4 (a switch
+ * to fixed steps) takes the variable coefficients.
+ *
+ * Local error of the variable coefficients (positions, and velocities times
+ * h; the multipliers are left out, as IDA leaves algebraic variables out
+ * with IDASetSuppressAlg):
  *   LTE_k = (x_{n+1} - x_pred) / (c0 psi_{k+1}),  psi_j = t_{n+1} - t_{n+1-j},
  * and the same with v, times h (the norm is the larger of the two, both
  * projected on the constraints' tangent space; doc/theory.md section 8 for
@@ -40,7 +57,8 @@
  * when the factor lies in (1, 2), cut to [0.5, 0.9] h when below 1. At the
  * start the order rises by one every step (while the estimates allow).
  * Under error control a step that would leave less than a tenth of itself
- * before the stop time stretches to land on it.
+ * before the stop time stretches to land on it, and one that would leave
+ * less than one more step takes half the rest (no short landing step).
  * Error test failures: the first lowers the order if E_{k-1} <= E_k and cuts
  * h by 0.9 (2 E)^{-1/(k+1)} in [0.25, 0.9], the second by 0.25, the third
  * also drops to order 1; Newton failures cut h by 0.25.
@@ -56,6 +74,10 @@
 #define BDF_CUT_FAIL   SUN_RCONST(0.25)
 #define BDF_NEWTON_SHARE SUN_RCONST(0.1) /* of the Newmark family's Newton tolerance */
 #define BDF_LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 % */
+/* the fixed-leading-coefficient form grows h once the estimate allows 1.5 h
+ * (IDA: 2, IDASetEtaFixedStepBounds): measured on the heavy top, doc/theory.md
+ * section 8 */
+#define BDF_FLC_GROW SUN_RCONST(1.5)
 
 /* =============================================================================
  * Coefficients
@@ -96,6 +118,8 @@ static void StartHistory(LGNMem mem)
   mem->bdf_nsteps_order = 0;
   mem->bdf_phase0       = SUNTRUE;
   mem->bdf_chart_t      = NAN;
+  mem->bdf_ns           = 0;
+  mem->bdf_hused        = SUN_RCONST(0.0);
 }
 
 /* The accepted state at t_n becomes the newest point. */
@@ -206,6 +230,16 @@ static void PredictMultipliers(LGNMem mem, int kp, const sunrealtype *p)
   }
 }
 
+/* The fixed-leading-coefficient constant of order k: alpha_s = sum_{j<=k}
+ * 1/j (IDA's -alphas; c0 = alpha_s / h). */
+static sunrealtype AlphaS(int k)
+{
+  sunrealtype a = SUN_RCONST(0.0);
+  int j;
+  for (j = 1; j <= k; j++) a += SUN_RCONST(1.0) / (sunrealtype)j;
+  return a;
+}
+
 /* The coefficients of order k and size h, the predictor, and Newton. The
  * state at t_n is not touched. */
 static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
@@ -214,32 +248,16 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   const int nh = mem->bdf_nhist;
   const sunrealtype t1 = mem->tn + h;
   const sunrealtype *X = mem->bdf_x, *V = mem->bdf_v;
-  sunrealtype tau[LGN_BDF_MAXHIST + 1], d[LGN_BDF_MAXHIST + 1];
+  sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING && nh > 1;
+  sunrealtype tau[LGN_BDF_MAXHIST + 1], d[LGN_BDF_MAXHIST + 1], dp[LGN_BDF_MAXHIST + 1];
   sunrealtype *xp = mem->bdf_xpred, *vp = mem->bdf_vpred;
   sunbooleantype used_old = SUNFALSE;
   sunindextype i;
-  int j, kp, flag;
+  int j, kp = 0, flag;
 
-  /* the corrector: nodes t_{n+1}, t_n, ..., t_{n+1-k} */
-  tau[0] = t1;
-  for (j = 1; j <= k; j++) tau[j] = mem->bdf_t[j - 1];
-  LagrangeDerivativeAtFirst(tau, k, d);
-  mem->bdf_c0 = d[0];
-  /* v_{n+1} = T(x)(sum_j d_j x_{n+1-j}): a noise e in each x_j reaches it
-   * as at most sum_j |d_j| e (PositionNoise) */
-  mem->bdf_vgain1 = SUN_RCONST(0.0);
-  for (j = 0; j <= k; j++) mem->bdf_vgain1 += fabs(d[j]);
-  for (i = 0; i < nv; i++) {
-    sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
-    for (j = 1; j <= k; j++) {
-      rx += d[j] * X[(j - 1) * nv + i];
-      rv += d[j] * V[(j - 1) * nv + i];
-    }
-    mem->bdf_rx[i] = rx;
-    mem->bdf_rv[i] = rv;
-  }
-
-  /* the predictor */
+  /* the predictor: the polynomial P of degree kp through the last kp + 1
+   * points at t_{n+1} (weights d_j), and for the fixed leading coefficient
+   * its derivative (weights dp_j) */
   if (nh == 1) {
     const sunrealtype *v0 = lgnData(mem->v), *a0 = lgnData(mem->vdot);
     for (i = 0; i < nv; i++) {
@@ -249,7 +267,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     mem->bdf_vpgain = mem->bdf_vgain[0];
   } else {
     kp = SUNMIN(k, nh - 1);
-    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, NULL);
+    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, dp);
     for (i = 0; i < nv; i++) {
       sunrealtype x = SUN_RCONST(0.0), v = SUN_RCONST(0.0);
       for (j = 0; j <= kp; j++) {
@@ -262,8 +280,53 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     mem->bdf_vpgain = SUN_RCONST(0.0);
     for (j = 0; j <= kp; j++) mem->bdf_vpgain += fabs(d[j]) * mem->bdf_vgain[j];
   }
+
+  /* the fixed leading coefficient extrapolates P' from the predictor's
+   * nodes: with spacings more than a factor 4 apart (a switch from error
+   * control to a fixed step 40 times longer was seen to diverge at order 4)
+   * the step takes the variable coefficients */
+  if (flc && SpacingOrder(mem, h, kp + 1) < kp + 1) flc = SUNFALSE;
+  mem->bdf_step_flc = flc;
+  if (flc) {
+    /* fixed leading coefficient (IDA): xdot = P'(t_{n+1}) + c0 (x - P(t_{n+1}))
+     * with c0 = alpha_s / h, so r_x = sum_j (dp_j - c0 d_j) x_{n-j} (the same
+     * for v); the noise gain of v_{n+1} is c0 + sum_j |dp_j - c0 d_j| */
+    const sunrealtype c0 = AlphaS(k) / h;
+    mem->bdf_c0     = c0;
+    mem->bdf_vgain1 = c0;
+    for (j = 0; j <= kp; j++) mem->bdf_vgain1 += fabs(dp[j] - c0 * d[j]);
+    for (i = 0; i < nv; i++) {
+      sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
+      for (j = 0; j <= kp; j++) {
+        rx += (dp[j] - c0 * d[j]) * X[j * nv + i];
+        rv += (dp[j] - c0 * d[j]) * V[j * nv + i];
+      }
+      mem->bdf_rx[i] = rx;
+      mem->bdf_rv[i] = rv;
+    }
+  } else {
+    /* variable coefficients: nodes t_{n+1}, t_n, ..., t_{n+1-k} */
+    sunrealtype dc[LGN_BDF_MAXHIST + 1];
+    tau[0] = t1;
+    for (j = 1; j <= k; j++) tau[j] = mem->bdf_t[j - 1];
+    LagrangeDerivativeAtFirst(tau, k, dc);
+    mem->bdf_c0 = dc[0];
+    /* v_{n+1} = T(x)(sum_j d_j x_{n+1-j}): a noise e in each x_j reaches it
+     * as at most sum_j |d_j| e (PositionNoise) */
+    mem->bdf_vgain1 = SUN_RCONST(0.0);
+    for (j = 0; j <= k; j++) mem->bdf_vgain1 += fabs(dc[j]);
+    for (i = 0; i < nv; i++) {
+      sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
+      for (j = 1; j <= k; j++) {
+        rx += dc[j] * X[(j - 1) * nv + i];
+        rv += dc[j] * V[(j - 1) * nv + i];
+      }
+      mem->bdf_rx[i] = rx;
+      mem->bdf_rv[i] = rv;
+    }
+  }
   memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
-  PredictMultipliers(mem, nh > 1 ? SUNMIN(k, nh - 1) : 0, d);
+  PredictMultipliers(mem, kp, d);
 
   /* Newton on (x, lambda): d xdot / dx = c0, d vdot / dx ~ c0^2 (T aside) */
   c->h       = h;
@@ -282,7 +345,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   if (flag == LGN_CONV_FAILURE && used_old) {
     mem->nrestart++;
     memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
-    PredictMultipliers(mem, nh > 1 ? SUNMIN(k, nh - 1) : 0, d);
+    PredictMultipliers(mem, kp, d);
     flag = lgnNewton(mem, c, SUNTRUE, &used_old);
   }
   if (flag != LGN_SUCCESS) mem->nfails++;
@@ -321,7 +384,26 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
   sunrealtype f = SUN_RCONST(1.0), ev;
   sunindextype i;
   int flag;
-  if (mem->bdf_nhist > 1) /* else the Taylor predictor: LTE_1 = y - y_pred */
+  mem->bdf_sigck = SUN_RCONST(1.0);
+  if (mem->bdf_nhist > 1 && mem->bdf_step_flc) {
+    /* IDA's error test (IDASetCoeffs, IDATestError): ck |y - y_pred| with
+     *   ck = max(|alpha_k + alpha_0 - alpha_s|, alpha_k),
+     *   alpha_j = h / psi_{j+1}, alpha_0 = sum_{j<=k} h / psi_j,
+     *   alpha_s = sum_{j<=k} 1/j,  psi_j = t_{n+1} - t_{n+1-j}
+     * (1/(k+1) for constant steps; the term alpha_0 - alpha_s is the
+     * difference of the variable leading coefficient from the fixed one,
+     * times h), and the order/step estimate sigma_k |y - y_pred| with
+     * sigma_k = k! prod_{j=1..k} h / psi_{j+1} (bdf_sigck = sigma_k / ck) */
+    const sunrealtype h = c->h, ak = h / (c->t1 - mem->bdf_t[k]);
+    sunrealtype a0 = SUN_RCONST(0.0), sig = SUN_RCONST(1.0);
+    int j;
+    for (j = 1; j <= k; j++) {
+      a0 += h / (c->t1 - mem->bdf_t[j - 1]);
+      sig *= (sunrealtype)j * h / (c->t1 - mem->bdf_t[j]);
+    }
+    f = SUNMAX(fabs(ak + a0 - AlphaS(k)), ak);
+    mem->bdf_sigck = sig / f;
+  } else if (mem->bdf_nhist > 1) /* else the Taylor predictor: LTE_1 = y - y_pred */
     f = SUN_RCONST(1.0) / (mem->bdf_c0 * (c->t1 - mem->bdf_t[k]));
   for (i = 0; i < nv; i++) mem->ele[i] = f * (mem->sigma[i] - mem->bdf_xpred[i]);
   flag = lgnErrorNorm(mem, c, mem->sigma, err);
@@ -371,13 +453,23 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
         a[j * nv + i] = (a[j * nv + i] - a[(j - 1) * nv + i]) / (tt[j] - tt[j - m]);
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
-    sunrealtype prod = s, c0 = SUN_RCONST(0.0);
+    sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
     if (ord < 1 || ord + 1 >= npts) continue;
     for (j = 1; j <= ord; j++) {
       prod *= c->t1 - tt[j];
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
     }
-    for (i = 0; i < nv; i++) mem->work_nv[i] = a[(ord + 1) * nv + i] * prod / c0;
+    fac = prod / c0;
+    if (mem->bdf_form == LGN_BDF_FIXED_LEADING) {
+      /* IDA: E_ord = sigma_ord |phi_{ord+1}|, phi_m = [P_0 .. P_m] prod_{j<=m}
+       * psi_j, sigma_ord = ord! prod_{j<=ord} h / psi_{j+1}: ord! h^{ord+1}
+       * [P_0 .. P_{ord+1}] (for ord = k + 1 IDA takes the difference of two
+       * successive y - y_pred, the same for constant steps) */
+      fac = s;
+      for (j = 1; j <= ord; j++) fac *= (sunrealtype)j * c->h;
+      fac *= c->h;
+    }
+    for (i = 0; i < nv; i++) mem->work_nv[i] = a[(ord + 1) * nv + i] * fac;
     if (noise > SUN_RCONST(0.0)) { /* the velocities: less their noise */
       /* [y_0 .. y_m] = sum_j y_j / prod_{i != j} (tt_j - tt_i), each y_j
        * (v_{n+1-j}) with the noise gain g_j times the positions' noise */
@@ -389,7 +481,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
           if (l != j) den *= tt[j] - tt[l];
         nz += (j == 0 ? mem->bdf_vgain1 : mem->bdf_vgain[j - 1]) / fabs(den);
       }
-      e = lgnWrmsNorm(mem, mem->work_nv, mem->ewt) - nz * noise * prod / c0;
+      e = lgnWrmsNorm(mem, mem->work_nv, mem->ewt) - nz * noise * fac;
       E[o] = SUNMAX(E[o], SUNMAX(SUN_RCONST(0.0), e));
     } else
       E[o] = SUNMAX(E[o], lgnWrmsNorm(mem, mem->work_nv, mem->ewt));
@@ -406,12 +498,16 @@ static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtyp
                    PositionNoise(mem, c, mem->ewt), E);
 }
 
-/* The step factor for an error estimate E at order k. */
-static sunrealtype StepFactor(sunrealtype E, int k)
+/* The step factor for an error estimate E at order k: r = (2 E +
+ * 1e-4)^{-1/(k+1)}, at most 2; kept at 1 for r in (1, grow) (IDA's
+ * eta_max_fx; grow = 2 in the variable-coefficient form, as IDA's default),
+ * cut to [0.5, 0.9] below 1. */
+static sunrealtype StepFactor(sunrealtype E, int k, sunrealtype grow)
 {
   sunrealtype r = pow(SUN_RCONST(2.0) * E + SUN_RCONST(1.0e-4),
                       -SUN_RCONST(1.0) / (sunrealtype)(k + 1));
   if (r >= BDF_HMAX_RATIO) return BDF_HMAX_RATIO;
+  if (r >= grow) return r;
   if (r <= SUN_RCONST(1.0)) return SUNMAX(SUN_RCONST(0.5), SUNMIN(SUN_RCONST(0.9), r));
   return SUN_RCONST(1.0);
 }
@@ -424,6 +520,62 @@ static sunbooleantype LowerOrder(const sunrealtype E[4], int k)
   return k > 1 && E[1] >= SUN_RCONST(0.0) && E[2] >= SUN_RCONST(0.0) && E[1] <= E[2];
 }
 
+/* The fixed-leading-coefficient form: IDA's terms terr_j = (j + 1) E_j
+ * (IDATestError). Lower at k = 2 when terr_1 <= terr_2 / 2 (IDA), at k > 2
+ * when terr_{k-1} <= terr_k. IDA also asks terr_{k-2} <= terr_k at k > 2:
+ * on the heavy top that keeps order 5 with steps too long (error ~ tol^0.6
+ * ... tol^0.7 at maxord 5, bench/bdf_forms), as it did in the
+ * variable-coefficient form (LowerOrder). */
+static sunbooleantype LowerOrderFLC(const sunrealtype E[4], int k)
+{
+  const sunrealtype tk = (sunrealtype)(k + 1) * E[2], tkm1 = (sunrealtype)k * E[1];
+  if (k < 2 || E[1] < SUN_RCONST(0.0) || E[2] < SUN_RCONST(0.0)) return SUNFALSE;
+  if (k == 2) return tkm1 <= SUN_RCONST(0.5) * tk;
+  return tkm1 <= tk;
+}
+
+/* The fixed-leading-coefficient form after an accepted step: IDA's
+ * choice (IDACompleteStep) among k - 1, k, k + 1 once the step has been
+ * taken k + 2 times at this order and size (bdf_ns): raise when
+ * terr_{k+1} < terr_k (at k = 1 when below terr_k / 2), lower when
+ * terr_{k-1} <= min(terr_k, terr_{k+1}). The start-up is Lignum's (the
+ * order rises each step while E_{k+1} < E_k). err is the error test's
+ * value (ck); the step follows sigma_k (bdf_sigck). */
+static sunrealtype SelectOrderFLC(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype err)
+{
+  sunrealtype E[4], Enew, scale;
+  int knew = k;
+  OrderEstimates(mem, c, k, E);
+  /* from the unprojected estimates to the projected sigma measure */
+  scale = E[2] > SUN_RCONST(0.0) ? err * mem->bdf_sigck / E[2] : mem->bdf_sigck;
+  Enew  = err * mem->bdf_sigck;
+  if (LowerOrderFLC(E, k)) {
+    knew = k - 1;
+    Enew = E[1] * scale;
+  } else if (k < mem->bdf_maxord && mem->bdf_phase0) {
+    if (E[3] < SUN_RCONST(0.0) || (E[2] >= SUN_RCONST(0.0) && E[3] < E[2])) {
+      knew = k + 1; /* start-up */
+      if (E[3] >= SUN_RCONST(0.0)) Enew = E[3] * scale;
+    }
+  } else if (k < mem->bdf_maxord && mem->bdf_ns >= k + 2 && E[3] >= SUN_RCONST(0.0) &&
+             E[2] >= SUN_RCONST(0.0)) {
+    const sunrealtype tk = (sunrealtype)(k + 1) * E[2], tkp1 = (sunrealtype)(k + 2) * E[3];
+    if (k == 1) {
+      if (tkp1 < SUN_RCONST(0.5) * tk) knew = 2;
+    } else if (E[1] >= SUN_RCONST(0.0) && (sunrealtype)k * E[1] <= SUNMIN(tk, tkp1)) {
+      knew = k - 1;
+    } else if (tkp1 < tk) {
+      knew = k + 1;
+    }
+    if (knew == k + 1) Enew = E[3] * scale;
+    if (knew == k - 1) Enew = E[1] * scale;
+  }
+  if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
+  if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
+  mem->bdf_order = knew;
+  return StepFactor(Enew, knew, BDF_FLC_GROW);
+}
+
 /* After an accepted step of order k with estimate err: the next order and
  * the factor of the next step. */
 static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype err)
@@ -431,6 +583,7 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   sunrealtype E[4], Enew = err, scale;
   sunbooleantype may_raise;
   int knew = k;
+  if (mem->bdf_form == LGN_BDF_FIXED_LEADING) return SelectOrderFLC(mem, c, k, err);
   OrderEstimates(mem, c, k, E);
   /* E[1], E[3] compared with E[2], their own kind (unprojected), and
    * carried over to err's measure (projected, with the velocity-constraint
@@ -451,7 +604,7 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
   if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
   mem->bdf_order = knew;
-  return StepFactor(Enew, knew);
+  return StepFactor(Enew, knew, BDF_HMAX_RATIO);
 }
 
 /* =============================================================================
@@ -542,6 +695,13 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
      * into its coefficients */
     landing  = mem->tstop_set && mem->tn + h * BDF_LAND_STRETCH >= mem->tstop;
     if (landing) h = mem->tstop - mem->tn;
+    /* and one that would leave less than a step (up to 1.1 h) takes half
+     * the rest, so that the landing step is not short: a landing step
+     * below a quarter of the one before forces order 1 (SpacingOrder),
+     * whose error test then failed and cut h by 1e-3 (tol 1e-13 on the
+     * heavy top) */
+    else if (mem->tstop_set && mem->tn + SUN_RCONST(2.0) * h * BDF_LAND_STRETCH > mem->tstop)
+      h = SUN_RCONST(0.5) * (mem->tstop - mem->tn);
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     /* order k needs k + 1 points for its estimate (or the Taylor start) */
@@ -560,6 +720,10 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
     mem->err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {
+      /* IDA's ns: consecutive steps of this size and order, up to k + 2 */
+      mem->bdf_ns    = h == mem->bdf_hused && k == mem->bdf_last_order
+                           ? SUNMIN(mem->bdf_ns + 1, k + 2) : 1;
+      mem->bdf_hused = h;
       factor = SelectOrder(mem, &c, k, err);
       if (nef > 0 || ncf > 0) factor = SUNMIN(factor, SUN_RCONST(1.0));
       Accept(mem, &c, k);
@@ -585,8 +749,10 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
         return LGN_ERR_FAILURE;
       }
       if (nef == 1) {
+        const sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING;
         OrderEstimates(mem, &c, k, E);
-        if (LowerOrder(E, k) && E[2] > SUN_RCONST(0.0)) {
+        if (flc) err *= mem->bdf_sigck; /* IDA: the step from sigma_k, not ck */
+        if ((flc ? LowerOrderFLC(E, k) : LowerOrder(E, k)) && E[2] > SUN_RCONST(0.0)) {
           mem->bdf_order = k - 1;
           mem->bdf_nsteps_order = 0;
           err *= E[1] / E[2];

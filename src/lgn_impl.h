@@ -120,6 +120,11 @@ typedef struct LGNMemRec {
 
   /* ---- BDF (lgn_bdf.c): the history q_{n-j}, v_{n-j} at t_{n-j} ---- */
   int bdf_maxord;           /* LGNSetBDF: 1 ... 5                          */
+  int bdf_form;             /* LGNSetBDFForm: LGN_BDF_VARIABLE_COEFF / ..._FIXED_LEADING */
+  int bdf_ns;               /* FLC: consecutive steps at this h and order (IDA's ns) */
+  sunrealtype bdf_hused;    /* FLC: the last step's size                   */
+  sunrealtype bdf_sigck;    /* FLC: sigma_k / ck of the attempt (IDA)      */
+  sunbooleantype bdf_step_flc; /* the attempt used the fixed leading coefficient */
   sunbooleantype lsetup_recoverable; /* a singular setup is retried with a
                                         smaller step: no message (BDF)     */
   int bdf_order;            /* the order of the next step                  */

@@ -238,6 +238,21 @@ int LGNSetBDF(void *lgn_mem, int maxord)
   return LGN_SUCCESS;
 }
 
+int LGNSetBDFForm(void *lgn_mem, int form)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (form != LGN_BDF_VARIABLE_COEFF && form != LGN_BDF_FIXED_LEADING) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "form = %d illegal: use LGN_BDF_VARIABLE_COEFF or "
+              "LGN_BDF_FIXED_LEADING.", form);
+    return LGN_ILL_INPUT;
+  }
+  mem->bdf_form = form;
+  lgnInvalidate(mem, LGN_CHANGE_METHOD);
+  return LGN_SUCCESS;
+}
+
 int LGNGetCurrentOrder(void *lgn_mem, int *order)
 {
   LGNMem mem;

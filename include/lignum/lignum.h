@@ -117,6 +117,14 @@ extern "C" {
  *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
 #define LGN_KINEMATICS_SIGMA      102
 
+/** BDF form (LGNSetBDFForm): variable coefficients, the derivative at
+ *  t_{n+1} of the polynomial through t_{n+1} and the last k points. */
+#define LGN_BDF_VARIABLE_COEFF 160
+/** BDF form (LGNSetBDFForm): fixed leading coefficient, as IDA's:
+ *  xdot_{n+1} = xdot_pred + (sum_{j<=k} 1/j) / h (x_{n+1} - x_pred), the
+ *  predictor the polynomial through the last k + 1 points. */
+#define LGN_BDF_FIXED_LEADING  161
+
 /** Newton predictor (default): sigma_ddot = 0 and lambda = lambda_n (the
  *  predictor of Brüls and Cardona 2010). */
 #define LGN_PREDICTOR_ZERO        120
@@ -352,9 +360,10 @@ LGN_EXPORT int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
  * of variable order 1 ... maxord and variable step in the local chart of the
  * last step, q = q_n o exp(x) (doc/theory.md, "BDF"). Under error control
  * (LGN_STEP_ADAPTIVE) the order and the step follow the local error of the
- * positions, as in IDA; with a fixed step (LGN_STEP_FIXED) the order rises
- * from 1 to maxord over the first steps. Multipliers and velocities are not
- * in the error test. The kinematics setting does not apply (BDF uses
+ * positions and velocities, as in IDA; with a fixed step (LGN_STEP_FIXED)
+ * the order rises from 1 to maxord over the first steps. The multipliers
+ * are not in the error test. LGNSetBDFForm chooses the variable-coefficient
+ * (default) or the fixed-leading-coefficient form. The kinematics setting does not apply (BDF uses
  * v = T(x) xdot exactly); LGNSetNewmark, LGNSetGenAlpha and
  * LGNSetGenAlphaParams select the Newmark family again. Needs the group's
  * compose_log operation (every built-in group has it).
@@ -363,6 +372,24 @@ LGN_EXPORT int LGNSetGenAlphaParams(void *lgn_mem, sunrealtype alpha_m,
  * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for maxord outside 1 ... 5
  */
 LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
+
+/**
+ * The form of the BDF formulas (LGNSetBDF) on non-uniform steps; on a
+ * uniform step grid both are the classical BDF. LGN_BDF_VARIABLE_COEFF: the
+ * derivative at t_{n+1} of the polynomial through the new point and the last
+ * k points. LGN_BDF_FIXED_LEADING: IDA's fixed-leading-coefficient form,
+ * xdot_{n+1} = xdot_pred + c0 (x_{n+1} - x_pred) with c0 = (sum_{j<=k} 1/j)/h
+ * and the predictor the polynomial through the last k + 1 points, with IDA's
+ * error estimate and order selection (doc/theory.md, "BDF"). The default is
+ * LGN_BDF_VARIABLE_COEFF: on the heavy top the fixed leading coefficient
+ * follows the tolerance more regularly at maxord 4, but at maxord 5 its
+ * order and step decisions at loose tolerances change with perturbations
+ * of 1e-13 (doc/theory.md). A change starts the BDF history anew.
+ * @param lgn_mem the integrator memory
+ * @param form    LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form
+ */
+LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 
 /** Constraint formulation: LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2. */
 LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
