@@ -16,11 +16,8 @@
  * rank's ghosts by owner; send lists: its bodies each neighbour holds as
  * ghosts). Reverse: the same lists the other way, the received rows added
  * to the owned ones in a fixed order, so that every run sums alike.
+ * Built with MPI only (src/CMakeLists.txt).
  * ---------------------------------------------------------------------------*/
-
-#include <lignum/lignum_config.h>
-
-#if defined(LGN_HAVE_MPI)
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -482,5 +479,3 @@ int LGNHalo_UpdateGhosts(LGNHalo H, int kind, sunrealtype *x)
   lgnHaloForward(H, kind, x);
   return LGN_SUCCESS;
 }
-
-#endif /* LGN_HAVE_MPI */
