@@ -610,7 +610,9 @@ LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
 
 /** After a singular matrix: the unknown at which the factorisation found a
  *  zero pivot (0 .. nv-1: a velocity component; nv .. nv+m-1: the
- *  multiplier of constraint k - nv), or -1 if none is known. The error
+ *  multiplier of constraint k - nv; under LGN_CONSTR_GGL nv+m .. nv+2m-1:
+ *  the kinematic multiplier mu of constraint k - nv - m), or -1 if none is
+ *  known. The error
  *  message names it in words (body and direction).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
 LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
