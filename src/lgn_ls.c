@@ -259,7 +259,7 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
 }
 
 /* GGL (LGN_CONSTR_GGL) is implemented for the BDF family with a dense
- * matrix A on one process: its iteration matrix has the products
+ * matrix A, without ghost bodies: its iteration matrix has the products
  * (M + C/c0) B^T and B B^T in the column of mu, which only the dense
  * assembly forms (lgn_matrix.c), and the ghost bodies' and Krylov paths
  * size their unknowns nv + m. */
@@ -273,7 +273,7 @@ static int CheckGGL(LGNMem mem)
   else if (mem->krylov)
     why = "a dense matrix A only, not a Krylov solver";
   else if (mem->halo != NULL)
-    why = "one process only, not ghost bodies (LGNSetHalo)";
+    why = "a rank's own bodies only, not with ghost bodies (LGNSetHalo)";
   else if (lgnMatID(mem->A) != SUNMATRIX_DENSE)
     why = "a dense matrix A only (SUNDenseMatrix of nv + 2m rows), not a sparse one";
   if (why == NULL) return LGN_SUCCESS;
