@@ -87,6 +87,7 @@ module flignum_mod
   ! constraint formulation
   integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 133
   integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 132
+  integer(c_int), parameter :: LGN_CONSTR_GGL = 134
   ! kinematics
   integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 100
   integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 101
@@ -529,7 +530,8 @@ module flignum_mod
       real(c_double), value :: alpha_m, alpha_f, beta, gamma
     end function LGNSetGenAlphaParams
 
-    !> LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2.
+    !> LGN_CONSTR_INDEX3 (default), LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL
+    !> (stabilised index 2: BDF, dense A of nv + 2m rows).
     integer(c_int) function LGNSetConstraintIndex(lgn_mem, index) &
         bind(c, name="LGNSetConstraintIndex")
       import :: c_int, c_ptr

@@ -125,7 +125,7 @@ static sunindextype ZeroPivot(LGNMem mem, int ret)
     /* (SUNLS_LUFACT_FAIL itself names no column: a solver that cannot
      * tell, such as LGNLinSol_PETSc without null pivots, has last flag 0) */
     return lf > 0 ? lf - 1
-                  : (ret > 0 && ret != SUNLS_LUFACT_FAIL && ret <= mem->nv + mem->m ? ret - 1
+                  : (ret > 0 && ret != SUNLS_LUFACT_FAIL && ret <= mem->nv + mem->nalg ? ret - 1
                                                                                    : -1);
   }
 }
@@ -138,7 +138,10 @@ static void NameUnknown(LGNMem mem, sunindextype k, char *buf, size_t len)
                                  "rotation about body z"};
   static const char *rot[3] = {"rotation about body x", "rotation about body y",
                                "rotation about body z"};
-  if (k >= mem->nv) {
+  if (k >= mem->nv + mem->m) { /* GGL's mu */
+    snprintf(buf, len, "the kinematic multiplier (GGL) of constraint %lld",
+             (long long)(k - mem->nv - mem->m));
+  } else if (k >= mem->nv) {
     snprintf(buf, len, "the multiplier of constraint %lld", (long long)(k - mem->nv));
   } else {
     const int b = (int)mem->blk_of[k];

@@ -145,7 +145,7 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
 int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
                  sunrealtype *norm)
 {
-  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3) {
+  if (mem->m > 0 && mem->constr_index != LGN_CONSTR_INDEX2) { /* index 3, GGL */
     int flag = ProjectOnConstraints(mem, c);
     if (flag != LGN_SUCCESS) return flag;
   }

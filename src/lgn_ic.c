@@ -70,8 +70,11 @@ static int SaddlePointSolve(LGNMem mem, sunrealtype t)
 {
   LGNMatrixTerms terms;
   int flag;
+  sunindextype i;
   lgnInvalidate(mem, LGN_CHANGE_MATRIX); /* A now holds the saddle-point matrix */
   lgnSaddlePointTerms(&terms);
+  /* GGL: mu's rows are mu = 0 (identity, lgn_matrix.c) */
+  for (i = mem->nv + mem->m; i < mem->nv + mem->nalg; i++) lgnData(mem->rhs)[i] = SUN_RCONST(0.0);
   flag = lgnAssembleIterationMatrix(mem, t, &terms);
   if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
   flag = lgnAgree(mem, flag); /* across ranks: before a (collective) solve */
@@ -205,7 +208,7 @@ static sunrealtype TolBv(LGNMem mem)
 }
 
 /* The start at (q_n, v_n) against the constraint the step enforces (Phi
- * at index 3, B v at index 2), within 100 x the tolerance scale. At index 3
+ * at index 3, B v at index 2, both under GGL), within 100 x the tolerance scale. At index 3
  * the hidden constraint B v = 0 is not checked: the method satisfies it
  * only to O(h^2) along its own solution, so a restart from a computed
  * state would fail any test tied to the tolerances. Not when the user gave
@@ -217,7 +220,7 @@ static int CheckConsistency(LGNMem mem)
   sunrealtype viol, tol;
   int flag;
   if (mem->m == 0 || mem->user_vdot0) return LGN_SUCCESS;
-  if (mem->constr_index == LGN_CONSTR_INDEX3) {
+  if (mem->constr_index != LGN_CONSTR_INDEX2) { /* index 3 and GGL: Phi */
     flag = EvalPhi(mem, mem->q);
     if (flag != LGN_SUCCESS) return flag;
     viol = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), mem->m, &i));
@@ -231,8 +234,9 @@ static int CheckConsistency(LGNMem mem)
                 (long long)i, (double)tol);
       return LGN_INCONSISTENT_IC;
     }
-    return LGN_SUCCESS;
+    if (mem->constr_index == LGN_CONSTR_INDEX3) return LGN_SUCCESS;
   }
+  /* index 2 and GGL: B v + Phi_t */
   flag = EvalBv(mem, mem->q, mem->v);
   if (flag != LGN_SUCCESS) return flag;
   viol = lgnMaxAll(mem, MaxAbs(mem->work_m, mem->m, &i));

@@ -96,6 +96,10 @@ typedef struct LGNMemRec {
   sunindextype nq;          /* reals per group element                    */
   sunindextype nv;          /* Lie algebra dimension                      */
   sunindextype m;           /* number of constraints                      */
+  sunindextype nalg;        /* the algebraic unknowns of the Newton system
+                               after the nv velocities: m, or 2 m under
+                               LGN_CONSTR_GGL (lambda and mu; set with the
+                               work space, lgnAllocWork)                  */
   void *user_data;
   LGNMassFn mass;
   LGNForceFn force;
@@ -112,7 +116,10 @@ typedef struct LGNMemRec {
 
   /* ---- method ---- */
   sunrealtype alpha_m, alpha_f, beta, gamma; /* Chung-Hulbert convention  */
-  int constr_index;         /* LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2      */
+  int constr_index;         /* LGN_CONSTR_INDEX3, _INDEX2 or LGN_CONSTR_GGL */
+  sunrealtype *ggl_mu;      /* GGL: the kinematic multiplier mu of the
+                               iterate (m; NULL otherwise)                */
+  sunrealtype ggl_t1;       /* GGL: the time of the Newton iterate         */
   int kinematics;           /* LGN_KINEMATICS_*                            */
   const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
@@ -187,8 +194,8 @@ typedef struct LGNMemRec {
   N_Vector rdyn;            /* unscaled dynamic residual M vdot + g + B^T l*/
   N_Vector phi;             /* Phi(q1) or B v (NULL when m = 0)            */
   N_Vector phit;            /* Phi_t(q, t) (NULL when m = 0)               */
-  N_Vector rhs;             /* Newton right-hand side, length nv + m       */
-  N_Vector sol;             /* Newton correction, length nv + m            */
+  N_Vector rhs;             /* Newton right-hand side, length nv + nalg    */
+  N_Vector sol;             /* Newton correction, length nv + nalg         */
 
   /* ---- difference quotient scratch ---- */
   N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
@@ -488,6 +495,8 @@ typedef struct {
 typedef struct {
   sunrealtype cM, cC, cK, cBv;
   const sunrealtype *TM, *TC, *TK, *TB;
+  sunbooleantype ggl; /* the GGL step matrix (lgn_matrix.c): rows Phi and
+                         (B v + Phi_t) / gamma', columns lambda and mu */
 } LGNMatrixTerms;
 
 /* A kinematics variant: how the Newmark increments (sigma, sigma_dot,

@@ -333,11 +333,17 @@ int LGNSetConstraintIndex(void *lgn_mem, int index)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (index != LGN_CONSTR_INDEX3 && index != LGN_CONSTR_INDEX2) {
+  if (index != LGN_CONSTR_INDEX3 && index != LGN_CONSTR_INDEX2 && index != LGN_CONSTR_GGL) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
-              "index = %d illegal: use LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2.",
-              index);
+              "index = %d illegal: use LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or "
+              "LGN_CONSTR_GGL.", index);
     return LGN_ILL_INPUT;
+  }
+  /* GGL has m more unknowns (mu): the Newton vectors are made anew */
+  if ((index == LGN_CONSTR_GGL) != (mem->constr_index == LGN_CONSTR_GGL)) {
+    mem->constr_index = index;
+    lgnInvalidate(mem, LGN_CHANGE_SIZES | LGN_CHANGE_METHOD);
+    return LGN_SUCCESS;
   }
   mem->constr_index = index;
   lgnInvalidate(mem, LGN_CHANGE_METHOD);

@@ -62,6 +62,7 @@ void lgnSaddlePointTerms(LGNMatrixTerms *terms)
   terms->cK  = SUN_RCONST(0.0);
   terms->cBv = SUN_RCONST(0.0);
   terms->TM = terms->TC = terms->TK = terms->TB = NULL;
+  terms->ggl = SUNFALSE;
 }
 
 /* The coefficients of every step's matrix, no T (I everywhere). */
@@ -72,14 +73,15 @@ static void StepTerms(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
   terms->cK  = c->scale;
   terms->cBv = SUN_RCONST(0.0);
   terms->TM = terms->TC = terms->TK = terms->TB = NULL;
+  terms->ggl = SUNFALSE;
   (void)mem;
 }
 
-/* Index 2 with T in the matrix: the change of B v with the configuration,
- * (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC. */
+/* Index 2 (and GGL's velocity row) with T in the matrix: the change of
+ * B v with the configuration, (1/gamma') D_q(B v) T, with 1/gamma' = cK/cC. */
 static void ConstraintVelocityTerm(LGNMem mem, LGNMatrixTerms *terms)
 {
-  if (mem->constr_index == LGN_CONSTR_INDEX2 && mem->m > 0 &&
+  if (mem->constr_index != LGN_CONSTR_INDEX3 && mem->m > 0 &&
       terms->cC != SUN_RCONST(0.0))
     terms->cBv = terms->cK / terms->cC;
 }
@@ -291,6 +293,24 @@ static int BDFPredict(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
   return LGN_SUCCESS; /* lgn_bdf.c predicts */
 }
 
+/* GGL: B(q1) at the iterate's time into mem->Bmat (the residual then
+ * uses it: lgnNeedsConstraintJacobian), and v1 -= B^T mu. */
+static int GGLVelocity(LGNMem mem, sunrealtype *v1)
+{
+  sunindextype i, nv = mem->nv;
+  int ret;
+  lgnMatClear(mem->Bmat);
+  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
+                          mem->constr_jac(mem->ggl_t1, mem->q1, mem->Bmat, mem->user_data),
+                          mem->Bmat, "LGNSolve");
+  if (ret != LGN_SUCCESS) return ret;
+  lgnMatTvec(mem->Bmat, mem->ggl_mu, mem->work_nv, SUNFALSE);
+  for (i = 0; i < nv; i++) v1[i] -= mem->work_nv[i];
+  return LGN_SUCCESS;
+}
+
+/* x -> q1, v1, vdot1; under GGL the kinematic relation carries the
+ * multiplier mu, T(x) xdot = v + B(q)^T mu, so v1 = T(x) xdot - B^T mu. */
 static int BDFIterate(LGNMem mem, sunbooleantype with_tangent)
 {
   LGNGroup G = mem->G;
@@ -302,6 +322,10 @@ static int BDFIterate(LGNMem mem, sunbooleantype with_tangent)
   for (i = 0; i < nv; i++) mem->sigma_dot[i] = c0 * mem->sigma[i] + mem->bdf_rx[i];
   ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
+  if (mem->constr_index == LGN_CONSTR_GGL && mem->m > 0) {
+    ret = GGLVelocity(mem, v1);
+    if (ret != LGN_SUCCESS) return ret;
+  }
   for (i = 0; i < nv; i++) vdot1[i] = c0 * v1[i] + mem->bdf_rv[i];
   return LGN_SUCCESS;
 }
@@ -309,12 +333,14 @@ static int BDFIterate(LGNMem mem, sunbooleantype with_tangent)
 /* dv/dx ~ c0 T(x) and dvdot/dx ~ c0^2 T(x) (the derivative of T itself
  * along xdot, O(h) relative, left out): cM M T + cC C T + cK K T with
  * cM = scale c0^2, cC = scale c0, cK = scale; B T, or at index 2 the row
- * (B v)/c0 with its block B T + (1/c0) D_q(B v) T. */
+ * (B v)/c0 with its block B T + (1/c0) D_q(B v) T. GGL has both rows and
+ * the column of mu (lgn_matrix.c). */
 static int BDFMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
 {
   StepTerms(mem, c, terms);
   terms->TM = terms->TC = terms->TK = terms->TB = mem->Tm;
   ConstraintVelocityTerm(mem, terms);
+  terms->ggl = mem->constr_index == LGN_CONSTR_GGL && mem->m > 0;
   return LGN_SUCCESS;
 }
 

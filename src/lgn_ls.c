@@ -258,14 +258,41 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
   return LGN_SUCCESS;
 }
 
-/* Before the first solve: the matrix must be (nv+m) x (nv+m). */
+/* GGL (LGN_CONSTR_GGL) is implemented for the BDF family with a dense
+ * matrix A, without ghost bodies: its iteration matrix has the products
+ * (M + C/c0) B^T and B B^T in the column of mu, which only the dense
+ * assembly forms (lgn_matrix.c), and the ghost bodies' and Krylov paths
+ * size their unknowns nv + m. */
+static int CheckGGL(LGNMem mem)
+{
+  const char *why = NULL;
+  if (mem->constr_index != LGN_CONSTR_GGL || mem->m == 0) return LGN_SUCCESS;
+  if (mem->family != LGN_FAMILY_BDF)
+    why = "the BDF family only (LGNSetBDF): the Newmark and generalized-alpha "
+          "methods do not offer it";
+  else if (mem->krylov)
+    why = "a dense matrix A only, not a Krylov solver";
+  else if (mem->halo != NULL)
+    why = "a rank's own bodies only, not with ghost bodies (LGNSetHalo)";
+  else if (lgnMatID(mem->A) != SUNMATRIX_DENSE)
+    why = "a dense matrix A only (SUNDenseMatrix of nv + 2m rows), not a sparse one";
+  if (why == NULL) return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "index = LGN_CONSTR_GGL (LGNSetConstraintIndex) is implemented for %s; "
+            "use LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2 here.", why);
+  return LGN_ILL_INPUT;
+}
+
+/* Before the first solve: the matrix must be (nv + nalg) x (nv + nalg),
+ * nalg = m, or 2m under GGL. */
 /* The linear solver and A fit the problem (on this rank). */
 static int CheckLinearSolver(LGNMem mem)
 {
-  const sunindextype n = mem->nv + mem->m;
+  const sunindextype n = mem->nv + mem->nalg;
   sunbooleantype sparse;
   sunindextype rows, cols;
-  int ret;
+  int ret = CheckGGL(mem);
+  if (ret != LGN_SUCCESS) return ret;
   if (mem->krylov) { /* Lignum's own A, made for the sizes */
     ret = lgnKrylovCheck(mem);
     if (ret != LGN_SUCCESS) return ret;
@@ -286,10 +313,11 @@ static int CheckLinearSolver(LGNMem mem)
   if (rows != n || cols != n) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The matrix A is %lld x %lld but the problem needs %lld x %lld "
-              "(nv = %lld velocities + m = %lld constraints).",
+              "(nv = %lld velocities + %s%lld constraints%s).",
               (long long)rows, (long long)cols,
               (long long)n, (long long)n, (long long)mem->nv,
-              (long long)mem->m);
+              mem->nalg > mem->m ? "2 m = 2 x " : "m = ", (long long)mem->m,
+              mem->nalg > mem->m ? ": LGN_CONSTR_GGL has the multipliers lambda and mu" : "");
     return LGN_LS_MISMATCH;
   }
   if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_DENSE &&
@@ -431,7 +459,7 @@ static void ResetSolver(LGNMem mem)
 #define DENSE_RCOND_MIN SUN_RCONST(1.0e-13)
 static int DenseNearlySingular(LGNMem mem)
 {
-  const sunindextype n = mem->nv + mem->m;
+  const sunindextype n = mem->nv + mem->nalg;
   sunrealtype umin = SUN_BIG_REAL, umax = SUN_RCONST(0.0), u;
   sunindextype k, kmin = 0;
   if (lgnMatID(mem->A) != SUNMATRIX_DENSE) return 0;

@@ -23,6 +23,16 @@
  * gamma' varies as B dv / gamma' plus its change with q). The saddle-point
  * matrix [[M, B^T], [B, 0]] of the consistent initial values is the table
  * (cM, cC, cK) = (1, 0, 0) with no T (lgnSaddlePointTerms).
+ *
+ * GGL (LGN_CONSTR_GGL, BDF, dense A only) has nv + 2m unknowns (x, the
+ * scaled lambda, nu = mu / gamma') and rows (dynamics, Phi, (B v + Phi_t) /
+ * gamma'):
+ *
+ *   [[ cM M T + cC C T + cK K T ,  B^T ,  -(cM M + cC C) B^T ],
+ *    [ B T                      ,  0   ,   0                 ],
+ *    [ B T + cBv D_q(B v) T     ,  0   ,  -B B^T             ]]
+ *
+ * and its saddle-point matrix [[M, B^T, 0], [B, 0, 0], [0, 0, I]].
  * ---------------------------------------------------------------------------*/
 
 #include <string.h>
@@ -116,7 +126,10 @@ static inline sunbooleantype ThreeColumns(const sunrealtype *X, sunindextype ldx
  * loop over the rows is branch-free; otherwise entry by entry. */
 static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
 {
-  sunindextype i, j, nv = mem->nv, m = mem->m, n = nv + m;
+  sunindextype i, j, k, nv = mem->nv, m = mem->m, n = nv + mem->nalg;
+  /* GGL: the Phi rows come first, the velocity rows (B v + Phi_t)/gamma'
+   * at vrow; under GGL the saddle-point matrix has an identity for mu */
+  const sunindextype vrow = x->ggl ? nv + m : nv;
   sunrealtype *A = SUNDenseMatrix_Data(mem->A);
   const sunrealtype *M = SUNDenseMatrix_Data(mem->Mmat);
   const sunrealtype *C = SUNDenseMatrix_Data(mem->Cmat);
@@ -155,29 +168,58 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
         a[i] = s;
       }
     }
-    /* bottom left: B TB (+ cBv D_q(B v) TK at index 2) */
+    /* bottom left: B TB (+ cBv D_q(B v) TK at index 2 and in GGL's
+     * velocity rows) */
     if (m == 0) continue;
     if (cBv == SUN_RCONST(0.0) && ThreeColumns(B, m, j, &tb, pb, wb)) {
       for (i = 0; i < m; i++)
-        a[nv + i] = (pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2];
+        a[vrow + i] = (pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2];
     } else if (cBv != SUN_RCONST(0.0) && ThreeColumns(B, m, j, &tb, pb, wb) &&
                ThreeColumns(mem->Bvq, m, j, &tk, pq, wq)) {
       for (i = 0; i < m; i++)
-        a[nv + i] = ((pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2])
-                  + cBv * ((pq[0][i] * wq[0] + pq[1][i] * wq[1]) + pq[2][i] * wq[2]);
+        a[vrow + i] = ((pb[0][i] * wb[0] + pb[1][i] * wb[1]) + pb[2][i] * wb[2])
+                    + cBv * ((pq[0][i] * wq[0] + pq[1][i] * wq[1]) + pq[2][i] * wq[2]);
     } else {
       for (i = 0; i < m; i++) {
         s = RowTimesColumn(B, m, i, j, &tb);
         if (cBv != SUN_RCONST(0.0)) s += cBv * RowTimesColumn(mem->Bvq, m, i, j, &tk);
-        a[nv + i] = s;
+        a[vrow + i] = s;
       }
     }
+    if (x->ggl) /* GGL's Phi rows: B TB */
+      for (i = 0; i < m; i++) a[nv + i] = RowTimesColumn(B, m, i, j, &tb);
+    else /* the saddle-point matrix under GGL: no mu in these rows */
+      for (i = nv + m; i < n; i++) a[i] = SUN_RCONST(0.0);
   }
   /* right: B^T over zeros */
   for (j = 0; j < m; j++) {
     sunrealtype *a = A + (nv + j) * n;
     for (i = 0; i < nv; i++) a[i] = B[j + i * m];
     for (i = nv; i < n; i++) a[i] = SUN_RCONST(0.0);
+  }
+  /* GGL: the column of nu = mu / gamma'. v = T(x) xdot - B^T mu moves v by
+   * -B^T dmu and vdot by -(beta'/gamma') B^T dmu, so the dynamic rows get
+   * -(cM M + cC C) B^T and the velocity rows -B B^T; the Phi rows 0. Under
+   * GGL the saddle-point matrix has I there (mu = 0 at the start). */
+  for (j = 0; j < mem->nalg - m; j++) {
+    sunrealtype *a = A + (nv + m + j) * n, s;
+    for (i = nv; i < n; i++) a[i] = SUN_RCONST(0.0);
+    if (!x->ggl) {
+      for (i = 0; i < nv; i++) a[i] = SUN_RCONST(0.0);
+      a[nv + m + j] = SUN_RCONST(1.0);
+      continue;
+    }
+    for (i = 0; i < nv; i++) {
+      s = SUN_RCONST(0.0);
+      for (k = 0; k < nv; k++)
+        s += (cM * M[i + k * nv] + cC * C[i + k * nv]) * B[j + k * m];
+      a[i] = -s;
+    }
+    for (i = 0; i < m; i++) {
+      s = SUN_RCONST(0.0);
+      for (k = 0; k < nv; k++) s += B[i + k * m] * B[j + k * m];
+      a[nv + m + i] = -s;
+    }
   }
   return LGN_SUCCESS;
 }

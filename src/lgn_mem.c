@@ -622,6 +622,8 @@ int lgnAllocWork(LGNMem mem)
   int fail = 0;
 
   lgnFreeWork(mem);
+  /* the algebraic unknowns after the velocities: lambda, and mu under GGL */
+  mem->nalg = mem->constr_index == LGN_CONSTR_GGL ? 2 * m : m;
   /* every rank allocates or none (the vectors below are made collectively) */
   fail = lgnAgree(mem, BlocksBuild(mem) != LGN_SUCCESS ? LGN_MEM_FAIL : LGN_SUCCESS) !=
          LGN_SUCCESS;
@@ -655,8 +657,8 @@ int lgnAllocWork(LGNMem mem)
     mem->rdyn = N_VClone(mem->v);
     mem->dq_g = N_VClone(mem->v);
     mem->dq_r = N_VClone(mem->v);
-    mem->rhs  = lgnParallelNewVector(mem->par, nv + m, ctx);
-    mem->sol  = lgnParallelNewVector(mem->par, nv + m, ctx);
+    mem->rhs  = lgnParallelNewVector(mem->par, nv + mem->nalg, ctx);
+    mem->sol  = lgnParallelNewVector(mem->par, nv + mem->nalg, ctx);
     fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
             mem->dq_r == NULL || mem->rhs == NULL ||
             mem->sol == NULL);
@@ -681,8 +683,8 @@ int lgnAllocWork(LGNMem mem)
     /* sigma, sigma_dot and sigma_ddot of the exact variant
      * (lgn_kinematics.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag,
      * ele, ewt, a_scaled, incr, zero_nv (nv each), the dense output's
-     * scratch (4 nv), lambda_prev and work_m (m each) in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 2 * m), sizeof(sunrealtype));
+     * scratch (4 nv), lambda_prev, work_m and GGL's mu (m each) in one block */
+    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 3 * m), sizeof(sunrealtype));
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
     mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
                                        sizeof(sunrealtype));
@@ -713,6 +715,8 @@ int lgnAllocWork(LGNMem mem)
   mem->dense_work = mem->sigma + 13 * nv;
   mem->lambda_prev = m > 0 ? mem->sigma + 17 * nv : NULL;
   mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
+  mem->ggl_mu      = m > 0 && mem->constr_index == LGN_CONSTR_GGL ? mem->sigma + 17 * nv + 2 * m
+                                                                  : NULL;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
@@ -812,7 +816,8 @@ int lgnAllocMatrices(LGNMem mem)
 
 long int lgnIterationMatrixNnz(LGNMem mem)
 {
-  const long int n = (long int)(mem->nv + mem->m);
+  const long int n = (long int)(mem->nv + (mem->constr_index == LGN_CONSTR_GGL ? 2 * mem->m
+                                                                               : mem->m));
   if (mem->sp != NULL) return mem->sp->have_pattern ? (long int)mem->sp->A.colptr[n] : 0L;
   /* dense: n^2, saturated rather than overflowing */
   return n > 0 && n > LONG_MAX / n ? LONG_MAX : n * n;
@@ -838,8 +843,8 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     iw += 3L * mem->nrtfn;
   }
   if (mem->work_done) {
-    rw += 4 * nv + 2 * (nv + m) + 4 * m;                  /* g ... sol; lambda ... */
-    rw += 17 * nv + 2 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
+    rw += 17 * nv + 3 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

@@ -7,6 +7,7 @@
  *
  *   r = [ beta h^2 (M vdot + g + B^T lambda) ;  Phi(q)          ]   (index 3)
  *       [                                    ;  (B(q) v + Phi_t) / gamma' ]  (index 2)
+ *       [ ... ; Phi(q) ; (B(q) v + Phi_t) / gamma' ]                        (GGL)
  *
  * (doc/theory.md §6, scaling), plus the matrix-vector kernels.
  * ---------------------------------------------------------------------------*/
@@ -20,11 +21,13 @@
 #include "lgn_impl.h"
 
 /* Is B(q) needed? For the iteration matrix (for_matrix), for B v at index
- * 2, and for B^T lambda unless an LGNConstrForceFn gives it. */
+ * 2, and for B^T lambda unless an LGNConstrForceFn gives it. Not under
+ * GGL: the iterate has evaluated it already (v = T(x) xdot - B^T mu,
+ * lgn_kinematics.c). */
 sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
 {
-  return mem->m > 0 && (for_matrix || mem->constr_force == NULL ||
-                        mem->constr_index == LGN_CONSTR_INDEX2);
+  return mem->m > 0 && mem->constr_index != LGN_CONSTR_GGL &&
+         (for_matrix || mem->constr_force == NULL || mem->constr_index == LGN_CONSTR_INDEX2);
 }
 
 /* Is M diagonal (no stored entry off the diagonal)? Its diagonal to d. */
@@ -163,22 +166,24 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
   if (flag != LGN_SUCCESS) return flag;
   if (m > 0) {
     sunrealtype *phi = lgnData(mem->phi);
-    if (mem->constr_index == LGN_CONSTR_INDEX3) {
+    if (mem->constr_index != LGN_CONSTR_INDEX2) { /* index 3 and GGL: Phi(q) */
       memset(phi, 0, (size_t)m * sizeof(sunrealtype));
       ret = lgnCallbackVector(mem, LGN_CB_CONSTR,
                               mem->constr(t, mem->q1, mem->phi, mem->user_data),
                               mem->phi, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
-    } else {
-      ret = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), phi);
-      if (ret != LGN_SUCCESS) return ret;
-      for (i = 0; i < m; i++) phi[i] /= cv;
+      for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];
     }
-    for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];
+    if (mem->constr_index != LGN_CONSTR_INDEX3) { /* index 2 and GGL: B v + Phi_t */
+      sunrealtype *bv = mem->constr_index == LGN_CONSTR_GGL ? rhs + nv + m : rhs + nv;
+      ret = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), bv);
+      if (ret != LGN_SUCCESS) return ret;
+      for (i = 0; i < m; i++) bv[i] /= -cv;
+    }
   }
   for (i = 0; i < nv; i++) rhs[i] = -scale * rdyn[i];
 
-  if (!lgnAllFinite(rhs, nv + m)) {
+  if (!lgnAllFinite(rhs, nv + mem->nalg)) {
     LGN_ERROR(mem, LGN_NONFINITE,
               MSG_TIME "the %s residual has a NaN or Inf component "
               "(mass, force or constraint callback output).",

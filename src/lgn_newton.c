@@ -123,7 +123,8 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
   const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
   const sunrealtype lambda_atol = atol + roundoff / (beta * h);
-  const sunrealtype n = mem->nv_all + mem->m_all;
+  const sunbooleantype ggl = m > 0 && mem->constr_index == LGN_CONSTR_GGL;
+  const sunrealtype n = mem->nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->m_all;
   sunrealtype sum[2]; /* the configuration and multiplier parts */
 
   /* per-component tolerances (error control): the same weights with
@@ -133,6 +134,10 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
                                     roundoff, rtol)
                : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol,
                                    rtol);
+  /* GGL: the unknown nu = mu / gamma' moves the configuration by T^{-1} B^T
+   * dnu, a displacement: weighted as one (mu is near 0, no relative part) */
+  if (ggl) sum[0] += SumOfSquaresRatio(m, dmu + m, mem->ggl_mu, SUN_RCONST(0.0), sigma_atol,
+                                       rtol);
   sum[1] = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
                              lambda_unit * rtol);
   lgnSumAll(mem, sum, 2); /* over the ranks: every rank takes the same decision */
@@ -279,6 +284,9 @@ static int ApplyCorrection(LGNMem mem, const LGNStepCoeffs *c,
     mem->sigma_ddot[i] += c->beta_p * delta[i];
   }
   for (i = 0; i < m; i++) lambda1[i] += dmu[i] / c->scale;
+  /* GGL: the kinematic multiplier, unknown nu = mu / gamma' */
+  if (m > 0 && mem->constr_index == LGN_CONSTR_GGL)
+    for (i = 0; i < m; i++) mem->ggl_mu[i] += c->gamma_p * dmu[m + i];
   return mem->kin->correct != NULL ? mem->kin->correct(mem, delta) : LGN_SUCCESS;
 }
 
@@ -299,6 +307,11 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
   int flag;
 
   *used_old = !setup;
+  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_GGL) { /* mu predicted 0 */
+    sunindextype i;
+    for (i = 0; i < mem->m; i++) mem->ggl_mu[i] = SUN_RCONST(0.0);
+    mem->ggl_t1 = c->t1;
+  }
   for (test.iter = 0; test.iter < mem->maxcor; test.iter++) {
     flag = NewtonSolve(mem, c, setup);
     if (flag != LGN_SUCCESS) return flag;

@@ -729,7 +729,9 @@ void heavy_top_describe(const HeavyTopOptions *opt, char *buf, size_t len)
                     : opt->kinematics == LGN_KINEMATICS_SIGMA ? "sigma-"
                                                               : "";
   const char *grp = opt->formulation == HT_SE3 ? "SE3 " : "";
-  const char *idx = opt->constraints == LGN_CONSTR_INDEX2 ? "idx2" : "idx3";
+  const char *idx = opt->constraints == LGN_CONSTR_INDEX2 ? "idx2"
+                    : opt->constraints == LGN_CONSTR_GGL  ? "GGL"
+                                                          : "idx3";
   if (opt->formulation == HT_EULER_PARAMETERS) {
     if (opt->method == HT_GENALPHA)
       snprintf(buf, len, "EP gen-alpha(%.2g) %s", opt->rho_inf, idx);
@@ -863,8 +865,10 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
   o->vdot = N_VNew_Serial(nv, o->ctx);
   o->a = N_VNew_Serial(nv, o->ctx);
   o->lambda = N_VNew_Serial(m, o->ctx);
-  o->A = SUNDenseMatrix(nv + m, nv + m, o->ctx);
-  o->tmpl = N_VNew_Serial(nv + m, o->ctx); /* template of the linear solver */
+  /* nv + 2m rows under GGL (the multipliers lambda and mu) */
+  const sunindextype n = nv + (opt->constraints == LGN_CONSTR_GGL ? 2 * m : m);
+  o->A = SUNDenseMatrix(n, n, o->ctx);
+  o->tmpl = N_VNew_Serial(n, o->ctx); /* template of the linear solver */
   o->LS = (o->A && o->tmpl) ? (opt->make_ls != NULL ? opt->make_ls : SUNLinSol_Dense)(
                                   o->tmpl, o->A, o->ctx)
                             : NULL;

@@ -31,7 +31,7 @@ typedef struct {
   HeavyTopMethod method;
   double rho_inf;          /* generalized-alpha                          */
   double beta, gamma;      /* Newmark                                    */
-  int constraints;         /* LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2     */
+  int constraints;         /* LGN_CONSTR_INDEX3, _INDEX2 or _GGL (BDF)   */
   int kinematics;          /* LGN_KINEMATICS_*                           */
   double h, t_end;
   double rtol, atol;       /* Newton tolerances (0: Lignum's defaults)   */

@@ -106,6 +106,13 @@ extern "C" {
 #define LGN_CONSTR_INDEX3 133
 /** Constraint formulation: velocity level B(q) v = 0 (index 2). */
 #define LGN_CONSTR_INDEX2 132
+/** Constraint formulation: the stabilised index-2 form of Gear, Gupta and
+ *  Leimkuhler (GGL): both Phi(q) = 0 and B(q) v + Phi_t = 0, with a second
+ *  multiplier mu (m unknowns) in the kinematic relation, xdot = T(x)^{-1}
+ *  (v + B^T mu). BDF family (LGNSetBDF) with a dense matrix A only; the
+ *  matrix A and the linear solver then have nv + 2m rows (doc/theory.md
+ *  section 7, doc/user-guide.md section 3). */
+#define LGN_CONSTR_GGL    134
 
 /** Kinematics: v = xdot, vdot = xddot in each step (LGNM, LGGalpha). */
 #define LGN_KINEMATICS_SIMPLIFIED 100
@@ -391,7 +398,14 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
  */
 LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 
-/** Constraint formulation: LGN_CONSTR_INDEX3 (default) or LGN_CONSTR_INDEX2. */
+/** Constraint formulation: LGN_CONSTR_INDEX3 (default), LGN_CONSTR_INDEX2
+ *  or LGN_CONSTR_GGL (the stabilised index-2 form; BDF family and a dense
+ *  matrix A of nv + 2m rows only: other combinations are refused with
+ *  LGN_ILL_INPUT by the first LGNSolve or LGNCalcIC).
+ * @param lgn_mem the integrator memory
+ * @param index   LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another index
+ */
 LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
 
 /** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default),
@@ -623,7 +637,9 @@ LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
 
 /** After a singular matrix: the unknown at which the factorisation found a
  *  zero pivot (0 .. nv-1: a velocity component; nv .. nv+m-1: the
- *  multiplier of constraint k - nv), or -1 if none is known. The error
+ *  multiplier of constraint k - nv; under LGN_CONSTR_GGL nv+m .. nv+2m-1:
+ *  the kinematic multiplier mu of constraint k - nv - m), or -1 if none is
+ *  known. The error
  *  message names it in words (body and direction).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
 LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
@@ -813,7 +829,8 @@ LGN_EXPORT int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nnc
 LGN_EXPORT int LGNGetStepSize(void *lgn_mem, sunrealtype *h);
 /** The kinematics variant in use (LGN_KINEMATICS_*). */
 LGN_EXPORT int LGNGetKinematics(void *lgn_mem, int *kinematics);
-/** The constraint formulation in use (LGN_CONSTR_INDEX3 or LGN_CONSTR_INDEX2). */
+/** The constraint formulation in use (LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or
+ *  LGN_CONSTR_GGL). */
 LGN_EXPORT int LGNGetConstraintIndex(void *lgn_mem, int *index);
 /** The Newton mode in use (LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED). */
 LGN_EXPORT int LGNGetNewtonMode(void *lgn_mem, int *mode);

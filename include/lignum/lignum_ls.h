@@ -17,7 +17,8 @@
 extern "C" {
 #endif
 
-/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m)).
+/** Attach a linear solver and the iteration matrix A ((nv+m) x (nv+m);
+ *  (nv+2m) x (nv+2m) under LGN_CONSTR_GGL, dense only).
  *  - Direct (SUNLINEARSOLVER_DIRECT): a SUNDenseMatrix with SUNLinSol_Dense
  *    (or another direct solver on a dense matrix), or a SUNSparseMatrix
  *    (CSC or CSR; any initial nnz, Lignum sizes it) with SUNLinSol_KLU when
