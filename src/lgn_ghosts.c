@@ -24,10 +24,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
 #include "lgn_halo.h"
 #include "lgn_impl.h"
 
 #if defined(LGN_HAVE_MPI)
+
+/* The number of owned leaves (bodies) of the group. */
+static sunindextype OwnedLeaves(const LGNMem mem)
+{
+  sunindextype b = 0;
+  while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
+  return b;
+}
 
 void lgnGhostsFold(LGNMem mem, const sunrealtype *ext, sunrealtype *owned)
 {
@@ -71,6 +82,39 @@ void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv)
 void lgnGhostsClear(const LGNMem mem, sunrealtype *q, sunrealtype *v)
 {
   if (mem->halo != NULL) lgnHaloClearGhosts(mem->halo, q, v);
+}
+
+int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M)
+{
+  const sunindextype nvo = mem->nv_own;
+  sunindextype i, j, p, bad = -1;
+  if (mem->halo == NULL) return LGN_SUCCESS;
+  if (lgnMatIsSparse(M)) { /* CSC or CSR: an entry with an index past the owned ones */
+    const sunindextype *ptr = SUNSparseMatrix_IndexPointers(M);
+    const sunindextype *ind = SUNSparseMatrix_IndexValues(M);
+    const sunrealtype *val  = SUNSparseMatrix_Data(M);
+    for (j = 0; j < SUNSparseMatrix_NP(M) && bad < 0; j++)
+      for (p = ptr[j]; p < ptr[j + 1]; p++)
+        if (val[p] != SUN_RCONST(0.0) && (j >= nvo || ind[p] >= nvo)) {
+          bad = j >= nvo ? j : ind[p];
+          break;
+        }
+  } else {
+    for (j = 0; j < SM_COLUMNS_D(M) && bad < 0; j++)
+      for (i = 0; i < SM_ROWS_D(M); i++)
+        if ((i >= nvo || j >= nvo) && SM_ELEMENT_D(M, i, j) != SUN_RCONST(0.0)) {
+          bad = j >= nvo ? j : i;
+          break;
+        }
+  }
+  if (bad < 0) return LGN_SUCCESS;
+  LGN_ERROR(mem, LGN_ILL_INPUT,
+            "The mass matrix has entries of ghost body %lld (leaf %lld of the group, "
+            "velocity %lld): a ghost's mass belongs to its owner's rank, and the ranks' "
+            "matrices are summed (mark ghosts with LGNBodies_SetGhosts).",
+            (long long)(mem->blk_of[bad] - OwnedLeaves(mem)), (long long)mem->blk_of[bad],
+            (long long)bad);
+  return LGN_ILL_INPUT;
 }
 
 int lgnGhostsCheck(LGNMem mem)
@@ -188,6 +232,12 @@ void lgnGhostsRefreshState(LGNMem mem) { (void)mem; }
 int lgnGhostsCheck(LGNMem mem)
 {
   (void)mem;
+  return LGN_SUCCESS;
+}
+int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M)
+{
+  (void)mem;
+  (void)M;
   return LGN_SUCCESS;
 }
 void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv)

@@ -437,6 +437,10 @@ void lgnGhostsRefreshState(LGNMem mem);
 /* LGN_ILL_INPUT (reported) when the halo was made for another group than
  * the integrator's (LGNSetGroup after LGNSetHalo). */
 int lgnGhostsCheck(LGNMem mem);
+/* LGN_ILL_INPUT (reported) when the mass matrix M has an entry in a
+ * ghost's rows or columns: a ghost's mass is its owner's (the sum over the
+ * ranks would count it twice). */
+int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M);
 /* The entries of q (nq) and v (nv) of the rank's own bodies: all of them
  * without a halo. */
 void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv);

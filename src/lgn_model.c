@@ -70,6 +70,8 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
     ret = lgnCallbackMatrix(mem, LGN_CB_MASS, mem->mass(t, q, M, mem->user_data), M,
                             "LGNSolve");
     if (ret != LGN_SUCCESS) return ret;
+    ret = lgnGhostsCheckMass(mem, M); /* ghosts: no mass of their own */
+    if (ret != LGN_SUCCESS) return ret;
     mem->mass_current  = mem->mass_constant && M == mem->Mmat;
     mem->mass_diagonal = mem->mass_current && DiagonalOf(M, mem->mass_diag);
   }

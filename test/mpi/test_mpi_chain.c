@@ -29,6 +29,8 @@
  *  (e) misuse: a halo with a ghost no rank owns is refused on every rank;
  *      a dense solver of the rank's matrix, and a Krylov template whose
  *      length counts the ghosts' unknowns, give LGN_LS_MISMATCH everywhere;
+ *      ghosts left with a mass (LGNBodies_SetGhosts forgotten) give
+ *      LGN_ILL_INPUT everywhere (their mass would be counted twice);
  *  (g) with PETSc: MUMPS on the sum of the ranks' subdomain matrices
  *      (LGNLinSol_PETScSubdomain, LGNGetGlobalIndices): (a) to 1e-10;
  *  (f) index 2, exact kinematics, full Newton, from a start off the
@@ -107,6 +109,9 @@ static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, v
   return LGNJoints_ConstraintForce(((Chain *)ud)->joints, t, q, lambda, f) ? -1 : 0;
 }
 
+/* (e): a model that forgets LGNBodies_SetGhosts (its ghosts keep a mass) */
+static int forget_ghosts = 0;
+
 /* The bodies [lo, hi) and (lo > 0) the ghost lo - 1, last. */
 static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
 {
@@ -133,7 +138,7 @@ static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
   flag = LGNBodies_SetGravity(c->bodies, gvec);
   for (k = 0; k < c->nown && !flag; k++)
     flag = LGNBodies_SetPrincipalInertia(c->bodies, k, mass * (1.0 + 0.1 * (lo + k)), J);
-  if (!flag && c->nghost) flag = LGNBodies_SetGhosts(c->bodies, c->nown);
+  if (!flag && c->nghost && !forget_ghosts) flag = LGNBodies_SetGhosts(c->bodies, c->nown);
   for (k = lo; k < hi && !flag; k++) {
     const int a = k == lo ? c->nown : k - 1 - lo; /* local number of body k - 1 */
     if (k == 0) {
@@ -464,6 +469,18 @@ int main(int argc, char **argv)
     CHECK(par.flag == LGN_LS_MISMATCH, "(e) Krylov template of the wrong length: flag %d",
           par.flag);
     misuse = SOLVER_RIGHT;
+    /* ghosts with a mass of their own (LGNBodies_SetGhosts forgotten): the
+     * sum over the ranks would count them twice; refused on every rank */
+    {
+      Chain massive;
+      forget_ghosts = 1;
+      if (BuildChain(&massive, lo, hi, rank - 1) == 0) {
+        Run(&massive, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+        CHECK(par.flag == LGN_ILL_INPUT, "(e) ghosts with a mass: flag %d", par.flag);
+      }
+      forget_ghosts = 0;
+      FreeChain(&massive);
+    }
   }
 
   MPI_Allreduce(&failures, &total, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
