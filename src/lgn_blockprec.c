@@ -9,7 +9,9 @@
  * for the Krylov solvers (lgn_krylov.c). The velocity unknowns are split
  * into contiguous ranges (blocks of bodies); a constraint row belongs to the
  * block of its first nonzero velocity column (for a joint between two
- * blocks: the block of its lower body). Block b is A restricted to the rows
+ * blocks: the block of its lower body; a row with no velocity column in
+ * any block, a joint between two ghost bodies, is in no block and the
+ * preconditioner leaves it as it is). Block b is A restricted to the rows
  * and columns of its unknowns, itself a saddle-point matrix, factored with
  * KLU; the entries coupling two blocks (the off-block columns of the joints
  * at a boundary, and of S where a model couples bodies) are left to the
@@ -129,13 +131,12 @@ static int Build(LGNBlockPrec bp, const sunindextype *colptr,
   for (b = 0; b < bp->nblocks; b++)
     for (i = bp->voff[b]; i < bp->voff[b + 1]; i++) owner[i] = b;
   /* a constraint row: the block of its first velocity column in a block
-   * (columns in increasing order: the first one seen); one without any,
-   * block 0 */
+   * (columns in increasing order: the first one seen); one without any (a
+   * joint between two ghost bodies) in no block: an empty row there would
+   * make the block singular, and the iteration carries it */
   for (j = 0; j < bp->voff[bp->nblocks]; j++)
     for (p = colptr[j]; p < colptr[j + 1]; p++)
       if (rowind[p] >= nv && owner[rowind[p]] < 0) owner[rowind[p]] = owner[j];
-  for (i = nv; i < n; i++)
-    if (owner[i] < 0) owner[i] = 0;
   /* local numbering: in increasing global order within each block */
   for (i = 0; i < n; i++) loc[i] = owner[i] >= 0 ? bp->blk[owner[i]].n++ : -1;
   for (b = 0; b < bp->nblocks && flag == 0; b++) {
@@ -228,6 +229,8 @@ int lgnBlockPrecSolve(LGNBlockPrec bp, const sunrealtype *r, sunrealtype *z)
   int b;
   sunindextype i;
   if (!bp->factored) return -1;
+  if (z != r) /* the unknowns in no block: z = r there */
+    memcpy(z, r, (size_t)bp->n * sizeof(sunrealtype));
   for (b = 0; b < bp->nblocks; b++) {
     Block *k = &bp->blk[b];
     for (i = 0; i < k->n; i++) k->work[i] = r[k->glob[i]];

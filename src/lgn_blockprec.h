@@ -21,7 +21,7 @@ typedef struct LGNBlockPrecRec *LGNBlockPrec;
  * (voff[0] = 0, increasing, voff[nblocks] <= nv: velocities past it, the
  * ghost bodies of a run across ranks, belong to no block and are left
  * out); the other n - nv unknowns (constraint rows) are given to blocks at
- * the first setup. NULL when memory is refused. */
+ * the first setup (a row with no velocity column in any block to none). NULL when memory is refused. */
 LGNBlockPrec lgnBlockPrecCreate(sunindextype n, sunindextype nv, int nblocks,
                                 const sunindextype *voff);
 void lgnBlockPrecFree(LGNBlockPrec *bp);
@@ -38,8 +38,9 @@ int lgnBlockPrecSetup(LGNBlockPrec bp, const sunindextype *colptr,
                       const sunindextype *rowind, const sunrealtype *val,
                       long int pattern);
 
-/* z = P^{-1} r (z may be r): the blocks' solves, the coupling dropped.
- * Returns 0, or -1 before a successful setup. */
+/* z = P^{-1} r (z may be r): the blocks' solves, the coupling dropped; z =
+ * r on the unknowns in no block. Returns 0, or -1 before a successful
+ * setup. */
 int lgnBlockPrecSolve(LGNBlockPrec bp, const sunrealtype *r, sunrealtype *z);
 
 /* Number of blocks, and the reals and integers held (the blocks' patterns

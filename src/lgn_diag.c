@@ -181,7 +181,14 @@ void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len)
                                " (LGNGetRedundantConstraints; LGNJoints_DescribeConstraint "
                                "names their joints).");
   }
-  if (pivot >= 0 && used < len) {
+  if (pivot >= 0 && used < len && mem->halo != NULL) {
+    /* ghost bodies: the solver's column is a global unknown of the ranks'
+     * sum (LGNGetGlobalIndices), not one of this rank's */
+    used += (size_t)snprintf(buf + used, len - used,
+                             " Zero pivot at global unknown %lld of the ranks' summed matrix "
+                             "(LGNGetGlobalIndices numbers them).",
+                             (long long)pivot);
+  } else if (pivot >= 0 && used < len) {
     NameUnknown(mem, pivot, what, sizeof what);
     used += (size_t)snprintf(buf + used, len - used, " Zero pivot at unknown %lld, %s%s.",
                              (long long)pivot, what,

@@ -185,12 +185,21 @@ int LGNGetGlobalIndices(void *lgn_mem, sunindextype *idx)
   if (idx == NULL || mem->halo == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT, idx == NULL ? "idx = NULL illegal."
                                               : "No halo: call LGNSetHalo first.");
-    return LGN_ILL_INPUT;
+    flag = LGN_ILL_INPUT;
   }
+  /* agreed before the collective numbering (a rank's bad argument must not
+   * leave the others waiting in it) */
+  flag = lgnAgree(mem, flag);
+  if (flag != LGN_SUCCESS) return flag;
   lgnHaloOwnedLengths(mem->halo, &nq_own, &nv_own);
   mine = (long long)(nv_own + mem->m);
-  MPI_Exscan(&mine, &first, 1, MPI_LONG_LONG, MPI_SUM, lgnHaloComm(mem->halo));
-  if (lgnParallelRank(mem->par) == 0) first = 0; /* MPI_Exscan leaves rank 0's undefined */
+  {
+    MPI_Comm comm = lgnHaloComm(mem->halo);
+    int hrank = 0;
+    MPI_Comm_rank(comm, &hrank);
+    MPI_Exscan(&mine, &first, 1, MPI_LONG_LONG, MPI_SUM, comm);
+    if (hrank == 0) first = 0; /* MPI_Exscan leaves rank 0's undefined */
+  }
   /* the owners' numbers of the ghosts' velocities: sent as reals (exact
    * below 2^53) through the velocity exchange */
   gv = (sunrealtype *)malloc((size_t)SUNMAX(mem->nv, 1) * sizeof(sunrealtype));

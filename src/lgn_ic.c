@@ -126,7 +126,9 @@ static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
               MSG_TIME "the consistent initial accelerations could not be "
               "computed: [[M, B^T], [B, 0]] is singular or the solve failed "
               "(check M and B at q0).%s", (double)t,
-              flag == LGN_LSETUP_FAIL ? mem->diag_text : "");
+              flag == LGN_LSETUP_FAIL || (mem->krylov && flag == LGN_RECOVERABLE)
+                  ? mem->diag_text
+                  : "");
     return LGN_IC_FAIL;
   }
   return LGN_SUCCESS;

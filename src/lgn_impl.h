@@ -294,7 +294,6 @@ typedef struct LGNMemRec {
   int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
   sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
   sunrealtype *atol_vec;    /* per-component atol, nv (NULL: the scalar)   */
-  sunrealtype atol_vec_sum; /* ... the sum of its entries (this rank)      */
   sunrealtype epcon;        /* Newton tolerance / error-test tolerance     */
   sunrealtype h0_user;      /* LGNSetInitStep (0: estimated)               */
   sunrealtype hmin, hmax;   /* step size limits (hmax 0: none)             */

@@ -442,9 +442,10 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   LGNMem mem;
   const sunrealtype *a;
   sunrealtype sum = SUN_RCONST(0.0);
-  sunindextype i;
+  sunindextype i, nq_own, nv_own;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
+  lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
   /* a local call across ranks too: the entries are copied into an array of
    * this rank's length, and the multipliers' atol (their mean over all
    * ranks) is formed by LGNSolve */
@@ -455,7 +456,7 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
   if (flag != LGN_SUCCESS) return flag;
   a = N_VGetArrayPointer(atol);
-  for (i = 0; i < mem->nv; i++) {
+  for (i = 0; i < nv_own; i++) {
     if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
@@ -472,9 +473,8 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
     }
   }
   memcpy(mem->atol_vec, a, (size_t)mem->nv * sizeof(sunrealtype));
-  mem->atol_vec_sum = sum;
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
-  mem->atol     = sum / (sunrealtype)SUNMAX(mem->nv, 1); /* this rank's mean */
+  mem->atol     = sum / (sunrealtype)SUNMAX(nv_own, 1); /* this rank's mean */
   mem->tols_set = SUNTRUE;
   return LGN_SUCCESS;
 }
@@ -724,6 +724,7 @@ int LGNSetMaxNumSteps(void *lgn_mem, long int mxsteps)
 int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
 {
   LGNMem mem;
+  sunindextype nq_own, nv_own;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, vdot0, mem->nv, "vdot0", __func__);
@@ -735,8 +736,9 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
               "(call LGNReInit to start again from the current state).");
     flag = LGN_ILL_INPUT;
   }
+  lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
   if (flag == LGN_SUCCESS &&
-      (!lgnAllFinite(N_VGetArrayPointer(vdot0), mem->nv) ||
+      (!lgnAllFinite(N_VGetArrayPointer(vdot0), nv_own) ||
        (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m)))) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");
     flag = LGN_ILL_INPUT;
@@ -755,11 +757,13 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
 int LGNSetInitialAux(void *lgn_mem, N_Vector a0)
 {
   LGNMem mem;
+  sunindextype nq_own, nv_own;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, a0, mem->nv, "a0", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (!lgnAllFinite(N_VGetArrayPointer(a0), mem->nv)) {
+  lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
+  if (!lgnAllFinite(N_VGetArrayPointer(a0), nv_own)) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "a0 has a NaN or Inf entry.");
     return LGN_ILL_INPUT;
   }

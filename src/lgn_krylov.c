@@ -25,6 +25,7 @@
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -328,7 +329,20 @@ int lgnKrylovSetup(LGNMem mem)
 {
   int ret = SUNLinSolSetup(mem->LS, NULL);
   mem->last_lin_flag = ret;
+  mem->diag_text[0]  = '\0';
   if (ret == 0) return LGN_SUCCESS;
+  if (ret > 0 && mem->bp_nblocks > 0 && mem->bp != NULL) {
+    /* the whole matrix may be regular: a block keeps only its own columns */
+    snprintf(mem->diag_text, sizeof mem->diag_text,
+             " A block of the block preconditioner%s is singular: a block keeps the "
+             "columns of its own bodies only, so its constraints must be independent "
+             "on them; %s, or use a direct solver (KLU%s).",
+             mem->halo != NULL ? " on this rank" : "",
+             mem->halo != NULL ? "declare a joint at a cut on the rank where this holds "
+                                 "(not beside another joint that holds the same owned body)"
+                               : "cut the partition elsewhere",
+             mem->halo != NULL ? " on one rank, MUMPS across ranks" : ", MUMPS");
+  }
   if (ret > 0) return LGN_RECOVERABLE; /* a smaller step may help */
   LGN_ERROR(mem, LGN_LSETUP_FAIL,
             MSG_TIME "the preconditioner setup failed (%d)%s.", (double)mem->tn,

@@ -638,6 +638,17 @@ int lgnAllocWork(LGNMem mem)
     sizes[0] = (sunrealtype)mem->nv_own;
     sizes[1] = (sunrealtype)m;
     sizes[2] = m == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
+    if (mem->par != NULL) { /* ghost bodies on every rank or on none */
+      const sunrealtype any = lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
+      const sunrealtype all = -lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(-1.0) : SUN_RCONST(0.0));
+      if (any != all) {
+        LGN_ERROR(mem, LGN_ILL_INPUT,
+                  "Ghost bodies (LGNSetHalo) are set on some ranks only: set them on "
+                  "every rank or on none.");
+        lgnFreeWork(mem);
+        return LGN_ILL_INPUT;
+      }
+    }
     lgnSumAll(mem, sizes, 3);
     mem->nv_all = sizes[0];
     mem->m_all  = sizes[1];
