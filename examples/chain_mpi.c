@@ -83,6 +83,15 @@ static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, v
   return LGNJoints_ConstraintForce(((Model *)ud)->joints, t, q, lambda, f) ? -1 : 0;
 }
 
+/* A flag every rank goes on with: nonzero if any rank's is (a local
+ * failure must stop every rank before the next collective call). */
+static int Agreed(MPI_Comm comm, int flag)
+{
+  int any = 0, local = flag != 0;
+  MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, comm);
+  return any ? (flag != 0 ? flag : -1) : 0;
+}
+
 /* The free end (the far end of body N - 1, on the last rank), the total
  * energy and the largest |Phi|, reduced over the ranks to rank 0. */
 static void PrintRow(MPI_Comm comm, int rank, int nranks, const Model *md, sunrealtype t,
@@ -126,7 +135,7 @@ int main(int argc, char **argv)
   void *mem = NULL;
   long int N = 64, nsteps = 40, *gid = NULL, s;
   long int nst = 0, nni = 0, nli = 0, nlsetup = 0, lenrw = 0, leniw = 0;
-  int rank, nranks, nown, nghost, k, flag = 0, ghost_owner, timing = 1, mumps = 0, any = 0;
+  int rank, nranks, nown, nghost, k, flag = 0, ghost_owner, timing = 1, mumps = 0;
   sunindextype m;
   sunrealtype t = 0.0, *qd;
   double tsolve, tmax = 0.0;
@@ -225,12 +234,14 @@ int main(int argc, char **argv)
   if (!flag) flag = LGNSetStepSize(mem, h);
   if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
   /* set-up errors are local: agree before the collective calls */
-  MPI_Allreduce(&flag, &any, 1, MPI_INT, MPI_MIN, comm);
-  halo = any == 0 ? LGNHalo_Create(comm, G, nown, gid, nghost ? &ghost_owner : NULL) : NULL;
-  if (!flag && halo == NULL) flag = -1;
-  /* the halo before LGNInit: the ghost's entries of q and v are not read */
+  flag = Agreed(comm, flag);
+  halo = flag == 0 ? LGNHalo_Create(comm, G, nown, gid, nghost ? &ghost_owner : NULL) : NULL;
+  if (!flag && halo == NULL) flag = -1; /* NULL on every rank alike */
+  /* the halo before LGNInit: the ghost's entries of q and v are not read;
+   * it is referenced, so it is destroyed after LGNFree */
   if (!flag) flag = LGNSetHalo(mem, halo);
-  if (halo != NULL) flag = LGNInit(mem, 0.0, q, v);
+  flag = Agreed(comm, flag);
+  if (!flag) flag = LGNInit(mem, 0.0, q, v); /* collective */
 
   /* 5. The linear solver across the ranks. Krylov: SPGMR over the owned
    *    unknowns (6 per owned body and this rank's constraints), the block
@@ -240,7 +251,10 @@ int main(int argc, char **argv)
   yloc = N_VNew_Serial(6 * (sunindextype)nown + m, ctx);
   y    = N_VMake_MPIPlusX(comm, yloc, ctx);
   if (!mumps) {
+    /* 15 directions, restarted up to 3 times: block-Jacobi needs about 2
+     * iterations per rank here */
     LS = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 15, ctx);
+    if (LS == NULL || SUNLinSol_SPGMRSetMaxRestarts(LS, 3) != 0) flag = -1;
     if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
     if (!flag) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
   }
@@ -250,10 +264,12 @@ int main(int argc, char **argv)
     if (!flag) flag = LGNGetSubdomainSize(mem, &n);
     idx = (sunindextype *)malloc((size_t)(n > 0 ? n : 1) * sizeof(sunindextype));
     if (idx == NULL) flag = -1;
+    flag = Agreed(comm, flag);
     if (!flag) flag = LGNGetGlobalIndices(mem, idx); /* collective */
     /* Lignum fills the pattern (1 entry will do: it grows the room) */
     if (!flag) A = SUNSparseMatrix(n, n, 1, CSC_MAT, ctx);
-    LS = flag ? NULL : LGNLinSol_PETScSubdomain(y, A, idx, ctx);
+    flag = Agreed(comm, flag);
+    LS = flag ? NULL : LGNLinSol_PETScSubdomain(y, A, idx, ctx); /* collective */
     if (!flag && LS == NULL) flag = -1;
     if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
     free(idx);
@@ -268,6 +284,7 @@ int main(int argc, char **argv)
   /* the table evaluates this rank's joints, which need the ghost: before
    * the first LGNSolve its entries are ours to fill (Lignum fills them in
    * the vectors LGNSolve returns) */
+  flag = Agreed(comm, flag);
   if (!flag) flag = LGNHalo_UpdateGhosts(halo, LGN_HALO_CONFIGURATION, N_VGetArrayPointer(q));
   if (!flag) PrintRow(comm, rank, nranks, &md, t, q, v, phi, nown, m);
   tsolve = 0.0;

@@ -174,8 +174,9 @@ static int CheckArguments(int rank, int size, LGNGroup G, int nbodies, int nowne
   for (i = nowned; i < nbodies; i++)
     if (ghost_owner[i - nowned] < 0 || ghost_owner[i - nowned] >= size ||
         ghost_owner[i - nowned] == rank) {
-      Report(rank, "ghost_owner[%d] = %d illegal: another rank of the %d.", i - nowned,
-             ghost_owner[i - nowned], size);
+      Report(rank, "ghost_owner[%d] = %d illegal: a ghost's owner is another rank than "
+                   "this one (%d), in 0 ... %d.", i - nowned, ghost_owner[i - nowned], rank,
+             size - 1);
       return -1;
     }
   return 0;

@@ -115,6 +115,7 @@ static sunbooleantype HasPreconditioner(const LGNMem mem)
   return mem->psolve != NULL || mem->bp_nblocks > 0;
 }
 
+#if defined(LGN_HAVE_KLU)
 /* The owned bodies (leaves): all of them, or those before the ghosts. */
 static int OwnedBodies(const LGNMem mem)
 {
@@ -122,6 +123,7 @@ static int OwnedBodies(const LGNMem mem)
   while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
   return b;
 }
+#endif
 
 /* The block preconditioner for the current sizes and group: the bodies
  * (leaves) of the partition as velocity offsets; with ghost bodies, the

@@ -557,7 +557,9 @@ LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
  *  local error estimate and s the step's increment in the Lie algebra;
  *  the Newton iteration then converges to epcon (LGNSetNonlinConvCoef) times
  *  these. In the fixed-step mode the Newton iteration uses rtol and the mean
- *  of atol, as with LGNSStolerances. The vector is copied.
+ *  of atol, as with LGNSStolerances. The vector is copied. With ghost
+ *  bodies (LGNSetHalo, set before this call) only the owned bodies'
+ *  entries are read and checked.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
  *          LGN_ILL_INPUT (rtol < 0, atol NULL, of the wrong length, or an
  *          entry <= 0 or not finite), LGN_MEM_FAIL. */
@@ -640,7 +642,9 @@ LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
  *  multiplier of constraint k - nv; under LGN_CONSTR_GGL nv+m .. nv+2m-1:
  *  the kinematic multiplier mu of constraint k - nv - m), or -1 if none is
  *  known. The error
- *  message names it in words (body and direction).
+ *  message names it in words (body and direction). With ghost bodies and
+ *  LGNLinSol_PETScSubdomain it is a global unknown of the ranks' summed
+ *  matrix (LGNGetGlobalIndices numbers them).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
 LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 
@@ -764,7 +768,9 @@ typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
  *  current time; LGNReInit (e.g. a velocity reversed at an impact) restarts
  *  it from the new state. Must be called after LGNInit (the scratch vectors
  *  are cloned from the state); it survives LGNInit and LGNReInit. Directions are reset
- *  to 0 (both). nrtfn = 0 turns root finding off.
+ *  to 0 (both). nrtfn = 0 turns root finding off. Across MPI ranks g is
+ *  the sum of the ranks' returns: each rank returns its bodies' part (with
+ *  ghost bodies, nothing for a ghost, which its owner counts).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
  *          LGN_ILL_INPUT (nrtfn < 0, or g NULL with nrtfn > 0),
  *          LGN_MEM_FAIL. */

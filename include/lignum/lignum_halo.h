@@ -75,7 +75,7 @@ LGN_EXPORT LGNHalo LGNHalo_Create(MPI_Comm comm, LGNGroup G, int nowned,
                                   const long int *global_id, const int *ghost_owner);
 
 /** Free a halo (collective: it frees a communicator) and set *H to NULL;
- *  NULL is allowed. */
+ *  NULL is allowed. Free it after the integrators that use it (LGNFree). */
 LGN_EXPORT void LGNHalo_Destroy(LGNHalo *H);
 
 /** Number of this rank's own bodies (0 for H = NULL). */
@@ -97,18 +97,23 @@ LGN_EXPORT int LGNHalo_NumNeighbours(LGNHalo H);
 LGN_EXPORT int LGNHalo_UpdateGhosts(LGNHalo H, int kind, sunrealtype *x);
 
 /**
- * Couple this integrator's ranks through the halo H (collective; after
- * LGNInit, whose group must be the halo's G, and before the first
- * LGNSolve). The vectors q0, v0 and those LGNSolve returns hold the
- * owned bodies and the ghosts (their local length is G's nq, nv); the
- * ghosts' entries of q0 and v0 are not read. A NULL halo removes it.
+ * Couple this integrator's ranks through the halo H (a local call; every
+ * rank must make it, which LGNSolve checks). Call it after LGNSetGroup
+ * with the halo's G, best before LGNInit: then the ghosts' entries of q0
+ * and v0 are not read; after LGNInit they must hold a group element (a
+ * quaternion that normalises). The vectors q0, v0 and those LGNSolve and
+ * the getters return hold the owned bodies and the ghosts (their local
+ * length is G's nq, nv); Lignum keeps the ghosts' entries equal to their
+ * owners'. H is referenced, not copied: it must outlive every call on
+ * this integrator (destroy it after LGNFree). A NULL halo removes it.
  * The linear solver must work across ranks: a Krylov solver
  * (LGNSetLinearSolver(mem, LS, NULL); with LGNSetBlockPreconditioner the
  * blocks cover the owned bodies), or LGNLinSol_PETScSubdomain with a
  * sparse matrix of LGNGetSubdomainSize rows and the indices of
  * LGNGetGlobalIndices. Dense and KLU solvers are refused by LGNSolve.
- * @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, or LGN_ILL_INPUT if H
- *         was made for another group.
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT if no group is set,
+ *         H was made for another group, or (after LGNInit) q0 and v0 were
+ *         not MPI vectors.
  */
 LGN_EXPORT int LGNSetHalo(void *lgn_mem, LGNHalo H);
 
@@ -124,12 +129,14 @@ LGN_EXPORT int LGNGetSubdomainSize(void *lgn_mem, sunindextype *n);
  * The global index of each unknown of this rank's subdomain matrix
  * (collective): the unknowns of all ranks are numbered rank by rank, each
  * rank's owned velocities then its multipliers; a ghost's velocities get
- * the numbers their owner gives them. The first (owned) entries are thus
- * consecutive, as LGNLinSol_PETScSubdomain requires.
+ * the numbers their owner gives them. In the subdomain matrix's order
+ * (owned velocities, ghosts' velocities, multipliers) the owned numbers
+ * are thus in two consecutive runs, each owned number once, as
+ * LGNLinSol_PETScSubdomain requires.
  * @param lgn_mem the integrator (LGNInit and LGNSetHalo called)
  * @param idx     room for LGNGetSubdomainSize entries
  * @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (idx NULL,
- *         or no halo set).
+ *         or no halo set, on any rank: every rank returns the flag).
  */
 LGN_EXPORT int LGNGetGlobalIndices(void *lgn_mem, sunindextype *idx);
 

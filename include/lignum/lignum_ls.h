@@ -212,8 +212,10 @@ typedef int (*LGNPrecSetupFn)(sunrealtype t, N_Vector q, N_Vector v,
                               void *user_data);
 
 /** Preconditioner solve: z ~ A^{-1} r (r, z of length nv + m: the velocity
- *  part, then the constraint rows), with the arguments of the last setup
- *  and the Krylov solver's tolerance delta for this solve.
+ *  part, then the constraint rows; with ghost bodies, LGNSetHalo, the owned
+ *  bodies' velocities then the rank's constraint rows), with the arguments
+ *  of the last setup and the Krylov solver's tolerance delta for this
+ *  solve.
  *  @return 0 on success, > 0 recoverable, < 0 unrecoverable. */
 typedef int (*LGNPrecSolveFn)(sunrealtype t, N_Vector q, N_Vector v,
                               N_Vector r, N_Vector z, sunrealtype cM,
@@ -238,7 +240,11 @@ LGN_EXPORT int LGNSetPreconditioner(void *lgn_mem, LGNPrecSetupFn psetup,
  *  solver. The bodies (the leaves of the Lie group, in order) are split
  *  into nblocks contiguous blocks; block b holds the velocities of its
  *  bodies and the constraint rows whose first body (the lowest velocity
- *  column of the row in B) lies in it. Each block's restriction of the
+ *  column of the row in B) lies in it; a row with no column in any block
+ *  is in none (left as it is). With ghost bodies (LGNSetHalo) the blocks
+ *  split the rank's owned bodies and the ghosts are in no block: a block's
+ *  constraints must then be independent on its owned bodies (a singular
+ *  block is reported as such). Each block's restriction of the
  *  scaled iteration matrix (a saddle-point matrix itself) is factored with
  *  KLU at each matrix setup; the coupling between blocks (the joints at the
  *  block boundaries) is left to the Krylov iteration. nblocks = 1 is the
@@ -248,7 +254,8 @@ LGN_EXPORT int LGNSetPreconditioner(void *lgn_mem, LGNPrecSetupFn psetup,
  *  @param lgn_mem    memory block
  *  @param nblocks    number of blocks (>= 1); 0 switches it off
  *  @param body_start nblocks + 1 increasing body indices, body_start[0] = 0
- *                    and body_start[nblocks] = the number of bodies: block
+ *                    and body_start[nblocks] = the number of bodies (owned
+ *                    bodies with ghosts): block
  *                    b holds the bodies body_start[b] ... body_start[b+1]-1.
  *                    NULL: nblocks blocks of (nearly) equal numbers of
  *                    bodies. Copied.
