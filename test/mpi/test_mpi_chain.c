@@ -31,6 +31,9 @@
  *      length counts the ghosts' unknowns, give LGN_LS_MISMATCH everywhere;
  *      ghosts left with a mass (LGNBodies_SetGhosts forgotten) give
  *      LGN_ILL_INPUT everywhere (their mass would be counted twice);
+ *  (h) a joint and a spring between two ghosts (the next rank's first two
+ *      bodies, declared on this rank): a constraint row with no owned
+ *      column, in no block of the block preconditioner; (a) to 1e-9;
  *  (g) with PETSc: MUMPS on the sum of the ranks' subdomain matrices
  *      (LGNLinSol_PETScSubdomain, LGNGetGlobalIndices): (a) to 1e-10;
  *  (f) index 2, exact kinematics, full Newton, from a start off the
@@ -82,7 +85,7 @@ typedef struct {
   LGNJoints joints;
   int lo, hi, nown, nghost;
   long int gid[NBODIES];
-  int owner;          /* of the ghost */
+  int owner[NBODIES]; /* of each ghost */
   int fail_after;     /* (d): the force fails for t > 0.05 on this rank */
 } Chain;
 
@@ -112,11 +115,29 @@ static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, v
 /* (e): a model that forgets LGNBodies_SetGhosts (its ghosts keep a mass) */
 static int forget_ghosts = 0;
 
-/* The bodies [lo, hi) and (lo > 0) the ghost lo - 1, last. */
-static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
+/* (h): the joint and spring between the next rank's first two bodies are
+ * declared here, on two ghosts (and not there) */
+static int ghost_pair = 0;
+
+/* Rank r's first body of P ranks (r = P: the end). */
+static int First(int r, int P) { return (int)(((long)r * NBODIES) / P); }
+
+/* Does rank r (of P) hold the next rank's first two bodies as ghosts? */
+static int TakesPair(int r, int P)
 {
-  const sunrealtype L = 1.0, mass = 1.0, r = 0.05;
-  const sunrealtype J[3] = {0.5 * mass * r * r, mass * L * L / 12.0, mass * L * L / 12.0};
+  return ghost_pair && r >= 0 && r + 1 < P && First(r + 2, P) - First(r + 1, P) >= 2;
+}
+
+/* Rank r's bodies [lo, hi) of P ranks (r < 0: the whole chain on one
+ * process) and its ghosts, last: lo - 1 (r > 0), and with ghost_pair hi and
+ * hi + 1. */
+static int BuildChain(Chain *c, int r, int P)
+{
+  const int lo = r < 0 ? 0 : First(r, P), hi = r < 0 ? NBODIES : First(r + 1, P);
+  const int pair = TakesPair(r, P), skip = r > 0 && TakesPair(r - 1, P);
+  const sunrealtype L = 1.0, mass = 1.0, radius = 0.05;
+  const sunrealtype J[3] = {0.5 * mass * radius * radius, mass * L * L / 12.0,
+                            mass * L * L / 12.0};
   const sunrealtype gvec[3] = {0.0, 0.0, -9.81}, origin[3] = {0.0, 0.0, 0.0};
   const sunrealtype left[3] = {-0.5 * L, 0.0, 0.0}, right[3] = {0.5 * L, 0.0, 0.0};
   LGNGroup factors[NBODIES];
@@ -125,13 +146,22 @@ static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
   c->lo     = lo;
   c->hi     = hi;
   c->nown   = hi - lo;
-  c->nghost = lo > 0 ? 1 : 0;
-  c->owner  = owner_of_ghost;
+  c->nghost = (lo > 0 ? 1 : 0) + (pair ? 2 : 0);
   c->body   = LGNGroup_R3xSO3();
   for (k = 0; k < c->nown + c->nghost; k++) factors[k] = c->body;
   c->G = LGNGroup_Product(c->nown + c->nghost, factors);
   for (k = 0; k < c->nown; k++) c->gid[k] = lo + k;
-  if (c->nghost) c->gid[c->nown] = lo - 1;
+  k = c->nown;
+  if (lo > 0) {
+    c->owner[k - c->nown] = r - 1;
+    c->gid[k++]           = lo - 1;
+  }
+  if (pair) {
+    c->owner[k - c->nown] = r + 1;
+    c->gid[k++]           = hi;
+    c->owner[k - c->nown] = r + 1;
+    c->gid[k++]           = hi + 1;
+  }
   c->bodies = LGNBodies_Create(c->G);
   c->joints = LGNJoints_Create(c->G);
   if (c->bodies == NULL || c->joints == NULL) return -1;
@@ -141,12 +171,18 @@ static int BuildChain(Chain *c, int lo, int hi, int owner_of_ghost)
   if (!flag && c->nghost && !forget_ghosts) flag = LGNBodies_SetGhosts(c->bodies, c->nown);
   for (k = lo; k < hi && !flag; k++) {
     const int a = k == lo ? c->nown : k - 1 - lo; /* local number of body k - 1 */
+    if (skip && k == lo + 1) continue; /* declared on rank r - 1 (h) */
     if (k == 0) {
       flag = LGNJoints_AddSpherical(c->joints, LGN_GROUND, origin, 0, left);
     } else {
       flag = LGNJoints_AddSpherical(c->joints, a, right, k - lo, left);
       if (!flag) flag = LGNBodies_AddRotationalSpringDamper(c->bodies, a, k - lo, 20.0, 0.5, NULL);
     }
+  }
+  if (pair && !flag) { /* (h) between the ghosts hi and hi + 1 */
+    const int g0 = c->nown + (lo > 0 ? 1 : 0);
+    flag = LGNJoints_AddSpherical(c->joints, g0, right, g0 + 1, left);
+    if (!flag) flag = LGNBodies_AddRotationalSpringDamper(c->bodies, g0, g0 + 1, 20.0, 0.5, NULL);
   }
   return flag;
 }
@@ -233,7 +269,7 @@ static void Run(Chain *c, int kind, sunbooleantype across, MPI_Comm comm, SUNCon
   if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
   /* (a) the halo before LGNInit (the ghost's entries of q0, v0 unread),
    * (b) after it (they must be a group element then: 1e3's normalise) */
-  if (across) halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? &c->owner : NULL);
+  if (across) halo = LGNHalo_Create(comm, c->G, c->nown, c->gid, c->nghost ? c->owner : NULL);
   if (across && halo == NULL) flag = -1;
   if (!flag && across && kind != RUN_BDF_ADAPTIVE) flag = LGNSetHalo(mem, halo);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
@@ -353,14 +389,13 @@ int main(int argc, char **argv)
   SUNContext ctx = NULL;
   Chain whole, part;
   Result ref, par;
-  int lo, hi, j, total = 0;
+  int lo, j, total = 0;
   MPI_Init(&argc, &argv);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &nranks);
   SUNContext_Create((void *)&(MPI_Comm){MPI_COMM_WORLD}, &ctx);
   lo = (int)(((long)rank * NBODIES) / nranks);
-  hi = (int)(((long)(rank + 1) * NBODIES) / nranks);
-  if (BuildChain(&whole, 0, NBODIES, -1) != 0 || BuildChain(&part, lo, hi, rank - 1) != 0) {
+  if (BuildChain(&whole, -1, nranks) != 0 || BuildChain(&part, rank, nranks) != 0) {
     printf("[rank %d] model set-up failed\n", rank);
     MPI_Abort(MPI_COMM_WORLD, 2);
   }
@@ -401,6 +436,27 @@ int main(int argc, char **argv)
            ref.nst, d);
   }
 
+  /* (h) the joint and spring between the next rank's first two bodies
+   * declared here, on two ghosts: a constraint row with no owned column */
+  if (nranks > 1) {
+    Chain pairs;
+    ghost_pair = 1;
+    const int built = BuildChain(&pairs, rank, nranks);
+    CHECK(built == 0, "(h) model set-up: %d", built);
+    if (built == 0) {
+      Run(&whole, RUN_GA_FIXED, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
+      Run(&pairs, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
+      CHECK(par.flag == 0, "(h) a joint between two ghosts: flag %d", par.flag);
+      if (par.flag == 0) {
+        const sunrealtype d = MaxDiffOwned(&pairs, &par, &ref, NOUT - 1);
+        CHECK(d < 1e-9, "(h) a joint between two ghosts: %g from the one-process run", d);
+        printf("[rank %d] (h) joint between two ghosts: max diff %.3g\n", rank, d);
+      }
+    }
+    FreeChain(&pairs);
+    ghost_pair = 0;
+  }
+
   /* (f) index 2, exact kinematics, LGNCalcIC from an inconsistent start */
   Run(&whole, RUN_INDEX2_CALCIC, SUNFALSE, MPI_COMM_WORLD, ctx, &ref);
   Run(&part, RUN_INDEX2_CALCIC, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
@@ -435,7 +491,7 @@ int main(int argc, char **argv)
     h = nranks > 1 && part.nghost
             ? LGNHalo_Create(MPI_COMM_WORLD, part.G, part.nown, bad, &owner)
             : LGNHalo_Create(MPI_COMM_WORLD, part.G, part.nown, part.gid,
-                             part.nghost ? &part.owner : NULL);
+                             part.nghost ? part.owner : NULL);
     if (nranks > 1)
       CHECK(h == NULL, "(e) a halo with a ghost of no rank was accepted");
     else
@@ -474,7 +530,7 @@ int main(int argc, char **argv)
     {
       Chain massive;
       forget_ghosts = 1;
-      if (BuildChain(&massive, lo, hi, rank - 1) == 0) {
+      if (BuildChain(&massive, rank, nranks) == 0) {
         Run(&massive, RUN_GA_FIXED, SUNTRUE, MPI_COMM_WORLD, ctx, &par);
         CHECK(par.flag == LGN_ILL_INPUT, "(e) ghosts with a mass: flag %d", par.flag);
       }
