@@ -45,15 +45,8 @@ static int PrepareModel(LGNMem mem, const char *func)
 {
   int flag = lgnAgree(mem, CheckModel(mem, func));
   if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnGhostsCheck(mem));
-  /* ghost bodies on every rank or on none (their exchanges are collective) */
-  if (flag == LGN_SUCCESS &&
-      lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) !=
-          -lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(-1.0) : SUN_RCONST(0.0))) {
-    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                    "Ghost bodies (LGNSetHalo) are set on some ranks only: set them on "
-                    "every rank or on none.");
-    flag = LGN_ILL_INPUT;
-  }
+  /* (a halo on some ranks only is refused where the work space is made:
+   * LGNSetHalo drops it, so lgnEnsureWork makes it anew on every rank) */
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag != LGN_SUCCESS) return flag;
   lgnGhostsRefreshState(mem); /* the owners' state (collective) */

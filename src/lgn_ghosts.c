@@ -30,15 +30,14 @@
 #include "lgn_halo.h"
 #include "lgn_impl.h"
 
-#if defined(LGN_HAVE_MPI)
-
-/* The number of owned leaves (bodies) of the group. */
-static sunindextype OwnedLeaves(const LGNMem mem)
+int lgnGhostsOwnedBodies(const LGNMem mem)
 {
-  sunindextype b = 0;
+  int b = 0;
   while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
   return b;
 }
+
+#if defined(LGN_HAVE_MPI)
 
 void lgnGhostsFold(LGNMem mem, const sunrealtype *ext, sunrealtype *owned)
 {
@@ -112,7 +111,7 @@ int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M)
             "The mass matrix has entries of ghost body %lld (leaf %lld of the group, "
             "velocity %lld): a ghost's mass belongs to its owner's rank, and the ranks' "
             "matrices are summed (mark ghosts with LGNBodies_SetGhosts).",
-            (long long)(mem->blk_of[bad] - OwnedLeaves(mem)), (long long)mem->blk_of[bad],
+            (long long)(mem->blk_of[bad] - lgnGhostsOwnedBodies(mem)), (long long)mem->blk_of[bad],
             (long long)bad);
   return LGN_ILL_INPUT;
 }

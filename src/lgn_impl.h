@@ -433,6 +433,9 @@ void lgnGhostsRestrict(LGNMem mem, const sunrealtype *ext, sunrealtype *owned);
 void lgnGhostsExpand(LGNMem mem, const sunrealtype *owned, sunrealtype *ext);
 /* The ghosts' entries of the state (q, v, vdot, a) from their owners. */
 void lgnGhostsRefreshState(LGNMem mem);
+/* The owned bodies (leaves of the group): all of them without a halo,
+ * else those before the ghosts (the work space must exist: nv_own). */
+int lgnGhostsOwnedBodies(const LGNMem mem);
 /* LGN_ILL_INPUT (reported) when the halo was made for another group than
  * the integrator's (LGNSetGroup after LGNSetHalo). */
 int lgnGhostsCheck(LGNMem mem);

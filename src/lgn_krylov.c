@@ -115,23 +115,13 @@ static sunbooleantype HasPreconditioner(const LGNMem mem)
   return mem->psolve != NULL || mem->bp_nblocks > 0;
 }
 
-#if defined(LGN_HAVE_KLU)
-/* The owned bodies (leaves): all of them, or those before the ghosts. */
-static int OwnedBodies(const LGNMem mem)
-{
-  int b = 0;
-  while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
-  return b;
-}
-#endif
-
 /* The block preconditioner for the current sizes and group: the bodies
  * (leaves) of the partition as velocity offsets; with ghost bodies, the
  * owned ones (the ghosts' unknowns are other ranks'). */
 static int MakeBlockPreconditioner(LGNMem mem)
 {
 #if defined(LGN_HAVE_KLU)
-  const int nb = mem->bp_nblocks, nbody = OwnedBodies(mem);
+  const int nb = mem->bp_nblocks, nbody = lgnGhostsOwnedBodies(mem);
   const sunindextype n = mem->nv + mem->m;
   sunindextype *voff;
   int b;
