@@ -57,10 +57,35 @@ static void SparseCompressedMatvec(const sunindextype *ptr,
   }
 }
 
+/* y (+)= A x and y (+)= A^T x for the column-major M x N array a. restrict:
+ * y overlaps neither a nor x, so the compiler needs no run-time overlap
+ * test before the short loops (a third of their cost at n = 6). */
+static void DenseMatvec(sunindextype M, sunindextype N, const sunrealtype *restrict a,
+                        const sunrealtype *restrict x, sunrealtype *restrict y,
+                        sunbooleantype add, sunbooleantype transpose)
+{
+  sunindextype i, j;
+  if (!transpose) {
+    if (!add)
+      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
+    for (j = 0; j < N; j++) {
+      const sunrealtype *restrict col = a + j * M, xj = x[j];
+      for (i = 0; i < M; i++) y[i] += col[i] * xj;
+    }
+  } else {
+    for (j = 0; j < N; j++) {
+      const sunrealtype *restrict col = a + j * M;
+      sunrealtype s = add ? y[j] : SUN_RCONST(0.0);
+      for (i = 0; i < M; i++) s += col[i] * x[i];
+      y[j] = s;
+    }
+  }
+}
+
 static void Matvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                    sunbooleantype add, sunbooleantype transpose)
 {
-  sunindextype i, j, M, N;
+  sunindextype i, M;
   if (lgnMatIsSparse(A)) {
     const sunbooleantype csc = SUNSparseMatrix_SparseType(A) == CSC_MAT;
     M = transpose ? SUNSparseMatrix_Columns(A) : SUNSparseMatrix_Rows(A);
@@ -73,23 +98,7 @@ static void Matvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                            x, y, csc != transpose);
     return;
   }
-  M = SM_ROWS_D(A);
-  N = SM_COLUMNS_D(A);
-  if (!transpose) {
-    if (!add)
-      for (i = 0; i < M; i++) y[i] = SUN_RCONST(0.0);
-    for (j = 0; j < N; j++) {
-      const sunrealtype *col = SM_COLUMN_D(A, j), xj = x[j];
-      for (i = 0; i < M; i++) y[i] += col[i] * xj;
-    }
-  } else {
-    for (j = 0; j < N; j++) {
-      const sunrealtype *col = SM_COLUMN_D(A, j);
-      sunrealtype s = add ? y[j] : SUN_RCONST(0.0);
-      for (i = 0; i < M; i++) s += col[i] * x[i];
-      y[j] = s;
-    }
-  }
+  DenseMatvec(SM_ROWS_D(A), SM_COLUMNS_D(A), SM_DATA_D(A), x, y, add, transpose);
 }
 
 void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
@@ -115,8 +124,9 @@ void lgnMatClear(SUNMatrix A)
     const sunindextype np = SUNSparseMatrix_NP(A);
     memset(SUNSparseMatrix_IndexPointers(A), 0, (size_t)(np + 1) * sizeof(sunindextype));
   } else {
-    memset(SUNDenseMatrix_Data(A), 0,
-           (size_t)SUNDenseMatrix_LData(A) * sizeof(sunrealtype));
+    /* dense (lgnMatID): the fields directly, without SUNDenseMatrix_Data's
+     * second type check through a function call */
+    memset(SM_DATA_D(A), 0, (size_t)SM_LDATA_D(A) * sizeof(sunrealtype));
   }
 }
 

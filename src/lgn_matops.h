@@ -38,7 +38,8 @@ static inline sunbooleantype lgnMatIsSparse(SUNMatrix A)
   return lgnMatID(A) == SUNMATRIX_SPARSE;
 }
 
-/* y = A x (add: y += A x) for a dense or sparse (CSC or CSR) A. */
+/* y = A x (add: y += A x) for a dense or sparse (CSC or CSR) A; y must not
+ * overlap x or A's data. */
 void lgnMatvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                sunbooleantype add);
 /* y = A^T x (add: y += A^T x). */

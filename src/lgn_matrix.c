@@ -130,11 +130,11 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
   /* GGL: the Phi rows come first, the velocity rows (B v + Phi_t)/gamma'
    * at vrow; under GGL the saddle-point matrix has an identity for mu */
   const sunindextype vrow = x->ggl ? nv + m : nv;
-  sunrealtype *A = SUNDenseMatrix_Data(mem->A);
-  const sunrealtype *M = SUNDenseMatrix_Data(mem->Mmat);
-  const sunrealtype *C = SUNDenseMatrix_Data(mem->Cmat);
-  const sunrealtype *K = SUNDenseMatrix_Data(mem->Kmat);
-  const sunrealtype *B = m > 0 ? SUNDenseMatrix_Data(mem->Bmat) : NULL;
+  sunrealtype *A = SM_DATA_D(mem->A); /* all dense on this path */
+  const sunrealtype *M = SM_DATA_D(mem->Mmat);
+  const sunrealtype *C = SM_DATA_D(mem->Cmat);
+  const sunrealtype *K = SM_DATA_D(mem->Kmat);
+  const sunrealtype *B = m > 0 ? SM_DATA_D(mem->Bmat) : NULL;
   const sunrealtype cM = x->cM, cC = x->cC, cK = x->cK, cBv = x->cBv;
   int flag;
 

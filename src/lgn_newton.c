@@ -155,11 +155,14 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
 static sunbooleantype WithinBudget(LGNMem mem, int iter, sunrealtype norm,
                                    sunrealtype rate)
 {
-  const int left = mem->maxcor - iter - 1;
+  int left = mem->maxcor - iter - 1;
   if (norm <= SUN_RCONST(1.0)) return SUNTRUE;
   if (rate <= SUN_RCONST(0.0)) return SUNTRUE;
   if (rate >= SUN_RCONST(1.0)) return SUNFALSE;
-  return (sunrealtype)left * log(SUN_RCONST(1.0) / rate) >= log(norm);
+  /* norm rate^left <= 1 by products (left < maxcor): two logarithms cost
+   * more than the rest of the test */
+  for (; left > 0 && norm > SUN_RCONST(1.0); left--) norm *= rate;
+  return norm <= SUN_RCONST(1.0);
 }
 
 /* Stalled multipliers: the configuration has converged but the multiplier
