@@ -275,10 +275,9 @@ static int CheckSettings(LGNMem mem)
   return LGN_SUCCESS;
 }
 
-/* Across ranks the settings that decide the steps must be the same on
- * every rank (else the ranks would part ways in a collective): refused
- * with LGN_ILL_INPUT on all, naming the first that differs. */
-static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
+/* The settings that decide the steps, compared across the ranks
+ * (CheckSameSettings). */
+static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
 {
   static const char *names[] = {
     "the method family (LGNSetBDF / LGNSetNewmark ...)", "the BDF order",
@@ -310,13 +309,21 @@ static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
                  "a name for each setting");
   _Static_assert(sizeof x / sizeof x[0] <= LGN_PARALLEL_MAXSAME,
                  "lgnParallelSame compares them all");
-  if (mem->par == NULL) return LGN_SUCCESS;
   if (lgnParallelSame(mem->par, x, (int)(sizeof x / sizeof x[0]), &first))
     return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_ILL_INPUT,
             "%s differs between the ranks: the settings of the method must be the "
             "same on every rank.", names[first]);
   return LGN_ILL_INPUT;
+}
+
+/* Across ranks the settings that decide the steps must be the same on
+ * every rank (else the ranks would part ways in a collective): refused
+ * with LGN_ILL_INPUT on all, naming the first that differs. */
+static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
+{
+  if (mem->par == NULL) return LGN_SUCCESS; /* one process: nothing to compare */
+  return CompareSettings(mem, tout, itask);
 }
 
 /* Everything LGNSolve needs before the first step: the settings, work

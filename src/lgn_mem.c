@@ -215,7 +215,7 @@ int lgnCallbackVector(LGNMem mem, LGNCallbackId cb, int retval, N_Vector x,
 {
   sunindextype k;
   if (retval != 0) return lgnCallbackFlag(mem, cb, retval, func);
-  k = FirstNonFinite(N_VGetArrayPointer(x), lgnLocalLength(x));
+  k = FirstNonFinite(lgnData(x), lgnLocalLength(x));
   if (k < 0) return LGN_SUCCESS;
   lgnProcessError(mem, LGN_NONFINITE, __LINE__, func, __FILE__,
                   MSG_TIME "the %s function returned %g in entry %lld.",
