@@ -267,7 +267,9 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
     mem->bdf_vpgain = mem->bdf_vgain[0];
   } else {
     kp = SUNMIN(k, nh - 1);
-    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, dp);
+    /* the derivative weights only for the fixed leading coefficient (the
+     * basis' derivative costs (kp + 1)^3 divisions) */
+    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, flc ? dp : NULL);
     for (i = 0; i < nv; i++) {
       sunrealtype x = SUN_RCONST(0.0), v = SUN_RCONST(0.0);
       for (j = 0; j <= kp; j++) {
@@ -446,11 +448,13 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
     tt[j] = mem->bdf_t[j - 1];
     memcpy(a + j * nv, Y + (j - 1) * nv, (size_t)nv * sizeof(sunrealtype));
   }
-  /* in place: a_m <- [P_0 .. P_m] */
+  /* in place: a_m <- [P_0 .. P_m] (one division per node pair, not per
+   * component) */
   for (m = 1; m < npts; m++)
-    for (j = npts - 1; j >= m; j--)
-      for (i = 0; i < nv; i++)
-        a[j * nv + i] = (a[j * nv + i] - a[(j - 1) * nv + i]) / (tt[j] - tt[j - m]);
+    for (j = npts - 1; j >= m; j--) {
+      const sunrealtype r = SUN_RCONST(1.0) / (tt[j] - tt[j - m]);
+      for (i = 0; i < nv; i++) a[j * nv + i] = (a[j * nv + i] - a[(j - 1) * nv + i]) * r;
+    }
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
     sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
