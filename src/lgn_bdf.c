@@ -439,6 +439,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   const sunindextype nv = mem->nv;
   const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
   sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf_dd;
+  sunrealtype den[LGN_BDF_MAXHIST + 1][LGN_BDF_MAXHIST + 1];
   sunindextype i;
   int j, m, o;
 
@@ -455,6 +456,19 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
       const sunrealtype r = SUN_RCONST(1.0) / (tt[j] - tt[j - m]);
       for (i = 0; i < nv; i++) a[j * nv + i] = (a[j * nv + i] - a[(j - 1) * nv + i]) * r;
     }
+  /* the velocities' noise: den[m][j] = prod_{l <= m, l != j} (tt_j - tt_l),
+   * the denominators of the divided difference over tt_0 .. tt_m, built
+   * one node at a time (each product in the order l = 0, 1, ...) */
+  if (noise > SUN_RCONST(0.0)) {
+    den[0][0] = SUN_RCONST(1.0);
+    for (m = 1; m < npts; m++) {
+      den[m][m] = SUN_RCONST(1.0);
+      for (j = 0; j < m; j++) {
+        den[m][j] = den[m - 1][j] * (tt[j] - tt[m]);
+        den[m][m] *= tt[m] - tt[j];
+      }
+    }
+  }
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
     sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
@@ -478,13 +492,8 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
       /* [y_0 .. y_m] = sum_j y_j / prod_{i != j} (tt_j - tt_i), each y_j
        * (v_{n+1-j}) with the noise gain g_j times the positions' noise */
       sunrealtype nz = SUN_RCONST(0.0), e;
-      int l;
-      for (j = 0; j <= ord + 1; j++) {
-        sunrealtype den = SUN_RCONST(1.0);
-        for (l = 0; l <= ord + 1; l++)
-          if (l != j) den *= tt[j] - tt[l];
-        nz += (j == 0 ? mem->bdf_vgain1 : mem->bdf_vgain[j - 1]) / fabs(den);
-      }
+      for (j = 0; j <= ord + 1; j++)
+        nz += (j == 0 ? mem->bdf_vgain1 : mem->bdf_vgain[j - 1]) / fabs(den[ord + 1][j]);
       e = lgnWrmsNorm(mem, mem->work_nv, mem->ewt) - nz * noise * fac;
       E[o] = SUNMAX(E[o], SUNMAX(SUN_RCONST(0.0), e));
     } else
