@@ -50,10 +50,11 @@
  * LTE_k = y^(k+1)/(k+1)! prod_{j<=k} psi_j / c0 (for constant steps
  * h^{k+1} y^(k+1) / ((k+1) sum_{j<=k} 1/j): 1/2, 2/9, ... as it should be).
  * The same with the divided differences of orders k and k + 2 (of x and of
- * h v; at index 3 projected like the error test's estimate) estimates the error at
- * orders k - 1 and k + 1; order and step follow IDA's rules except that
- * E_{k-1} <= E_k alone lowers the order, that h is kept only for factors in
- * (1, 1.1), and that order 5 takes no longer steps than order 4 would:
+ * h v; at index 3, maxord 5 and k >= 4 projected like the error test's
+ * estimate) estimates the error at orders k - 1 and k + 1; order and step
+ * follow IDA's rules except that E_{k-1} <= E_k alone lowers the order,
+ * that h is kept only for factors in (1, 1.1), and that order 5 takes no
+ * longer steps than order 4 would:
  * lower the order when E_{k-1} <= E_k, raise it after k + 1 steps at order
  * k when E_{k+1} < E_k; h_new = h (2 E + 1e-4)^{-1/(k+1)}, at most 2 h, kept
  * when the factor lies in (1, 1.1), cut to [0.5, 0.9] h when below 1; at
@@ -432,19 +433,23 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
  * Order and step selection (after an accepted step)
  * ===========================================================================*/
 
-/* The variable coefficients at index 3 project the order estimates on the
+/* The variable coefficients at index 3 and maxord 5 project the estimates
+ * that the rules between orders 4 and 5 read (at orders k >= 4) on the
  * constraints' tangent space, as the error test projects its estimate: on
  * the heavy top the unprojected divided differences are some 200 times the
  * projected ones (their part normal to the constraints, not the error),
  * and with the order-5 limit (Order5Limit) E_4 <= E_5 of that kind lowered
  * the order to steps whose order-4 error was 5 times the tolerance: three
- * failed error tests in a row, then order 1. GGL keeps them unprojected
+ * failed error tests in a row, then order 1. Each projection is a solve
+ * with the step's factored matrix; projected at every order and maxord,
+ * the heavy top took about 10 % more instructions per step, and maxord 4
+ * was no more regular (doc/theory.md section 8). GGL keeps them unprojected
  * (projected, its maxord 4 lost tolerance proportionality: exponent 0.39),
  * and the fixed leading coefficient keeps IDA's unprojected estimates. */
-static sunbooleantype ProjectsOrderEstimates(const LGNMem mem)
+static sunbooleantype ProjectsOrderEstimates(const LGNMem mem, int k)
 {
   return mem->bdf_form == LGN_BDF_VARIABLE_COEFF && mem->m > 0 &&
-         mem->constr_index == LGN_CONSTR_INDEX3;
+         mem->constr_index == LGN_CONSTR_INDEX3 && mem->bdf_maxord == 5 && k >= 4;
 }
 
 /* mem->work_nv <- its projection (mem->ele is the projection's work space;
@@ -467,7 +472,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
                              sunrealtype E[4])
 {
   const sunindextype nv = mem->nv;
-  const sunbooleantype project = ProjectsOrderEstimates(mem);
+  const sunbooleantype project = ProjectsOrderEstimates(mem, k);
   const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
   sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf_dd;
   sunindextype i;
@@ -487,8 +492,10 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
     sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
-    /* projected: E_{k-2} is left out (no rule of this form reads it) */
-    if (ord < 1 || ord + 1 >= npts || (project && o == 0)) continue;
+    /* projected: E_{k-2}, and E_{k+1} at maxord, are left out (no rule of
+     * this form reads them) */
+    if (ord < 1 || ord + 1 >= npts) continue;
+    if (project && (o == 0 || (o == 3 && k >= mem->bdf_maxord))) continue;
     for (j = 1; j <= ord; j++) {
       prod *= c->t1 - tt[j];
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);

@@ -722,7 +722,7 @@ int main(void)
    * and 5, modified Newton). With IDA's keep-h band (1, 2) and steps of
    * order 5 from the order-5 estimate alone the worst factors were 5.6
    * (maxord 4) and 6.9 (maxord 5, tol 3.16e-8); measured now
-   * 1.08 and 1.10, exponents 0.91 and 0.93 (doc/theory.md section 8). */
+   * 1.09 and 1.15, exponents 0.91 and 0.93 (doc/theory.md section 8). */
   {
     int maxord;
     for (maxord = 4; maxord <= 5; maxord++) {
