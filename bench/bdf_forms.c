@@ -18,6 +18,12 @@
  *                           i = 0 ... 5: the controller's sensitivity
  *   bdf_forms --run VC|FLC maxord tol   one run (modified Newton), e.g.
  *                           under valgrind --tool=callgrind
+ *   bdf_forms --series VC|FLC maxord [n]  modified Newton at n tolerances
+ *                           per decade from 1e-6 to 1e-10 (default 2, the
+ *                           half decades): error, steps, orders, and the
+ *                           regularity (each interior point against the
+ *                           geometric mean of its two neighbours) and the
+ *                           fitted exponent of error against tol
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -175,6 +181,46 @@ static int Perturb(double tol, const LGNRefHeavyTop *ref)
   return 0;
 }
 
+/* --series: one form and maxord at n tolerances per decade, 1e-6 ... 1e-10
+ * (modified Newton). The regularity is the largest ratio, either way, of an
+ * error to the geometric mean of its two neighbours' (at n = 2: every half
+ * decade and every decade, not only the half decades as in the table). */
+static int Series(const char *fname, int maxord, int per_decade, const LGNRefHeavyTop *ref)
+{
+  const int form = !strcmp(fname, "FLC") ? LGN_BDF_FIXED_LEADING : LGN_BDF_VARIABLE_COEFF;
+  const int n = 4 * per_decade + 1;
+  double err[4 * 20 + 1], tol[4 * 20 + 1], sx = 0, sy = 0, sxx = 0, sxy = 0, worst = 0;
+  long int steps = 0;
+  SUNContext ctx;
+  int i, failed = 0;
+  if (per_decade < 1 || per_decade > 20) return 1;
+  SUNContext_Create(NULL, &ctx);
+  printf("%s maxord %d, modified Newton\n%10s %10s %6s %4s  %s\n", fname, maxord, "tol",
+         "error", "steps", "etf", "orders 1-5");
+  for (i = 0; i < n; i++) {
+    Result r;
+    tol[i] = pow(10.0, -6.0 - (double)i / per_decade);
+    r      = HeavyTop(ctx, form, maxord, LGN_NEWTON_MODIFIED, tol[i], ref);
+    err[i] = r.err;
+    steps += r.nst;
+    failed |= r.flag != 0;
+    printf("%10.4g %10.3e %6ld %4ld  %ld %ld %ld %ld %ld%s\n", tol[i], r.err, r.nst, r.netf,
+           r.nord[1], r.nord[2], r.nord[3], r.nord[4], r.nord[5], r.flag ? "  (failed)" : "");
+    sx += log(tol[i]);
+    sy += log(r.err);
+    sxx += log(tol[i]) * log(tol[i]);
+    sxy += log(tol[i]) * log(r.err);
+  }
+  for (i = 1; i + 1 < n; i++) {
+    const double gm = sqrt(err[i - 1] * err[i + 1]);
+    worst = fmax(worst, fmax(err[i] / gm, gm / err[i]));
+  }
+  printf("error ~ tol^%.3f; off the neighbours' geometric mean by up to %.2f; %ld steps in all\n",
+         (n * sxy - sx * sy) / (n * sxx - sx * sx), worst, steps);
+  SUNContext_Free(&ctx);
+  return failed;
+}
+
 int main(int argc, char **argv)
 {
   const char *csv_name = argc > 1 ? argv[1] : "bdf_forms.csv";
@@ -187,6 +233,8 @@ int main(int argc, char **argv)
   for (i = 0; i < NTOL; i++) tols[i] = pow(10.0, -6.0 - 0.5 * i);
   if (lgnref_heavy_top(&t_end, 1, &ref, LGNREF_FEHLBERG_8) != 0) return 1;
   if (argc == 3 && !strcmp(argv[1], "--perturb")) return Perturb(atof(argv[2]), &ref);
+  if ((argc == 4 || argc == 5) && !strcmp(argv[1], "--series"))
+    return Series(argv[2], atoi(argv[3]), argc == 5 ? atoi(argv[4]) : 2, &ref);
   if (argc == 5 && !strcmp(argv[1], "--run")) { /* one run, e.g. under callgrind */
     const int form = !strcmp(argv[2], "FLC") ? LGN_BDF_FIXED_LEADING : LGN_BDF_VARIABLE_COEFF;
     Result r;

@@ -50,12 +50,16 @@
  * LTE_k = y^(k+1)/(k+1)! prod_{j<=k} psi_j / c0 (for constant steps
  * h^{k+1} y^(k+1) / ((k+1) sum_{j<=k} 1/j): 1/2, 2/9, ... as it should be).
  * The same with the divided differences of orders k and k + 2 (of x and of
- * h v) estimates the error at orders k - 1 and k + 1; order and step follow
- * IDA's rules except that E_{k-1} <= E_k alone lowers the order:
+ * h v; at index 3, maxord 5 and k >= 4 projected like the error test's
+ * estimate) estimates the error at orders k - 1 and k + 1; order and step
+ * follow IDA's rules except that E_{k-1} <= E_k alone lowers the order,
+ * that h is kept only for factors in (1, 1.1), and that order 5 takes no
+ * longer steps than order 4 would:
  * lower the order when E_{k-1} <= E_k, raise it after k + 1 steps at order
  * k when E_{k+1} < E_k; h_new = h (2 E + 1e-4)^{-1/(k+1)}, at most 2 h, kept
- * when the factor lies in (1, 2), cut to [0.5, 0.9] h when below 1. At the
- * start the order rises by one every step (while the estimates allow).
+ * when the factor lies in (1, 1.1), cut to [0.5, 0.9] h when below 1; at
+ * order 5 at most the factor of E_4. At the start the order rises by one
+ * every step (while the estimates allow).
  * Under error control a step that would leave less than a tenth of itself
  * before the stop time stretches to land on it, and one that would leave
  * less than one more step takes half the rest (no short landing step).
@@ -78,6 +82,11 @@
  * (IDA: 2, IDASetEtaFixedStepBounds): measured on the heavy top, doc/theory.md
  * section 8 */
 #define BDF_FLC_GROW SUN_RCONST(1.5)
+/* the variable coefficients keep h only while the estimate allows less
+ * than 1.1 h (IDA's 2 let the step settle anywhere in a factor 2^(k+2) of
+ * the estimate: half-decade tolerances 6.9 times off their neighbours;
+ * doc/theory.md section 8) */
+#define BDF_VC_GROW SUN_RCONST(1.1)
 
 /* =============================================================================
  * Coefficients
@@ -426,6 +435,34 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
  * Order and step selection (after an accepted step)
  * ===========================================================================*/
 
+/* The variable coefficients at index 3 and maxord 5 project the estimates
+ * that the rules between orders 4 and 5 read (at orders k >= 4) on the
+ * constraints' tangent space, as the error test projects its estimate: on
+ * the heavy top the unprojected divided differences are some 200 times the
+ * projected ones (their part normal to the constraints, not the error),
+ * and with the order-5 limit (Order5Limit) E_4 <= E_5 of that kind lowered
+ * the order to steps whose order-4 error was 5 times the tolerance: three
+ * failed error tests in a row, then order 1. Each projection is a solve
+ * with the step's factored matrix; projected at every order and maxord,
+ * the heavy top took about 10 % more instructions per step, and maxord 4
+ * was no more regular (doc/theory.md section 8). GGL keeps them unprojected
+ * (projected, its maxord 4 lost tolerance proportionality: exponent 0.39),
+ * and the fixed leading coefficient keeps IDA's unprojected estimates. */
+static sunbooleantype ProjectsOrderEstimates(const LGNMem mem, int k)
+{
+  return mem->bdf_form == LGN_BDF_VARIABLE_COEFF && mem->m > 0 &&
+         mem->constr_index == LGN_CONSTR_INDEX3 && mem->bdf_maxord == 5 && k >= 4;
+}
+
+/* mem->work_nv <- its projection (mem->ele is the projection's work space;
+ * OrderEstimates restores it). A failed solve leaves it unprojected. */
+static void ProjectOrderEstimate(LGNMem mem, const LGNStepCoeffs *c)
+{
+  const size_t bytes = (size_t)mem->nv * sizeof(sunrealtype);
+  memcpy(mem->ele, mem->work_nv, bytes);
+  if (lgnProjectEstimate(mem, c) == LGN_SUCCESS) memcpy(mem->work_nv, mem->ele, bytes);
+}
+
 /* Estimates E_j of the error of orders j = k - 2 ... k + 1 of the step just
  * taken (E[j - k + 2]; negative: not available) from the divided
  * differences of y over t_{n+1}, t_n, ... (y1 the new point, Y the
@@ -437,6 +474,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
                              sunrealtype E[4])
 {
   const sunindextype nv = mem->nv;
+  const sunbooleantype project = ProjectsOrderEstimates(mem, k);
   const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
   sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf_dd;
   sunrealtype den[LGN_BDF_MAXHIST + 1][LGN_BDF_MAXHIST + 1];
@@ -472,7 +510,10 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
     sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
+    /* projected: E_{k-2}, and E_{k+1} at maxord, are left out (no rule of
+     * this form reads them) */
     if (ord < 1 || ord + 1 >= npts) continue;
+    if (project && (o == 0 || (o == 3 && k >= mem->bdf_maxord))) continue;
     for (j = 1; j <= ord; j++) {
       prod *= c->t1 - tt[j];
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
@@ -488,6 +529,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
       fac *= c->h;
     }
     for (i = 0; i < nv; i++) mem->work_nv[i] = a[(ord + 1) * nv + i] * fac;
+    if (project) ProjectOrderEstimate(mem, c);
     if (noise > SUN_RCONST(0.0)) { /* the velocities: less their noise */
       /* [y_0 .. y_m] = sum_j y_j / prod_{i != j} (tt_j - tt_i), each y_j
        * (v_{n+1-j}) with the noise gain g_j times the positions' noise */
@@ -501,20 +543,24 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   }
 }
 
-/* E_{k-2} ... E_{k+1} of the error test's kind (unprojected): positions
- * x in the chart of q_n and velocities times h. */
+/* E_{k-2} ... E_{k+1} of the error test's kind (projected or not,
+ * ProjectsOrderEstimates): positions x in the chart of q_n and velocities
+ * times h. The step's own estimate in mem->ele is kept. */
 static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype E[4])
 {
+  const size_t bytes = (size_t)mem->nv * sizeof(sunrealtype);
   E[0] = E[1] = E[2] = E[3] = -SUN_RCONST(1.0);
+  memcpy(mem->bdf_ele_keep, mem->ele, bytes);
   OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf_x, SUN_RCONST(1.0), SUN_RCONST(0.0), E);
   OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf_v, c->h,
                    PositionNoise(mem, c, mem->ewt), E);
+  memcpy(mem->ele, mem->bdf_ele_keep, bytes);
 }
 
 /* The step factor for an error estimate E at order k: r = (2 E +
  * 1e-4)^{-1/(k+1)}, at most 2; kept at 1 for r in (1, grow) (IDA's
- * eta_max_fx; grow = 2 in the variable-coefficient form, as IDA's default),
- * cut to [0.5, 0.9] below 1. */
+ * eta_max_fx, 2 by default; here 1.5 in the fixed-leading-coefficient form,
+ * 1.1 in the variable-coefficient form), cut to [0.5, 0.9] below 1. */
 static sunrealtype StepFactor(sunrealtype E, int k, sunrealtype grow)
 {
   sunrealtype r = pow(SUN_RCONST(2.0) * E + SUN_RCONST(1.0e-4),
@@ -589,6 +635,22 @@ static sunrealtype SelectOrderFLC(LGNMem mem, const LGNStepCoeffs *c, int k, sun
   return StepFactor(Enew, knew, BDF_FLC_GROW);
 }
 
+/* The next step of order 5 is no longer than the one order 4 would take
+ * (the factor for E_4 of the step just taken; else no limit, 2). On the heavy
+ * top the order-5 estimate falls like h^7 while the global error of order 5
+ * falls like h^5: steps from E_5 alone made the error follow tol^0.64 at
+ * maxord 5. E_4 falls like h^5, so steps from it make the order-5 error
+ * follow the tolerance (tol^1.0) with fewer steps for the same error than
+ * before (doc/theory.md section 8). */
+static sunrealtype Order5Limit(const sunrealtype E[4], int k, int knew, sunrealtype scale)
+{
+  /* E[j] is E_{k-2+j}: E_4 is E[1] at k = 5, E[2] at k = 4 */
+  const sunrealtype E4 = knew != 5 ? -SUN_RCONST(1.0) : k == 5 ? E[1] : k == 4 ? E[2]
+                                                                        : -SUN_RCONST(1.0);
+  if (E4 < SUN_RCONST(0.0)) return BDF_HMAX_RATIO;
+  return StepFactor(E4 * scale, 4, BDF_VC_GROW);
+}
+
 /* After an accepted step of order k with estimate err: the next order and
  * the factor of the next step. */
 static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype err)
@@ -617,7 +679,7 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
   if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
   mem->bdf_order = knew;
-  return StepFactor(Enew, knew, BDF_HMAX_RATIO);
+  return SUNMIN(StepFactor(Enew, knew, BDF_VC_GROW), Order5Limit(E, k, knew, scale));
 }
 
 /* =============================================================================

@@ -142,6 +142,14 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
   return LGN_SUCCESS;
 }
 
+/* mem->ele projected on the constraints' tangent space (index 3, GGL), as
+ * the error test projects it; unchanged at index 2 and without constraints. */
+int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c)
+{
+  if (mem->m > 0 && mem->constr_index != LGN_CONSTR_INDEX2) return ProjectOnConstraints(mem, c);
+  return LGN_SUCCESS;
+}
+
 int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
                  sunrealtype *norm)
 {

@@ -151,6 +151,7 @@ typedef struct LGNMemRec {
   sunrealtype *bdf_rx, *bdf_rv; /* the known parts of xdot, vdot (nv each) */
   sunrealtype *bdf_xpred, *bdf_vpred; /* the predictor (nv each)           */
   sunrealtype *bdf_dd;      /* divided differences, (LGN_BDF_MAXHIST + 1) nv */
+  sunrealtype *bdf_ele_keep; /* nv: the step's estimate (ele) while the order estimates use ele */
   sunrealtype bdf_c0;       /* leading coefficient of the BDF derivative   */
   long int bdf_nord[LGN_BDF_MAXORD + 1]; /* steps taken at each order      */
   sunrealtype rtol, atol;   /* Newton stop test                            */
@@ -576,6 +577,7 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
 /* ---- lgn_errtest.c: the local error of a step --------------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
+int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c);
 int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
                  sunrealtype *norm);
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);

@@ -750,13 +750,14 @@ int lgnEnsureWork(LGNMem mem)
 
 /* The BDF history and work arrays (lgn_bdf.c), once, in one block:
  * LGN_BDF_MAXHIST points of q (nq) and v, x (nv), r_x, r_v, the predictor
- * (4 nv) and the divided differences ((LGN_BDF_MAXHIST + 1) nv). */
+ * (4 nv), the divided differences ((LGN_BDF_MAXHIST + 1) nv), the
+ * multipliers (LGN_BDF_MAXHIST m) and a copy of the step's estimate (nv). */
 int lgnAllocBDF(LGNMem mem)
 {
   const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
   const size_t H = LGN_BDF_MAXHIST;
   if (mem->bdf_q != NULL) return LGN_SUCCESS;
-  mem->bdf_q = (sunrealtype *)calloc(H * (nq + m) + (3 * H + 5) * nv, sizeof(sunrealtype));
+  mem->bdf_q = (sunrealtype *)calloc(H * (nq + m) + (3 * H + 6) * nv, sizeof(sunrealtype));
   if (mem->bdf_q == NULL) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -769,6 +770,7 @@ int lgnAllocBDF(LGNMem mem)
   mem->bdf_vpred = mem->bdf_xpred + nv;
   mem->bdf_dd    = mem->bdf_vpred + nv;
   mem->bdf_l     = mem->bdf_dd + (H + 1) * nv;
+  mem->bdf_ele_keep = mem->bdf_l + H * m;
   mem->bdf_nhist = 0;
   return LGN_SUCCESS;
 }
