@@ -25,7 +25,10 @@
  *  (e) a start off the velocity constraint is refused and LGNCalcIC
  *      (LGN_IC_PROJECT_QV) repairs it;
  *  (f) bad input: the sigma variant, a Krylov solver and (with KLU) a
- *      sparse matrix are refused at the solve with a message naming why.
+ *      sparse matrix are refused at the solve with a message naming why;
+ *  (g) rheonomic constraints (Phi_t; test_ggl's bead on a turning rod,
+ *      exact solution known): fixed steps h = 0.02, 0.01, 0.005 to t = 1,
+ *      order 2 +- 0.2, |Phi| and |B v + Phi_t| at round-off at t = 1.
  * With --quick only (c), (e) and (f).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
@@ -241,6 +244,30 @@ static void FixedStepErrors(SUNContext ctx, int index, int kin, double h, double
   if (!flag) Errors(&r, ref, e);
   else printf("  h %g: flag %d\n", h, flag);
   RunFree(&r);
+}
+
+/* (a) the start transient: the largest multiplier error over the steps
+ * in (0, 0.02] (HUGE_VAL on failure). */
+static double StartLambdaError(SUNContext ctx, int index, int kin, double h)
+{
+  enum { NMAX = 200 };
+  static LGNRefHeavyTop ref[NMAX];
+  double times[NMAX], e[3], emax = 0;
+  const int n = (int)(0.02 / h + 0.5);
+  Run r;
+  sunrealtype t;
+  int flag = n > NMAX, k;
+  for (k = 0; k < n && k < NMAX; k++) times[k] = (k + 1) * h;
+  if (!flag) flag = lgnref_heavy_top(times, n, ref, LGNREF_FEHLBERG_8);
+  if (!flag) flag = RunMethod(&r, ctx, index, kin, h);
+  for (k = 0; !flag && k < n; k++) {
+    flag = LGNSolve(r.mem, times[k], &t, r.q, r.v, LGN_NORMAL);
+    if (!flag) flag = LGNGetMultipliers(r.mem, r.lambda);
+    if (!flag) Errors(&r, &ref[k], e);
+    emax = fmax(emax, e[2]);
+  }
+  RunFree(&r);
+  return flag ? HUGE_VAL : emax;
 }
 
 /* (b) the largest |Phi| and |B v| over a fixed-step run to t = 1. */
@@ -501,6 +528,104 @@ static double PendulumTextbook(SUNContext ctx, int kin, double rho, double h, in
   return dmax;
 }
 
+/* ---- (g) the bead on a turning rod (rheonomic; test_ggl's model) ---------- */
+
+#define BEAD_M  2.0
+#define BEAD_W  2.0
+#define BEAD_R0 0.5
+#define BEAD_RD 0.3
+
+static int BMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  (void)t; (void)q; (void)ud;
+  SM_ELEMENT_D(M, 0, 0) = BEAD_M;
+  SM_ELEMENT_D(M, 1, 1) = BEAD_M;
+  return 0;
+}
+
+static int BForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  (void)t; (void)q; (void)v; (void)g; (void)ud; /* g = 0 */
+  return 0;
+}
+
+static int BConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  (void)ud;
+  NV_Ith_S(phi, 0) = -NV_Ith_S(q, 0) * sin(BEAD_W * t) + NV_Ith_S(q, 1) * cos(BEAD_W * t);
+  return 0;
+}
+
+static int BConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  (void)q; (void)ud;
+  SM_ELEMENT_D(B, 0, 0) = -sin(BEAD_W * t);
+  SM_ELEMENT_D(B, 0, 1) = cos(BEAD_W * t);
+  return 0;
+}
+
+static int BConstrTime(sunrealtype t, N_Vector q, N_Vector phit, void *ud)
+{
+  (void)ud;
+  NV_Ith_S(phit, 0) =
+      -BEAD_W * (NV_Ith_S(q, 0) * cos(BEAD_W * t) + NV_Ith_S(q, 1) * sin(BEAD_W * t));
+  return 0;
+}
+
+/* Generalized-alpha (rho_inf 0.9) with GGL and fixed steps h to t = 1:
+ * the position error, |Phi| and |B v + Phi_t| at t = 1 (flag != 0:
+ * failed). */
+static int BeadRun(SUNContext ctx, int kin, double h, double *err, double *phi, double *bv)
+{
+  LGNGroup G = LGNGroup_Rn(2);
+  N_Vector q = N_VNew_Serial(2, ctx), v = N_VNew_Serial(2, ctx), y = N_VNew_Serial(4, ctx);
+  N_Vector p = N_VNew_Serial(1, ctx), pt = N_VNew_Serial(1, ctx);
+  SUNMatrix A = SUNDenseMatrix(4, 4, ctx), B = SUNDenseMatrix(1, 2, ctx);
+  SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
+  void *mem = LGNCreate(ctx);
+  sunrealtype t;
+  double r;
+  int flag;
+  NV_Ith_S(q, 0) = BEAD_R0;
+  NV_Ith_S(q, 1) = 0.0;
+  NV_Ith_S(v, 0) = BEAD_RD;
+  NV_Ith_S(v, 1) = BEAD_R0 * BEAD_W; /* co-rotating: consistent */
+  flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetMassFn(mem, BMass);
+  if (!flag) flag = LGNSetForceFn(mem, BForce);
+  if (!flag) flag = LGNSetConstraints(mem, 1, BConstr, BConstrJac);
+  if (!flag) flag = LGNSetConstraintTimeFn(mem, BConstrTime);
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  if (!flag) flag = LGNSetConstraintIndex(mem, LGN_CONSTR_GGL);
+  if (!flag) flag = LGNSetGenAlpha(mem, 0.9);
+  if (!flag) flag = LGNSetKinematics(mem, kin);
+  if (!flag) flag = LGNSStolerances(mem, 1e-12, 1e-12);
+  if (!flag) flag = LGNSetStepSize(mem, h);
+  if (!flag) flag = LGNSolve(mem, 1.0, &t, q, v, LGN_NORMAL);
+  if (!flag) {
+    r = BEAD_R0 * cosh(BEAD_W * t) + BEAD_RD / BEAD_W * sinh(BEAD_W * t);
+    *err = hypot(NV_Ith_S(q, 0) - r * cos(BEAD_W * t), NV_Ith_S(q, 1) - r * sin(BEAD_W * t));
+    BConstr(t, q, p, NULL);
+    BConstrJac(t, q, B, NULL);
+    BConstrTime(t, q, pt, NULL);
+    *phi = fabs(NV_Ith_S(p, 0));
+    *bv = fabs(SM_ELEMENT_D(B, 0, 0) * NV_Ith_S(v, 0) + SM_ELEMENT_D(B, 0, 1) * NV_Ith_S(v, 1) +
+               NV_Ith_S(pt, 0));
+  }
+  LGNFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  SUNMatDestroy(B);
+  N_VDestroy(q);
+  N_VDestroy(v);
+  N_VDestroy(y);
+  N_VDestroy(p);
+  N_VDestroy(pt);
+  LGNGroup_Destroy(G);
+  return flag;
+}
+
 /* Did the last message contain s? */
 static char last_msg[1024];
 static void ErrHandler(int code, const char *module, const char *func, const char *msg,
@@ -546,6 +671,24 @@ int main(int argc, char **argv)
           if (x == 0)
             CHECK(fabs(p - 2) <= 0.2, "(a) %s GGL %s: fitted order %.3f", kname[k], what[c], p);
         }
+      }
+  }
+
+  /* (a) the multipliers' start transient (printed: GGL's is first order
+   * too, as index 3's; a consistent start a_0 = vdot_0, doc/theory.md
+   * section 6) */
+  if (!quick) {
+    const double hs[4] = {1e-3, 5e-4, 2.5e-4, 1.25e-4};
+    const int idx[2] = {LGN_CONSTR_GGL, LGN_CONSTR_INDEX3};
+    static const char *iname[2] = {"GGL", "index 3"};
+    int x;
+    printf("(a) max multiplier error over the steps in (0, 0.02]\n");
+    for (k = 0; k < 2; k++)
+      for (x = 0; x < 2; x++) {
+        double err[4];
+        for (i = 0; i < 4; i++) err[i] = StartLambdaError(ctx, idx[x], kins[k], hs[i]);
+        printf("  %-13s %-7s: %.3e %.3e %.3e %.3e, fitted order %.3f\n", kname[k], iname[x],
+               err[0], err[1], err[2], err[3], Fit(hs, err, 4));
       }
   }
 
@@ -601,6 +744,26 @@ int main(int argc, char **argv)
       p = Fit(tols, err, 4);
       printf("  %-13s error ~ tol^%.3f\n", kname[k], p);
       CHECK(p > 0.55 && p < 0.9, "(d) %s: error ~ tol^%.3f", kname[k], p);
+    }
+  }
+
+  /* (g) rheonomic constraints */
+  if (!quick) {
+    const double hs[3] = {0.02, 0.01, 0.005};
+    printf("(g) bead on a turning rod (Phi_t), GGL, fixed steps to t = 1\n");
+    for (k = 0; k < 2; k++) {
+      double err[3], phi = HUGE_VAL, bv = HUGE_VAL, p;
+      for (i = 0; i < 3; i++) {
+        const int flag = BeadRun(ctx, kins[k], hs[i], &err[i], &phi, &bv);
+        printf("  %-13s h %.3f: error %.3e, |Phi| %.3e, |B v + Phi_t| %.3e (flag %d)\n",
+               kname[k], hs[i], err[i], phi, bv, flag);
+        CHECK(flag == 0 && phi <= 1e-14 && bv <= 1e-12,
+              "(g) %s h %g: flag %d, |Phi| %.3e, |B v + Phi_t| %.3e", kname[k], hs[i], flag, phi,
+              bv);
+      }
+      p = Fit(hs, err, 3);
+      printf("  %-13s fitted order %.3f\n", kname[k], p);
+      CHECK(fabs(p - 2) <= 0.2, "(g) %s: fitted order %.3f", kname[k], p);
     }
   }
 
