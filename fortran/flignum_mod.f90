@@ -531,7 +531,8 @@ module flignum_mod
     end function LGNSetGenAlphaParams
 
     !> LGN_CONSTR_INDEX3 (default), LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL
-    !> (stabilised index 2: BDF, dense A of nv + 2m rows).
+    !> (stabilised index 2: BDF, or Newmark / generalized-alpha with
+    !> simplified or exact kinematics; dense A of nv + 2m rows).
     integer(c_int) function LGNSetConstraintIndex(lgn_mem, index) &
         bind(c, name="LGNSetConstraintIndex")
       import :: c_int, c_ptr

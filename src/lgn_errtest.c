@@ -60,14 +60,16 @@ sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w)
  * the estimate noisy. One solve per step. */
 static int ProjectOnConstraints(LGNMem mem, const LGNStepCoeffs *c)
 {
-  const sunindextype nv = mem->nv, m = mem->m;
+  const sunindextype nv = mem->nv;
   sunrealtype *rhs = lgnData(mem->rhs), *sol = lgnData(mem->sol);
   const sunrealtype cM = c->scale * c->beta_p;
   sunindextype i;
   int flag;
   lgnMatvec(mem->Mmat, mem->ele, rhs, SUNFALSE);
   for (i = 0; i < nv; i++) rhs[i] *= cM;
-  for (i = 0; i < m; i++) rhs[nv + i] = SUN_RCONST(0.0);
+  /* the constraint rows: 0 (under GGL the velocity rows too: then B B^T nu
+   * = O(h) x, nu ~ 0, and x is the same projection) */
+  for (i = 0; i < mem->nalg; i++) rhs[nv + i] = SUN_RCONST(0.0);
   flag = lgnAgree(mem, lgnLsSolve(mem, mem->sol, mem->rhs));
   if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < nv; i++) mem->ele[i] = sol[i];

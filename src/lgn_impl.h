@@ -120,6 +120,9 @@ typedef struct LGNMemRec {
   sunrealtype *ggl_mu;      /* GGL: the kinematic multiplier mu of the
                                iterate (m; NULL otherwise)                */
   sunrealtype ggl_t1;       /* GGL: the time of the Newton iterate         */
+  sunrealtype *ggl_Bn;      /* GGL, Newmark family: B(q_n, t_n), m x nv
+                               column-major (NULL otherwise)              */
+  sunbooleantype ggl_Bn_valid; /* ggl_Bn holds B at the current t_n, q_n  */
   int kinematics;           /* LGN_KINEMATICS_*                            */
   const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
@@ -503,7 +506,12 @@ typedef struct {
   sunrealtype cM, cC, cK, cBv;
   const sunrealtype *TM, *TC, *TK, *TB;
   sunbooleantype ggl; /* the GGL step matrix (lgn_matrix.c): rows Phi and
-                         (B v + Phi_t) / gamma', columns lambda and mu */
+                         (B v + Phi_t) / gamma', columns lambda and nu */
+  /* GGL only: TP the T-like factor of the Phi rows; the column of nu is
+   * gsign (cM M UA + cC C UV) GB^T in the dynamic rows and gsign B UV GB^T
+   * in the velocity rows, GB = B(q1) (NULL; BDF) or B(q_n) (Newmark) */
+  const sunrealtype *TP, *UA, *UV, *GB;
+  sunrealtype gsign;
 } LGNMatrixTerms;
 
 /* A kinematics variant: how the Newmark increments (sigma, sigma_dot,

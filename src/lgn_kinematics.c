@@ -62,6 +62,8 @@ void lgnSaddlePointTerms(LGNMatrixTerms *terms)
   terms->cK  = SUN_RCONST(0.0);
   terms->cBv = SUN_RCONST(0.0);
   terms->TM = terms->TC = terms->TK = terms->TB = NULL;
+  terms->TP = terms->UA = terms->UV = terms->GB = NULL;
+  terms->gsign = SUN_RCONST(0.0);
   terms->ggl = SUNFALSE;
 }
 
@@ -73,8 +75,28 @@ static void StepTerms(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
   terms->cK  = c->scale;
   terms->cBv = SUN_RCONST(0.0);
   terms->TM = terms->TC = terms->TK = terms->TB = NULL;
+  terms->TP = terms->UA = terms->UV = terms->GB = NULL;
+  terms->gsign = SUN_RCONST(0.0);
   terms->ggl = SUNFALSE;
   (void)mem;
+}
+
+/* GGL in the Newmark family (doc/theory.md §7.1): the Phi rows B T, and
+ * the column of nu = h eta, which moves the Newmark increment
+ * s = sigma + B(q_n)^T nu (sigma_dot by gamma' B_n^T dnu, sigma_ddot by
+ * beta' B_n^T dnu) but not q1: (cM M UA + cC C UV) B_n^T in the dynamic
+ * rows, 0 in the Phi rows, B UV B_n^T in the velocity rows, with UV, UA
+ * the normalised derivatives of v and vdot with s. */
+static void GGLNewmarkTerms(LGNMem mem, LGNMatrixTerms *terms,
+                            const sunrealtype *UA, const sunrealtype *UV)
+{
+  if (mem->constr_index != LGN_CONSTR_GGL || mem->m == 0) return;
+  terms->ggl   = SUNTRUE;
+  terms->TP    = mem->Tm;
+  terms->UA    = UA;
+  terms->UV    = UV;
+  terms->GB    = mem->ggl_Bn;
+  terms->gsign = SUN_RCONST(1.0);
 }
 
 /* Index 2 (and GGL's velocity row) with T in the matrix: the change of
@@ -130,14 +152,16 @@ static int SimplifiedIterate(LGNMem mem, sunbooleantype with_tangent)
   return Configuration(mem, with_tangent);
 }
 
-/* cM M + cC C + cK K T; B T (index 3) or B + (1/gamma') D_q(B v) T (index 2). */
+/* cM M + cC C + cK K T; B T (index 3) or B + (1/gamma') D_q(B v) T (index 2);
+ * GGL: both rows, and v, vdot move with s as with sigma (UA = UV = I). */
 static int SimplifiedMatrix(LGNMem mem, const LGNStepCoeffs *c,
                             LGNMatrixTerms *terms)
 {
   StepTerms(mem, c, terms);
   terms->TK = mem->Tm;
-  terms->TB = mem->constr_index == LGN_CONSTR_INDEX2 ? NULL : mem->Tm;
+  terms->TB = mem->constr_index == LGN_CONSTR_INDEX3 ? mem->Tm : NULL;
   ConstraintVelocityTerm(mem, terms);
+  GGLNewmarkTerms(mem, terms, NULL, NULL);
   return LGN_SUCCESS;
 }
 
@@ -185,7 +209,9 @@ static int ExactIterate(LGNMem mem, sunbooleantype with_tangent)
 }
 
 /* cM M Ta + cC C Tv + cK K T; B T (index 3) or B Tv + (1/gamma') D_q(B v) T
- * (index 2), with Ta, Tv the derivatives of vdot and v (lgn_tangent.c). */
+ * (index 2), with Ta, Tv the derivatives of vdot and v (lgn_tangent.c).
+ * GGL: both rows; s moves v by gamma' T and vdot by beta' Ta less the part
+ * of Ta from sigma itself (Q / beta', O(h^2) relative), taken as Ta. */
 static int ExactMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
 {
   int flag = lgnExactKinematicsDerivatives(mem, c->gamma_p, c->beta_p);
@@ -194,8 +220,9 @@ static int ExactMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms
   terms->TM = mem->Ta;
   terms->TC = mem->Tv;
   terms->TK = mem->Tm;
-  terms->TB = mem->constr_index == LGN_CONSTR_INDEX2 ? mem->Tv : mem->Tm;
+  terms->TB = mem->constr_index == LGN_CONSTR_INDEX3 ? mem->Tm : mem->Tv;
   ConstraintVelocityTerm(mem, terms);
+  GGLNewmarkTerms(mem, terms, mem->Ta, mem->Tm);
   return LGN_SUCCESS;
 }
 
@@ -340,7 +367,9 @@ static int BDFMatrix(LGNMem mem, const LGNStepCoeffs *c, LGNMatrixTerms *terms)
   StepTerms(mem, c, terms);
   terms->TM = terms->TC = terms->TK = terms->TB = mem->Tm;
   ConstraintVelocityTerm(mem, terms);
-  terms->ggl = mem->constr_index == LGN_CONSTR_GGL && mem->m > 0;
+  terms->ggl   = mem->constr_index == LGN_CONSTR_GGL && mem->m > 0;
+  terms->TP    = mem->Tm;
+  terms->gsign = SUN_RCONST(-1.0); /* v = T(x) xdot - B(q1)^T mu */
   return LGN_SUCCESS;
 }
 

@@ -258,24 +258,33 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
   return LGN_SUCCESS;
 }
 
-/* GGL (LGN_CONSTR_GGL) is implemented for the BDF family with a dense
- * matrix A, without ghost bodies: its iteration matrix has the products
- * (M + C/c0) B^T and B B^T in the column of mu, which only the dense
- * assembly forms (lgn_matrix.c), and the ghost bodies' and Krylov paths
- * size their unknowns nv + m. */
+/* GGL (LGN_CONSTR_GGL) is implemented for the BDF family and for the
+ * Newmark family with simplified or exact kinematics, with a dense matrix
+ * A, without ghost bodies: its iteration matrix has products of M, C_t and
+ * B with B^T in the column of the kinematic multiplier, which only the
+ * dense assembly forms (lgn_matrix.c), and the ghost bodies' and Krylov
+ * paths size their unknowns nv + m. The sigma variant is not derived for
+ * it: its corrections are composed on q1 along the Newton path, and where
+ * the multiplier's correction would enter that path is a method of its own. */
 static int CheckGGL(LGNMem mem)
 {
   const char *why = NULL;
   if (mem->constr_index != LGN_CONSTR_GGL || mem->m == 0) return LGN_SUCCESS;
-  if (mem->family != LGN_FAMILY_BDF)
-    why = "the BDF family only (LGNSetBDF): the Newmark and generalized-alpha "
-          "methods do not offer it";
+  if (mem->family == LGN_FAMILY_NEWMARK && mem->kinematics == LGN_KINEMATICS_SIGMA)
+    why = "the BDF family and the Newmark family with simplified or exact kinematics, "
+          "not the sigma variant (LGN_KINEMATICS_SIGMA: its Newton corrections are "
+          "composed on the configuration, and the stabilised form is not derived "
+          "for that)";
   else if (mem->krylov)
-    why = "a dense matrix A only, not a Krylov solver";
+    why = "a dense matrix A only, not a Krylov solver (the column of the kinematic "
+          "multiplier holds products of M, C_t and B with B^T, which only the dense "
+          "assembly forms)";
   else if (mem->halo != NULL)
     why = "a rank's own bodies only, not with ghost bodies (LGNSetHalo)";
   else if (lgnMatID(mem->A) != SUNMATRIX_DENSE)
-    why = "a dense matrix A only (SUNDenseMatrix of nv + 2m rows), not a sparse one";
+    why = "a dense matrix A only (SUNDenseMatrix of nv + 2m rows), not a sparse one "
+          "(the column of the kinematic multiplier holds products of M, C_t and B "
+          "with B^T, which only the dense assembly forms)";
   if (why == NULL) return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_ILL_INPUT,
             "index = LGN_CONSTR_GGL (LGNSetConstraintIndex) is implemented for %s; "

@@ -24,13 +24,19 @@
  * matrix [[M, B^T], [B, 0]] of the consistent initial values is the table
  * (cM, cC, cK) = (1, 0, 0) with no T (lgnSaddlePointTerms).
  *
- * GGL (LGN_CONSTR_GGL, BDF, dense A only) has nv + 2m unknowns (x, the
- * scaled lambda, nu = mu / gamma') and rows (dynamics, Phi, (B v + Phi_t) /
- * gamma'):
+ * GGL (LGN_CONSTR_GGL, dense A only) has nv + 2m unknowns (sigma, the
+ * scaled lambda, nu) and rows (dynamics, Phi, (B v + Phi_t) / gamma'):
  *
+ *   BDF (nu = mu / c0, v = T(x) xdot - B(q1)^T mu):
  *   [[ cM M T + cC C T + cK K T ,  B^T ,  -(cM M + cC C) B^T ],
  *    [ B T                      ,  0   ,   0                 ],
  *    [ B T + cBv D_q(B v) T     ,  0   ,  -B B^T             ]]
+ *
+ *   Newmark family (nu = h eta, s = sigma + B_n^T nu the Newmark increment,
+ *   B_n = B(q_n); UA = UV = I simplified, UA = Ta, UV = T exact):
+ *   [[ cM M TM + cC C TC + cK K T ,  B^T ,  (cM M UA + cC C UV) B_n^T ],
+ *    [ B T                        ,  0   ,   0                         ],
+ *    [ B TB + cBv D_q(B v) T      ,  0   ,   B UV B_n^T                ]]
  *
  * and its saddle-point matrix [[M, B^T, 0], [B, 0, 0], [0, 0, I]].
  * ---------------------------------------------------------------------------*/
@@ -117,6 +123,62 @@ static inline sunbooleantype ThreeColumns(const sunrealtype *X, sunindextype ldx
   return SUNTRUE;
 }
 
+/* y = T x for a block diagonal T-like factor in packed storage (NULL: I). */
+static void PackedApply(LGNMem mem, const sunrealtype *T, const sunrealtype *x,
+                        sunrealtype *y)
+{
+  sunindextype j, k, nv = mem->nv;
+  for (k = 0; k < nv; k++) y[k] = SUN_RCONST(0.0);
+  for (j = 0; j < nv; j++) {
+    const TangentColumn c = ColumnOf(mem, T, j);
+    if (c.tj == NULL) {
+      y[j] += x[j];
+      continue;
+    }
+    for (k = c.k0; k < c.k1; k++) y[k] += c.tj[k] * x[j];
+  }
+}
+
+/* Column j of GGL's nu into a (n rows; the Phi rows stay 0): with b the
+ * j-th column of GB^T (GB = B(q1) when NULL),
+ *   dynamic rows  gsign (cM M UA + cC C UV) b,   velocity rows  gsign B UV b.
+ * BDF (v = T(x) xdot - B(q1)^T mu, UA = UV = I): -(cM M + cC C) B^T and
+ * -B B^T. Newmark family (s = sigma + B(q_n)^T nu): +(cM M UA + cC C UV)
+ * B_n^T and +B UV B_n^T. */
+static void GGLColumn(LGNMem mem, const LGNMatrixTerms *x, sunindextype j,
+                      sunrealtype *a)
+{
+  sunindextype i, k, nv = mem->nv, m = mem->m;
+  const sunrealtype *M = SM_DATA_D(mem->Mmat), *C = SM_DATA_D(mem->Cmat);
+  const sunrealtype *B = SM_DATA_D(mem->Bmat);
+  const sunrealtype *GB = x->GB != NULL ? x->GB : B;
+  const sunrealtype cM = x->cM, cC = x->cC;
+  /* scratch: free once the tangents are formed (lgnEvalTangents) */
+  sunrealtype *b = mem->work_nv, *w = mem->work2_nv, *u = b, s;
+  for (k = 0; k < nv; k++) b[k] = GB[j + k * m];
+  if (x->UA != NULL || x->UV != NULL) { /* w = UA b, u = UV b */
+    u = lgnData(mem->dq_g);
+    PackedApply(mem, x->UA, b, w);
+    PackedApply(mem, x->UV, b, u);
+    for (i = 0; i < nv; i++) {
+      s = SUN_RCONST(0.0);
+      for (k = 0; k < nv; k++) s += cM * M[i + k * nv] * w[k] + cC * C[i + k * nv] * u[k];
+      a[i] = x->gsign * s;
+    }
+  } else {
+    for (i = 0; i < nv; i++) {
+      s = SUN_RCONST(0.0);
+      for (k = 0; k < nv; k++) s += (cM * M[i + k * nv] + cC * C[i + k * nv]) * u[k];
+      a[i] = x->gsign * s;
+    }
+  }
+  for (i = 0; i < m; i++) {
+    s = SUN_RCONST(0.0);
+    for (k = 0; k < nv; k++) s += B[i + k * m] * u[k];
+    a[nv + m + i] = x->gsign * s;
+  }
+}
+
 /* A = the dense iteration matrix (header comment), column by column in one
  * pass: each entry of the top left is cM (M TM)_ij + cC (C TC)_ij +
  * cK (K TK)_ij formed in a register from the few columns of M, C, K that
@@ -126,7 +188,7 @@ static inline sunbooleantype ThreeColumns(const sunrealtype *X, sunindextype ldx
  * loop over the rows is branch-free; otherwise entry by entry. */
 static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
 {
-  sunindextype i, j, k, nv = mem->nv, m = mem->m, n = nv + mem->nalg;
+  sunindextype i, j, nv = mem->nv, m = mem->m, n = nv + mem->nalg;
   /* GGL: the Phi rows come first, the velocity rows (B v + Phi_t)/gamma'
    * at vrow; under GGL the saddle-point matrix has an identity for mu */
   const sunindextype vrow = x->ggl ? nv + m : nv;
@@ -186,8 +248,10 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
         a[vrow + i] = s;
       }
     }
-    if (x->ggl) /* GGL's Phi rows: B TB */
-      for (i = 0; i < m; i++) a[nv + i] = RowTimesColumn(B, m, i, j, &tb);
+    if (x->ggl) { /* GGL's Phi rows: B TP */
+      const TangentColumn tp = ColumnOf(mem, x->TP, j);
+      for (i = 0; i < m; i++) a[nv + i] = RowTimesColumn(B, m, i, j, &tp);
+    }
     else /* the saddle-point matrix under GGL: no mu in these rows */
       for (i = nv + m; i < n; i++) a[i] = SUN_RCONST(0.0);
   }
@@ -197,29 +261,17 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
     for (i = 0; i < nv; i++) a[i] = B[j + i * m];
     for (i = nv; i < n; i++) a[i] = SUN_RCONST(0.0);
   }
-  /* GGL: the column of nu = mu / gamma'. v = T(x) xdot - B^T mu moves v by
-   * -B^T dmu and vdot by -(beta'/gamma') B^T dmu, so the dynamic rows get
-   * -(cM M + cC C) B^T and the velocity rows -B B^T; the Phi rows 0. Under
-   * GGL the saddle-point matrix has I there (mu = 0 at the start). */
+  /* GGL: the column of nu (header comment); the saddle-point matrix has I
+   * there (mu = 0 at the start) */
   for (j = 0; j < mem->nalg - m; j++) {
-    sunrealtype *a = A + (nv + m + j) * n, s;
+    sunrealtype *a = A + (nv + m + j) * n;
     for (i = nv; i < n; i++) a[i] = SUN_RCONST(0.0);
     if (!x->ggl) {
       for (i = 0; i < nv; i++) a[i] = SUN_RCONST(0.0);
       a[nv + m + j] = SUN_RCONST(1.0);
       continue;
     }
-    for (i = 0; i < nv; i++) {
-      s = SUN_RCONST(0.0);
-      for (k = 0; k < nv; k++)
-        s += (cM * M[i + k * nv] + cC * C[i + k * nv]) * B[j + k * m];
-      a[i] = -s;
-    }
-    for (i = 0; i < m; i++) {
-      s = SUN_RCONST(0.0);
-      for (k = 0; k < nv; k++) s += B[i + k * m] * B[j + k * m];
-      a[nv + m + i] = -s;
-    }
+    GGLColumn(mem, x, j, a);
   }
   return LGN_SUCCESS;
 }

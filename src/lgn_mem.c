@@ -78,6 +78,8 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->rt_pending  = SUNFALSE;
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
+  if (what & (LGN_CHANGE_STATE | LGN_CHANGE_MODEL | LGN_CHANGE_METHOD))
+    mem->ggl_Bn_valid = SUNFALSE; /* GGL's B(q_n) (Newmark family) */
   /* the factorised matrix in A no longer fits the model or method: the next
    * step of a modified Newton iteration rebuilds it */
   mem->lu_valid  = SUNFALSE;
@@ -420,6 +422,8 @@ void lgnFreeWork(LGNMem mem)
   mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
   mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
   mem->ele = mem->ewt = mem->a_scaled = mem->incr = mem->zero_nv = NULL;
+  mem->ggl_mu = mem->ggl_Bn = NULL;
+  mem->ggl_Bn_valid = SUNFALSE;
   free(mem->diag_red);
   mem->diag_red  = NULL;
   mem->diag_nred = 0;
@@ -694,8 +698,10 @@ int lgnAllocWork(LGNMem mem)
     /* sigma, sigma_dot and sigma_ddot of the exact variant
      * (lgn_kinematics.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag,
      * ele, ewt, a_scaled, incr, zero_nv (nv each), the dense output's
-     * scratch (4 nv), lambda_prev, work_m and GGL's mu (m each) in one block */
-    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 3 * m), sizeof(sunrealtype));
+     * scratch (4 nv), lambda_prev, work_m and GGL's mu (m each) and GGL's
+     * B(q_n) (m nv, the Newmark family) in one block */
+    const sunindextype nbn = mem->constr_index == LGN_CONSTR_GGL ? m * nv : 0;
+    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 3 * m + nbn), sizeof(sunrealtype));
     /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
     mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
                                        sizeof(sunrealtype));
@@ -728,6 +734,8 @@ int lgnAllocWork(LGNMem mem)
   mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
   mem->ggl_mu      = m > 0 && mem->constr_index == LGN_CONSTR_GGL ? mem->sigma + 17 * nv + 2 * m
                                                                   : NULL;
+  mem->ggl_Bn      = mem->ggl_mu != NULL ? mem->ggl_mu + m : NULL;
+  mem->ggl_Bn_valid = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;

@@ -21,13 +21,15 @@
 #include "lgn_impl.h"
 
 /* Is B(q) needed? For the iteration matrix (for_matrix), for B v at index
- * 2, and for B^T lambda unless an LGNConstrForceFn gives it. Not under
- * GGL: the iterate has evaluated it already (v = T(x) xdot - B^T mu,
- * lgn_kinematics.c). */
+ * 2 and GGL, and for B^T lambda unless an LGNConstrForceFn gives it. Not
+ * under BDF's GGL: its iterate has evaluated it already (v = T(x) xdot -
+ * B^T mu, lgn_kinematics.c); the Newmark family's GGL corrects with
+ * B(q_n) and needs B(q1) here. */
 sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
 {
-  return mem->m > 0 && mem->constr_index != LGN_CONSTR_GGL &&
-         (for_matrix || mem->constr_force == NULL || mem->constr_index == LGN_CONSTR_INDEX2);
+  if (mem->m == 0) return SUNFALSE;
+  if (mem->constr_index == LGN_CONSTR_GGL) return mem->family != LGN_FAMILY_BDF;
+  return for_matrix || mem->constr_force == NULL || mem->constr_index == LGN_CONSTR_INDEX2;
 }
 
 /* Is M diagonal (no stored entry off the diagonal)? Its diagonal to d. */

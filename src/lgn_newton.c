@@ -273,6 +273,29 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
   return flag;
 }
 
+/* GGL: the correction dnu of the kinematic multiplier's unknown
+ * (doc/theory.md §7.1). BDF: nu = mu / gamma' (v = T(x) xdot - B^T mu,
+ * evaluated by the iterate). Newmark family: nu = h eta moves the Newmark
+ * increment s = sigma + B(q_n)^T nu and not the configuration, so
+ * sigma_dot += gamma' B_n^T dnu, sigma_ddot += beta' B_n^T dnu. */
+static void GGLCorrection(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *dnu)
+{
+  sunindextype i, k, nv = mem->nv, m = mem->m;
+  const sunrealtype *Bn = mem->ggl_Bn;
+  sunrealtype w;
+  if (mem->family == LGN_FAMILY_BDF) {
+    for (i = 0; i < m; i++) mem->ggl_mu[i] += c->gamma_p * dnu[i];
+    return;
+  }
+  for (i = 0; i < m; i++) mem->ggl_mu[i] += dnu[i];
+  for (k = 0; k < nv; k++) {
+    w = SUN_RCONST(0.0);
+    for (i = 0; i < m; i++) w += Bn[i + k * m] * dnu[i];
+    mem->sigma_dot[k] += c->gamma_p * w;
+    mem->sigma_ddot[k] += c->beta_p * w;
+  }
+}
+
 /* Apply a Newton correction: sigma += delta, sigma_dot += gamma' delta,
  * sigma_ddot += beta' delta, lambda += dmu/(beta h^2) (the multiplier unknown
  * is scaled), and whatever the variant carries besides. */
@@ -287,9 +310,7 @@ static int ApplyCorrection(LGNMem mem, const LGNStepCoeffs *c,
     mem->sigma_ddot[i] += c->beta_p * delta[i];
   }
   for (i = 0; i < m; i++) lambda1[i] += dmu[i] / c->scale;
-  /* GGL: the kinematic multiplier, unknown nu = mu / gamma' */
-  if (m > 0 && mem->constr_index == LGN_CONSTR_GGL)
-    for (i = 0; i < m; i++) mem->ggl_mu[i] += c->gamma_p * dmu[m + i];
+  if (m > 0 && mem->constr_index == LGN_CONSTR_GGL) GGLCorrection(mem, c, dmu + m);
   return mem->kin->correct != NULL ? mem->kin->correct(mem, delta) : LGN_SUCCESS;
 }
 

@@ -11,6 +11,8 @@
 #include <math.h>
 #include <string.h>
 
+#include <sunmatrix/sunmatrix_dense.h>
+
 #include "lgn_impl.h"
 
 /* Per-step constants. */
@@ -32,6 +34,25 @@ LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
   return c;
 }
 
+/* GGL (dense A only, lgn_ls.c): B(q_n, t_n), the normals of the step's
+ * correction s = sigma + B(q_n)^T nu (doc/theory.md §7.1), once per step:
+ * kept over the attempts from the same t_n (a committed step or a new
+ * state drops it). */
+static int GGLStartJacobian(LGNMem mem)
+{
+  const sunindextype len = mem->m * mem->nv;
+  int ret;
+  if (mem->ggl_Bn == NULL || mem->ggl_Bn_valid) return LGN_SUCCESS;
+  lgnMatClear(mem->Bmat);
+  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
+                          mem->constr_jac(mem->tn, mem->q, mem->Bmat, mem->user_data),
+                          mem->Bmat, "LGNSolve");
+  if (ret != LGN_SUCCESS) return ret;
+  memcpy(mem->ggl_Bn, SM_DATA_D(mem->Bmat), (size_t)len * sizeof(sunrealtype));
+  mem->ggl_Bn_valid = SUNTRUE;
+  return LGN_SUCCESS;
+}
+
 /* Predictor. LGN_PREDICTOR_ZERO: sigma_ddot = 0, lambda = lambda_n.
  * LGN_PREDICTOR_EXTRAPOLATE (for the variants that allow it) guesses
  * vdot_{n+1} and lambda_{n+1} by linear extrapolation; the variant maps the
@@ -47,7 +68,9 @@ static int Predict(LGNMem mem, const LGNStepCoeffs *c)
   const sunrealtype r = mem->h_prev > SUN_RCONST(0.0) ? c->h / mem->h_prev
                                                       : SUN_RCONST(0.0);
   sunrealtype *acc = mem->work2_nv; /* guess of vdot_{n+1} */
+  int flag = GGLStartJacobian(mem);
 
+  if (flag != LGN_SUCCESS) return flag;
   mem->kin->bind(mem);
   for (i = 0; i < nv; i++) {
     mem->a_pred[i] = (af * vdot[i] - am * a[i]) / (SUN_RCONST(1.0) - am);
@@ -90,6 +113,7 @@ void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c)
 {
   N_Vector tmp;
   mem->h_prev = c->h;
+  mem->ggl_Bn_valid = SUNFALSE; /* q_n moves on */
   tmp = mem->q;    mem->q = mem->q1;       mem->q1 = tmp;
   tmp = mem->v;    mem->v = mem->v1;       mem->v1 = tmp;
   tmp = mem->vdot; mem->vdot = mem->vdot1; mem->vdot1 = tmp;

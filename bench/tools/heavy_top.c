@@ -2,7 +2,7 @@
  * Lignum study tool: the heavy top (Brüls and Cardona 2010) from the command line.
  *
  *   heavy_top [--formulation lie|se3|ep] [--method newmark|genalpha] [--rho-inf R]
- *             [--beta B --gamma G] [--constraints index3|index2]
+ *             [--beta B --gamma G] [--constraints index3|index2|ggl]
  *             [--kinematics simplified|exact|sigma] [--jacobian analytic|dq]
  *             [--h H] [--t-end T] [--a0 consistent|zero]
  *             [--predictor zero|extrapolate] [--newton full|modified] [--msbp N]
@@ -40,7 +40,7 @@ static void Usage(const char *prog)
 {
   fprintf(stderr,
           "usage: %s [--formulation lie|se3|ep] [--method newmark|genalpha]\n"
-          "          [--rho-inf R] [--beta B --gamma G] [--constraints index3|index2]\n"
+          "          [--rho-inf R] [--beta B --gamma G] [--constraints index3|index2|ggl]\n"
           "          [--kinematics simplified|exact|sigma]\n"
           "          [--jacobian analytic|dq] [--h H] [--t-end T]\n"
           "          [--a0 consistent|zero] [--predictor zero|extrapolate]\n"
@@ -99,6 +99,7 @@ static int ParseArgs(int argc, char **argv, HeavyTopOptions *opt,
     } else if (!strcmp(key, "--constraints")) {
       if (!strcmp(val, "index3")) opt->constraints = LGN_CONSTR_INDEX3;
       else if (!strcmp(val, "index2")) opt->constraints = LGN_CONSTR_INDEX2;
+      else if (!strcmp(val, "ggl")) opt->constraints = LGN_CONSTR_GGL;
       else bad = 1;
     } else if (!strcmp(key, "--kinematics")) {
       if (!strcmp(val, "simplified")) opt->kinematics = LGN_KINEMATICS_SIMPLIFIED;

@@ -108,10 +108,12 @@ extern "C" {
 #define LGN_CONSTR_INDEX2 132
 /** Constraint formulation: the stabilised index-2 form of Gear, Gupta and
  *  Leimkuhler (GGL): both Phi(q) = 0 and B(q) v + Phi_t = 0, with a second
- *  multiplier mu (m unknowns) in the kinematic relation, xdot = T(x)^{-1}
- *  (v + B^T mu). BDF family (LGNSetBDF) with a dense matrix A only; the
- *  matrix A and the linear solver then have nv + 2m rows (doc/theory.md
- *  section 7, doc/user-guide.md section 3). */
+ *  multiplier (m unknowns) in the kinematic relation: BDF, xdot =
+ *  T(x)^{-1} (v + B^T mu); Newmark / generalized-alpha with simplified or
+ *  exact kinematics, the position increment corrected by -B(q_n)^T nu
+ *  (Arnold, Cardona and Brüls 2015). Dense matrix A only; A and the linear
+ *  solver then have nv + 2m rows (doc/theory.md section 7.1,
+ *  doc/user-guide.md section 3.1). */
 #define LGN_CONSTR_GGL    134
 
 /** Kinematics: v = xdot, vdot = xddot in each step (LGNM, LGGalpha). */
@@ -399,9 +401,14 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
 LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 
 /** Constraint formulation: LGN_CONSTR_INDEX3 (default), LGN_CONSTR_INDEX2
- *  or LGN_CONSTR_GGL (the stabilised index-2 form; BDF family and a dense
- *  matrix A of nv + 2m rows only: other combinations are refused with
- *  LGN_ILL_INPUT by the first LGNSolve or LGNCalcIC).
+ *  or LGN_CONSTR_GGL (the stabilised index-2 form: Phi = 0 and
+ *  B v + Phi_t = 0 at every step). GGL works with the BDF family and with
+ *  the Newmark / generalized-alpha family with simplified or exact
+ *  kinematics (LGNM, LGGalpha, mod. LGNM, mod. LGGalpha), with a dense
+ *  matrix A of nv + 2m rows; the sigma variant (LGN_KINEMATICS_SIGMA), a
+ *  sparse A, a Krylov solver and ghost bodies are refused with
+ *  LGN_ILL_INPUT and a message by the first LGNSolve or LGNCalcIC
+ *  (doc/user-guide.md section 3.1, doc/theory.md section 7.1).
  * @param lgn_mem the integrator memory
  * @param index   LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL
  * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another index

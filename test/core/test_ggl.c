@@ -1,5 +1,6 @@
 /* -----------------------------------------------------------------------------
- * The stabilised index-2 formulation (LGN_CONSTR_GGL) with the BDF family.
+ * The stabilised index-2 formulation (LGN_CONSTR_GGL) with the BDF family
+ * (with the Newmark family: test_ggl_newmark).
  * The heavy top in R^3 x SO(3) of test_bdf (m = 3 constraints of a
  * spherical joint, mass 15, centre of mass at X = e_y, Omega0 = (0, 150,
  * -4.61538)) against the ARKODE reference (lgn_reference, Fehlberg 8):
@@ -25,7 +26,8 @@
  *      start-up decision), which the GGL runs hit at tol 1e-8 and 1e-9
  *      (exponent 0.61 over these four tolerances; index 3 hits them at
  *      other tolerances, bench/bdf_ggl --half);
- *  (e) bad input: an unknown index, GGL with the generalized-alpha method,
+ *  (e) bad input: an unknown index, GGL with generalized-alpha's sigma
+ *      variant (the Newmark family's GGL: test_ggl_newmark),
  *      GGL with a matrix of nv + m rows (LGN_LS_MISMATCH, not a crash),
  *      GGL with a Krylov solver or (with KLU) a sparse matrix (LGN_ILL_INPUT);
  *  (f) a start off the velocity constraint (v0 + 1e-3 along the joint's
@@ -680,12 +682,14 @@ int main(int argc, char **argv)
     CHECK(flag == 0, "(e) create: %d", flag);
     CHECK(LGNSetConstraintIndex(r.mem, 135) == LGN_ILL_INPUT, "(e) index 135 refused");
     CHECK(LGNSetConstraintIndex(NULL, LGN_CONSTR_GGL) == LGN_MEM_NULL, "(e) NULL memory");
-    /* GGL with generalized-alpha: refused at the solve */
+    /* GGL with generalized-alpha's sigma variant: refused at the solve
+     * (the simplified and exact variants: test_ggl_newmark) */
     flag = LGNSetConstraintIndex(r.mem, LGN_CONSTR_GGL);
     if (!flag) flag = LGNSetGenAlpha(r.mem, 0.9);
+    if (!flag) flag = LGNSetKinematics(r.mem, LGN_KINEMATICS_SIGMA);
     if (!flag) flag = LGNSetStepSize(r.mem, 1e-3);
     if (!flag) flag = LGNSolve(r.mem, 1e-2, &t, r.q, r.v, LGN_NORMAL);
-    CHECK(flag == LGN_ILL_INPUT, "(e) GGL with generalized-alpha: %s",
+    CHECK(flag == LGN_ILL_INPUT, "(e) GGL with generalized-alpha, sigma variant: %s",
           LGNGetReturnFlagName(flag));
     /* ... and then with BDF the same memory runs */
     flag = LGNSetBDF(r.mem, 3);
