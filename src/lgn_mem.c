@@ -866,6 +866,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
     rw += 17 * nv + 3 * m + 3 * (long int)(mem->tlen + mem->blk_max);
+    if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

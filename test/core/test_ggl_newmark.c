@@ -30,8 +30,9 @@
  *      sparse matrix are refused at the solve with a message naming why;
  *  (g) rheonomic constraints (Phi_t; test_ggl's bead on a turning rod,
  *      exact solution known): fixed steps h = 0.02, 0.01, 0.005 to t = 1,
- *      order 2 +- 0.2, |Phi| and |B v + Phi_t| at round-off at t = 1.
- * With --quick only (c), (e) and (f).
+ *      order 2 +- 0.2, |Phi| and |B v + Phi_t| at round-off at t = 1;
+ *  (h) LGNGetWorkSpace counts GGL's B(q_n) (m nv reals).
+ * With --quick only (c), (e), (f) and (h).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -855,6 +856,28 @@ int main(int argc, char **argv)
     }
     RunFree(&r);
 #endif
+  }
+
+  /* (h) LGNGetWorkSpace counts GGL's B(q_n) (m x nv reals, held for the
+   * Newmark family's correction): GGL's lenrw exceeds index 3's by at least
+   * m nv + 2 m (B(q_n); the Newton vectors' m more rows each) */
+  {
+    Run r3, rg;
+    sunrealtype t;
+    long int rw3 = 0, iw3 = 0, rwg = 0, iwg = 0;
+    int flag = RunMethod(&r3, ctx, LGN_CONSTR_INDEX3, LGN_KINEMATICS_EXACT, 1e-3);
+    if (!flag) flag = LGNSolve(r3.mem, 2e-3, &t, r3.q, r3.v, LGN_NORMAL);
+    if (!flag) flag = LGNGetWorkSpace(r3.mem, &rw3, &iw3);
+    if (!flag) flag = RunMethod(&rg, ctx, LGN_CONSTR_GGL, LGN_KINEMATICS_EXACT, 1e-3);
+    if (!flag) flag = LGNSolve(rg.mem, 2e-3, &t, rg.q, rg.v, LGN_NORMAL);
+    if (!flag) flag = LGNGetWorkSpace(rg.mem, &rwg, &iwg);
+    printf("(h) LGNGetWorkSpace: lenrw %ld (index 3), %ld (GGL)\n", rw3, rwg);
+    CHECK(flag == LGN_SUCCESS, "(h) runs: %s", LGNGetReturnFlagName(flag));
+    CHECK(rwg - rw3 >= 3 * 6 + 2 * 3,
+          "(h) GGL's lenrw %ld exceeds index 3's %ld by %ld < m nv + 2 m = 24", rwg, rw3,
+          rwg - rw3);
+    RunFree(&r3);
+    RunFree(&rg);
   }
 
   SUNContext_Free(&ctx);
