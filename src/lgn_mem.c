@@ -436,7 +436,7 @@ void lgnFreeWork(LGNMem mem)
   mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
   free(mem->bdf_q);
   mem->bdf_q = mem->bdf_v = mem->bdf_x = mem->bdf_rx = mem->bdf_rv = mem->bdf_l = NULL;
-  mem->bdf_xpred = mem->bdf_vpred = mem->bdf_dd = NULL;
+  mem->bdf_xpred = mem->bdf_vpred = mem->bdf_dd = mem->bdf_ele_keep = NULL;
   mem->bdf_nhist = 0;
   BlocksFree(mem);
   mem->work_done = SUNFALSE;
@@ -880,6 +880,9 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     lgnSparseWorkSpace(mem, &rw, &iw);
     lgnKluCopySpace(mem->klu, &rw, &iw);
   }
+  if (mem->bdf_q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
+    rw += (long int)LGN_BDF_MAXHIST * (nq + m) +
+          (3L * LGN_BDF_MAXHIST + 6) * nv;
   if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
   if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
   lgnBlockPrecSpace(mem->bp, &rw, &iw);

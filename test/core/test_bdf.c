@@ -45,6 +45,10 @@
  *  (n) half decades (fixed leading coefficient, maxord 4 and 5, modified
  *      Newton): the error at tol 3.16e-7, 3.16e-8, 3.16e-9 within a factor
  *      3 of the geometric mean of its decade neighbours;
+ *  (o) half decades (variable coefficients, maxord 4 and 5, modified
+ *      Newton): tol 1e-6 ... 1e-9, each error within a factor 3 of its
+ *      neighbours' geometric mean, error ~ tol^p with p in 0.85 ... 1.15;
+ *  (p) LGNGetWorkSpace counts the BDF history (7 (nq + m) + 27 nv reals);
  *  (e) bad input: LGNSetBDF(0) and (6), LGNSetBDFForm of another constant
  *      refused; LGNSetGenAlpha returns to the Newmark family (the same run
  *      as before LGNSetBDF, bit for bit).
@@ -928,6 +932,33 @@ int main(void)
     CHECK(e1 == e2 && n1 == n2, "LGNSetGenAlpha after LGNSetBDF: the Newmark run (%ld vs %ld steps)",
           n1, n2);
   }
+  /* (p) LGNGetWorkSpace counts the BDF history and its work arrays
+   * (LGN_BDF_MAXHIST = 7 points of q, x, v and the multipliers, the
+   * predictor, the divided differences: 7 (nq + m) + 27 nv = 232 reals on
+   * the heavy top), which the Newmark family does not hold */
+  {
+    Run rb, rn;
+    sunrealtype t;
+    long int rwb = 0, iwb = 0, rwn = 0, iwn = 0;
+    int flag = RunCreate(&rb, ctx);
+    if (!flag) flag = LGNSetBDF(rb.mem, 5);
+    if (!flag) flag = LGNSetStepSize(rb.mem, 1e-3);
+    if (!flag) flag = LGNSolve(rb.mem, 1e-2, &t, rb.q, rb.v, LGN_NORMAL);
+    if (!flag) flag = LGNGetWorkSpace(rb.mem, &rwb, &iwb);
+    if (!flag) flag = RunCreate(&rn, ctx);
+    if (!flag) flag = LGNSetGenAlpha(rn.mem, 0.9);
+    if (!flag) flag = LGNSetStepSize(rn.mem, 1e-3);
+    if (!flag) flag = LGNSolve(rn.mem, 1e-2, &t, rn.q, rn.v, LGN_NORMAL);
+    if (!flag) flag = LGNGetWorkSpace(rn.mem, &rwn, &iwn);
+    printf("(p) LGNGetWorkSpace: lenrw %ld (BDF), %ld (generalized-alpha)\n", rwb, rwn);
+    CHECK(flag == LGN_SUCCESS, "(p) runs: %d", flag);
+    CHECK(rwb - rwn >= 7 * (7 + 3) + 27 * 6,
+          "(p) BDF's lenrw %ld exceeds generalized-alpha's %ld by %ld < 232", rwb, rwn,
+          rwb - rwn);
+    RunFree(&rb);
+    RunFree(&rn);
+  }
+
   SUNContext_Free(&ctx);
   return test_summary("test_bdf");
 }
