@@ -660,9 +660,10 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   int knew = k;
   if (mem->bdf_form == LGN_BDF_FIXED_LEADING) return SelectOrderFLC(mem, c, k, err);
   OrderEstimates(mem, c, k, E);
-  /* E[1], E[3] compared with E[2], their own kind (unprojected), and
-   * carried over to err's measure (projected, with the velocity-constraint
-   * term) by err / E[2] */
+  /* E[1], E[3] compared with E[2], their own kind (unprojected, or
+   * projected at index 3 with maxord 5 from order 4 on: OrderEstimates),
+   * and carried over to err's measure (projected, with the
+   * velocity-constraint term) by err / E[2] */
   scale = E[2] > SUN_RCONST(0.0) ? err / E[2] : SUN_RCONST(1.0);
   may_raise = k < mem->bdf_maxord && E[3] >= SUN_RCONST(0.0) && E[2] >= SUN_RCONST(0.0) &&
               (mem->bdf_phase0 || mem->bdf_nsteps_order >= k + 1);
