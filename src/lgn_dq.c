@@ -113,10 +113,7 @@ static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
   int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   mem->ndq++;
-  lgnMatClear(mem->Bdq);
-  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                          mem->constr_jac(t, mem->dq_q, mem->Bdq, mem->user_data),
-                          mem->Bdq, "LGNSolve");
+  ret = lgnEvalConstraintJacobian(mem, t, mem->dq_q, mem->Bdq);
   if (ret != LGN_SUCCESS) return ret;
   return lgnConstraintVelocity(mem, t, mem->dq_q, mem->Bdq, lgnData(v), z);
 }

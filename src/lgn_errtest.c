@@ -121,10 +121,7 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
   int ret = LGN_SUCCESS;
   /* across ranks, a rank without Phi_t adds nothing but takes part */
   if (mem->constr_time != NULL) {
-    lgnMatClear(mem->Bmat);
-    ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                            mem->constr_jac(c->t1, mem->q1, mem->Bmat, mem->user_data),
-                            mem->Bmat, "LGNSolve");
+    ret = lgnEvalConstraintJacobian(mem, c->t1, mem->q1, mem->Bmat);
     if (ret == LGN_SUCCESS)
       ret = lgnConstraintVelocity(mem, c->t1, mem->q1, mem->Bmat, lgnData(mem->v1),
                                   mem->work_m);

@@ -326,10 +326,7 @@ static int GGLVelocity(LGNMem mem, sunrealtype *v1)
 {
   sunindextype i, nv = mem->nv;
   int ret;
-  lgnMatClear(mem->Bmat);
-  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                          mem->constr_jac(mem->ggl_t1, mem->q1, mem->Bmat, mem->user_data),
-                          mem->Bmat, "LGNSolve");
+  ret = lgnEvalConstraintJacobian(mem, mem->ggl_t1, mem->q1, mem->Bmat);
   if (ret != LGN_SUCCESS) return ret;
   lgnMatTvec(mem->Bmat, mem->ggl_mu, mem->work_nv, SUNFALSE);
   for (i = 0; i < nv; i++) v1[i] -= mem->work_nv[i];

@@ -756,16 +756,23 @@ int lgnEnsureWork(LGNMem mem)
   return flag;
 }
 
-/* The BDF history and work arrays (lgn_bdf.c), once, in one block:
+/* The length of the BDF history and work arrays (lgn_bdf.c), allocated
+ * once in one block (lgnAllocBDF) and counted by lgnWorkSpace:
  * LGN_BDF_MAXHIST points of q (nq) and v, x (nv), r_x, r_v, the predictor
  * (4 nv), the divided differences ((LGN_BDF_MAXHIST + 1) nv), the
  * multipliers (LGN_BDF_MAXHIST m) and a copy of the step's estimate (nv). */
+static size_t BDFBlockLength(const LGNMem mem)
+{
+  const size_t H = LGN_BDF_MAXHIST;
+  return H * ((size_t)mem->nq + (size_t)mem->m) + (3 * H + 6) * (size_t)mem->nv;
+}
+
 int lgnAllocBDF(LGNMem mem)
 {
   const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
   const size_t H = LGN_BDF_MAXHIST;
   if (mem->bdf_q != NULL) return LGN_SUCCESS;
-  mem->bdf_q = (sunrealtype *)calloc(H * (nq + m) + (3 * H + 6) * nv, sizeof(sunrealtype));
+  mem->bdf_q = (sunrealtype *)calloc(BDFBlockLength(mem), sizeof(sunrealtype));
   if (mem->bdf_q == NULL) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -881,8 +888,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     lgnKluCopySpace(mem->klu, &rw, &iw);
   }
   if (mem->bdf_q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
-    rw += (long int)LGN_BDF_MAXHIST * (nq + m) +
-          (3L * LGN_BDF_MAXHIST + 6) * nv;
+    rw += (long int)BDFBlockLength(mem);
   if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
   if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
   lgnBlockPrecSpace(mem->bp, &rw, &iw);

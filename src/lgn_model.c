@@ -81,13 +81,16 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   ret = lgnCallbackVector(mem, LGN_CB_FORCE, mem->force(t, q, v, g, mem->user_data),
                           g, "LGNSolve");
   if (ret != LGN_SUCCESS) return ret;
-  if (with_B && mem->m > 0) {
-    lgnMatClear(B);
-    ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                            mem->constr_jac(t, q, B, mem->user_data), B, "LGNSolve");
-    if (ret != LGN_SUCCESS) return ret;
-  }
+  if (with_B && mem->m > 0) return lgnEvalConstraintJacobian(mem, t, q, B);
   return LGN_SUCCESS;
+}
+
+/* B(q, t) into B: emptied, the callback, its output checked. */
+int lgnEvalConstraintJacobian(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B)
+{
+  lgnMatClear(B);
+  return lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, mem->constr_jac(t, q, B, mem->user_data),
+                           B, "LGNSolve");
 }
 
 /* out = B v + Phi_t(q, t) (length m), the velocity constraint, from the B

@@ -43,10 +43,7 @@ static int GGLStartJacobian(LGNMem mem)
   const sunindextype len = mem->m * mem->nv;
   int ret;
   if (mem->ggl_Bn == NULL || mem->ggl_Bn_valid) return LGN_SUCCESS;
-  lgnMatClear(mem->Bmat);
-  ret = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC,
-                          mem->constr_jac(mem->tn, mem->q, mem->Bmat, mem->user_data),
-                          mem->Bmat, "LGNSolve");
+  ret = lgnEvalConstraintJacobian(mem, mem->tn, mem->q, mem->Bmat);
   if (ret != LGN_SUCCESS) return ret;
   memcpy(mem->ggl_Bn, SM_DATA_D(mem->Bmat), (size_t)len * sizeof(sunrealtype));
   mem->ggl_Bn_valid = SUNTRUE;
