@@ -121,7 +121,7 @@ int suite_ida_run(const SuiteProblem *p, double tol, int maxord, int form, Suite
   if (flag == 0) flag = IDASetId(mem, id);
   if (flag == 0) flag = IDASetSuppressAlg(mem, SUNTRUE);
   if (flag == 0) flag = IDASetStopTime(mem, p->t_end);
-  if (flag == 0) flag = IDASetMaxNumSteps(mem, 100000000L);
+  if (flag == 0) flag = IDASetMaxNumSteps(mem, SUITE_MAX_STEPS);
   if (flag == 0 && maxord > 0) flag = IDASetMaxOrd(mem, maxord);
   if (flag == 0) flag = IDASetLinearSolver(mem, LS, A);
   if (flag != 0) goto done;

@@ -96,7 +96,7 @@ static int Setup(void *mem, const SuiteProblem *p, const SuiteLignumMethod *meth
   if (flag == 0) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (flag == 0) flag = LGNSStolerances(mem, tol, tol);
   if (flag == 0) flag = LGNSetStopTime(mem, p->t_end);
-  if (flag == 0) flag = LGNSetMaxNumSteps(mem, -1);
+  if (flag == 0) flag = LGNSetMaxNumSteps(mem, SUITE_MAX_STEPS);
   return flag;
 }
 

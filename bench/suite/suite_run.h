@@ -10,6 +10,11 @@
 
 #include "suite_problem.h"
 
+/* The most steps of one solver call (between two outputs) in either code:
+ * a run that grinds at its roundoff level stops with IDA_TOO_MUCH_WORK or
+ * LGN_TOO_MUCH_WORK instead of running for minutes. */
+#define SUITE_MAX_STEPS 1000000L
+
 /* Lignum's method for a run. */
 typedef struct {
   int bdf_maxord;  /* 1 ... 5: the BDF family; 0: generalized-alpha        */
