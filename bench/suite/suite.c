@@ -318,7 +318,7 @@ static void WritePlot(const char *prefix, int k, Cell cells[][MAXTOLS], int ntol
   }
   fprintf(fp, "set multiplot layout 1,2 title '%s: Lignum and IDA (SUNDIALS %s), rtol = atol = "
               "tol'\nset logscale xy\nset format xy '10^{%%L}'\nset grid\n"
-              "set key bottom right\n",
+              "set key top right\n",
           PROBLEMS[k], sundials);
   for (panel = 0; panel < 2; panel++) {
     fprintf(fp, "set xlabel '%s'\nset ylabel 'error'\n", panel == 0 ? "CPU time (ms)" : "tol");

@@ -10,12 +10,12 @@
 
 #include <stdio.h>
 
-/* From /proc/self/maps: "debian" when every libsundials_* library mapped
- * comes from /usr/lib or /lib, "O2" when every one comes from a directory
- * whose parent holds bench/build-ida-O2's stamp lignum-ida-O2.stamp,
- * "mixed" otherwise, "unknown" without /proc. ARKODE (a reference, never
- * timed) is not counted. The libraries found are listed on out (NULL:
- * not). */
+/* From /proc/self/maps: "debian" when every SUNDIALS library of the timed
+ * code (IDA, the dense and sparse matrices and solvers, the serial vector)
+ * mapped comes from /usr/lib or /lib, "O2" when every one comes from a
+ * directory whose parent holds bench/build-ida-O2's stamp
+ * lignum-ida-O2.stamp, "mixed" otherwise, "unknown" without /proc. The
+ * libraries found are listed on out (NULL: not). */
 const char *suite_sundials_build(FILE *out);
 
 #endif
