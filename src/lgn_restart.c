@@ -373,20 +373,20 @@ static int WriteImage(LGNMem mem, const Buffer *b, const char *filename)
   memcpy(tmp + n, ".tmp", 5);
   fp = fopen(tmp, "wb");
   if (fp == NULL) {
-    LGN_ERROR(mem, LGN_RESTART_IO_FAIL, "The file %s could not be opened for writing (%s).",
+    LGN_ERROR(mem, LGN_IO_FAIL, "The file %s could not be opened for writing (%s).",
               tmp, strerror(errno));
     free(tmp);
-    return LGN_RESTART_IO_FAIL;
+    return LGN_IO_FAIL;
   }
   ok = fwrite(b->p, 1, b->len, fp) == b->len;
   ok = (fclose(fp) == 0) && ok;
   if (ok) ok = rename(tmp, filename) == 0;
   if (!ok) {
-    LGN_ERROR(mem, LGN_RESTART_IO_FAIL, "The restart file %s could not be written (%s).",
+    LGN_ERROR(mem, LGN_IO_FAIL, "The restart file %s could not be written (%s).",
               filename, strerror(errno));
     (void)remove(tmp);
     free(tmp);
-    return LGN_RESTART_IO_FAIL;
+    return LGN_IO_FAIL;
   }
   free(tmp);
   return LGN_SUCCESS;
@@ -459,14 +459,14 @@ static int ReadImage(LGNMem mem, const char *filename, unsigned char **image, si
   long size;
   *image = NULL;
   if (fp == NULL) {
-    LGN_ERROR(mem, LGN_RESTART_IO_FAIL, "The restart file %s could not be opened (%s).",
+    LGN_ERROR(mem, LGN_IO_FAIL, "The restart file %s could not be opened (%s).",
               filename, strerror(errno));
-    return LGN_RESTART_IO_FAIL;
+    return LGN_IO_FAIL;
   }
   if (fseek(fp, 0, SEEK_END) != 0 || (size = ftell(fp)) < 0 || fseek(fp, 0, SEEK_SET) != 0) {
     fclose(fp);
-    LGN_ERROR(mem, LGN_RESTART_IO_FAIL, "The restart file %s could not be read.", filename);
-    return LGN_RESTART_IO_FAIL;
+    LGN_ERROR(mem, LGN_IO_FAIL, "The restart file %s could not be read.", filename);
+    return LGN_IO_FAIL;
   }
   *image = (unsigned char *)malloc(SUNMAX((size_t)size, 1));
   if (*image == NULL) {
@@ -478,8 +478,8 @@ static int ReadImage(LGNMem mem, const char *filename, unsigned char **image, si
     fclose(fp);
     free(*image);
     *image = NULL;
-    LGN_ERROR(mem, LGN_RESTART_IO_FAIL, "The restart file %s could not be read.", filename);
-    return LGN_RESTART_IO_FAIL;
+    LGN_ERROR(mem, LGN_IO_FAIL, "The restart file %s could not be read.", filename);
+    return LGN_IO_FAIL;
   }
   fclose(fp);
   *len = (size_t)size;

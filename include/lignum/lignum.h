@@ -81,8 +81,8 @@ extern "C" {
 #define LGN_LSOLVE_FAIL        -32  /**< SUNLinSolSolve failed                    */
 #define LGN_LS_MISMATCH        -33  /**< matrix / linear solver do not fit        */
 
-/* restart files -50 .. -59 (LGNWriteRestart, LGNReadRestart) */
-#define LGN_RESTART_IO_FAIL    -50  /**< a restart file could not be opened, read or written */
+/* files -50 .. -59 (restart files, VTK output) */
+#define LGN_IO_FAIL            -50  /**< a file (restart, VTK output) could not be opened, read or written */
 #define LGN_RESTART_BAD_FILE   -51  /**< not a restart file of this format: magic, version, byte order, truncated, CRC-32 */
 #define LGN_RESTART_MISMATCH   -52  /**< a restart file of another problem: sizes, group, ranks, settings */
 
@@ -883,7 +883,7 @@ LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *a
  *  @param filename the file (overwritten)
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
  *          (filename NULL or empty, no step taken), LGN_MEM_FAIL,
- *          LGN_RESTART_IO_FAIL (the file could not be written). */
+ *          LGN_IO_FAIL (the file could not be written). */
 LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
 
 /** Read a restart file of LGNWriteRestart into an integrator made as the
@@ -911,7 +911,7 @@ LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
  *  @param lgn_mem memory block (after LGNInit)
  *  @param filename the file
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
- *          (filename NULL or empty), LGN_MEM_FAIL, LGN_RESTART_IO_FAIL,
+ *          (filename NULL or empty), LGN_MEM_FAIL, LGN_IO_FAIL,
  *          LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH. */
 LGN_EXPORT int LGNReadRestart(void *lgn_mem, const char *filename);
 

@@ -24,7 +24,7 @@
  *      for R^3 x SO(3)), other settings (the method parameter, the
  *      constraint index, the step size, the number of root functions), a
  *      mismatching rank count in the header; each with its flag
- *      (LGN_RESTART_IO_FAIL, LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH);
+ *      (LGN_IO_FAIL, LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH);
  *      and bad arguments (NULL, empty name, before LGNInit, before the
  *      first step).
  *
@@ -431,7 +431,7 @@ static void RefusedFiles(RigidSystem *sys, SUNContext ctx)
   for (k = 0; k < 5 && !flag; k++) flag = Advance(&w, &c, k, &roots);
   CHECK(LGNWriteRestart(w.mem, NULL) == LGN_ILL_INPUT, "write: filename NULL");
   CHECK(LGNWriteRestart(w.mem, "") == LGN_ILL_INPUT, "write: filename empty");
-  CHECK(LGNWriteRestart(w.mem, "/nonexistent-dir/x.lgr") == LGN_RESTART_IO_FAIL,
+  CHECK(LGNWriteRestart(w.mem, "/nonexistent-dir/x.lgr") == LGN_IO_FAIL,
         "write into a missing directory");
   if (!flag) flag = LGNWriteRestart(w.mem, FILE_NAME);
   CHECK(flag == 0, "write (%d)", flag);
@@ -452,7 +452,7 @@ static void RefusedFiles(RigidSystem *sys, SUNContext ctx)
   for (k = 0; k < 3 && !flag; k++) flag = Advance(&r, &c, k, &roots);
   CHECK(LGNReadRestart(r.mem, NULL) == LGN_ILL_INPUT, "read: filename NULL");
   CHECK(LGNReadRestart(r.mem, "") == LGN_ILL_INPUT, "read: filename empty");
-  Refused(&r, "no-such-file.lgr", LGN_RESTART_IO_FAIL, "missing file");
+  Refused(&r, "no-such-file.lgr", LGN_IO_FAIL, "missing file");
   memcpy(bad, img, len);
   memcpy(bad, "NOTLIGNU", 8);
   Spit("bad.lgr", bad, len);
