@@ -232,13 +232,18 @@ static void *FieldData(LGNMem mem, const RsField *f)
 
 static uint32_t Crc32(uint32_t crc, const unsigned char *p, size_t n)
 {
+  uint32_t table[256];
+  uint32_t k;
   size_t i;
-  int k;
-  crc = ~crc;
-  for (i = 0; i < n; i++) {
-    crc ^= p[i];
-    for (k = 0; k < 8; k++) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  /* the byte table (made per call: 2 kB of work, no shared state) */
+  for (k = 0; k < 256; k++) {
+    uint32_t c = k;
+    int b;
+    for (b = 0; b < 8; b++) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    table[k] = c;
   }
+  crc = ~crc;
+  for (i = 0; i < n; i++) crc = table[(crc ^ p[i]) & 0xFFu] ^ (crc >> 8);
   return ~crc;
 }
 
