@@ -29,6 +29,7 @@
 
 #include "groups/lgn_group_impl.h"
 #include "lgn_err.h"
+#include "lgn_parallel.h"
 
 #define CYL_SIDES 24
 #define LGN_PI 3.14159265358979323846
@@ -569,9 +570,10 @@ int LGNVtk_Write(LGNVtk w, sunrealtype t, N_Vector q)
   sunindextype i;
   int flag;
   if (w == NULL) return Fail(NULL, LGN_ILL_INPUT, __func__, "w = NULL illegal.");
-  if (q == NULL || N_VGetArrayPointer(q) == NULL || N_VGetLength(q) != w->G->nq)
+  if (q == NULL || N_VGetArrayPointer(q) == NULL || lgnLocalLength(q) != w->G->nq)
     return Fail(w, LGN_ILL_INPUT, __func__,
-                "q %s: a vector with a data array of the group's length %lld is needed.",
+                "q %s: a vector with a data array of the group's length %lld (this "
+                "rank's part) is needed.",
                 q == NULL ? "= NULL" : "has no data array or another length",
                 (long long)w->G->nq);
   if (!isfinite(t)) return Fail(w, LGN_ILL_INPUT, __func__, "t is not finite.");

@@ -89,9 +89,10 @@ LGN_EXPORT int LGNVtk_AddFrame(LGNVtk w, int k, const sunrealtype r[3], const su
                                sunrealtype size);
 
 /** Write the output at time t: the bodies at the poses of q (nq entries of
- *  the group, e.g. the q of LGNSolve) into the next .vtp file, and the
- *  .pvd collection with it. Times should increase (ParaView orders by
- *  them).
+ *  the group, e.g. the q of LGNSolve; across MPI ranks this rank's part,
+ *  its bodies and ghosts, written by each rank under its own basename) into
+ *  the next .vtp file, and the .pvd collection with it. Times should
+ *  increase (ParaView orders by them).
  *  @return LGN_SUCCESS, LGN_ILL_INPUT (w NULL, q NULL or of another length,
  *          t or an entry of q not finite), LGN_MEM_FAIL, LGN_IO_FAIL (a
  *          file could not be written; nothing is counted). */
