@@ -1179,6 +1179,38 @@ static void Run(In *in)
         REQUIRE(flag <= 0 && (flag == 0 || strcmp(LGNGetReturnFlagName(flag), "NONE") != 0),
                 "LGNGenAlphaFromRhoInf returned %d", flag);
       }
+      if (s & 8) {
+        /* a restart file written and read back into the same integrator,
+         * one byte flipped (s & 16): a refused file changes nothing, and
+         * the integrator's own file read back changes no output */
+        char name[64];
+        Snapshot a, b;
+        snprintf(name, sizeof name, "/tmp/lgn_fuzz_%ld.lgr", (long)getpid());
+        flag = CheckFlag(o, LGNWriteRestart(mem, name), "LGNWriteRestart");
+        if (flag == 0) {
+          const unsigned at = U8(in) * 64u + U8(in);
+          int flipped = 0;
+          if (s & 16) {
+            FILE *fp = fopen(name, "r+b");
+            int c;
+            if (fp != NULL && fseek(fp, (long)at, SEEK_SET) == 0 && (c = fgetc(fp)) != EOF &&
+                fseek(fp, (long)at, SEEK_SET) == 0)
+              flipped = fputc(c ^ (int)(1u + (s >> 5)), fp) != EOF;
+            if (fp != NULL) flipped = fclose(fp) == 0 && flipped;
+          }
+          Snap(o, &a);
+          flag = CheckFlag(o, LGNReadRestart(mem, name), "LGNReadRestart");
+          Snap(o, &b);
+          REQUIRE(memcmp(&a, &b, sizeof a) == 0,
+                  "LGNReadRestart (%s, %s file) changed the outputs", LGNGetReturnFlagName(flag),
+                  flipped ? "a corrupted" : "its own");
+          REQUIRE(!flipped || flag == LGN_RESTART_BAD_FILE,
+                  "LGNReadRestart of a file with byte %u flipped returned %s", at,
+                  LGNGetReturnFlagName(flag));
+          remove(name);
+        }
+        flag = 0;
+      }
       break;
     }
     case OP_JOINTS: {
