@@ -26,6 +26,9 @@
  *     acceleration, and the q, v it returns equal the last state returned;
  *     one that took steps (LGN_NORMAL) returns the last accepted state
  *     (tret = the current time, finite q and v);
+ *   - a restart file read back into the integrator that wrote it changes
+ *     none of those outputs; with a byte flipped it is refused with
+ *     LGN_RESTART_BAD_FILE and changes nothing either;
  *   - after a fault is removed an object that was set up sanely (the preset
  *     of Create, untouched by setters since) takes the next step.
  * Sanitizers (ASan, UBSan, LeakSanitizer) come with the build.
