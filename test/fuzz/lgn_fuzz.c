@@ -1187,7 +1187,7 @@ static void Run(In *in)
          * one byte flipped (s & 16): a refused file changes nothing, and
          * the integrator's own file read back changes no output */
         char name[64];
-        Snapshot a, b;
+        Snapshot sa, sb;
         snprintf(name, sizeof name, "/tmp/lgn_fuzz_%ld.lgr", (long)getpid());
         flag = CheckFlag(o, LGNWriteRestart(mem, name), "LGNWriteRestart");
         if (flag == 0) {
@@ -1201,10 +1201,10 @@ static void Run(In *in)
               flipped = fputc(c ^ (int)(1u + (s >> 5)), fp) != EOF;
             if (fp != NULL) flipped = fclose(fp) == 0 && flipped;
           }
-          Snap(o, &a);
+          Snap(o, &sa);
           flag = CheckFlag(o, LGNReadRestart(mem, name), "LGNReadRestart");
-          Snap(o, &b);
-          REQUIRE(memcmp(&a, &b, sizeof a) == 0,
+          Snap(o, &sb);
+          REQUIRE(memcmp(&sa, &sb, sizeof sa) == 0,
                   "LGNReadRestart (%s, %s file) changed the outputs", LGNGetReturnFlagName(flag),
                   flipped ? "a corrupted" : "its own");
           REQUIRE(!flipped || flag == LGN_RESTART_BAD_FILE,
