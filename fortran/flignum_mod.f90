@@ -73,6 +73,11 @@ module flignum_mod
   integer(c_int), parameter :: LGN_LSOLVE_FAIL = -32
   integer(c_int), parameter :: LGN_LS_MISMATCH = -33
 
+  ! files -50 .. -59 (restart files, VTK output)
+  integer(c_int), parameter :: LGN_IO_FAIL = -50
+  integer(c_int), parameter :: LGN_RESTART_BAD_FILE = -51
+  integer(c_int), parameter :: LGN_RESTART_MISMATCH = -52
+
   integer(c_int), parameter :: LGN_UNRECOGNIZED_ERR = -99
 
   ! ===========================================================================
@@ -633,6 +638,22 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       real(c_double), value :: epcon
     end function LGNSetNonlinConvCoef
+
+    !> Write the state to a restart file (filename NUL-terminated: use
+    !! FLGNWriteRestart with a Fortran string).
+    integer(c_int) function LGNWriteRestart(lgn_mem, filename) bind(c, name="LGNWriteRestart")
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: lgn_mem
+      character(kind=c_char), intent(in) :: filename(*)
+    end function LGNWriteRestart
+
+    !> Read a restart file into an integrator of the same problem and
+    !! settings (filename NUL-terminated: use FLGNReadRestart).
+    integer(c_int) function LGNReadRestart(lgn_mem, filename) bind(c, name="LGNReadRestart")
+      import :: c_int, c_ptr, c_char
+      type(c_ptr), value :: lgn_mem
+      character(kind=c_char), intent(in) :: filename(*)
+    end function LGNReadRestart
 
     !> A time not to step past: LGNSolve lands on it, returns LGN_TSTOP_RETURN.
     integer(c_int) function LGNSetStopTime(lgn_mem, tstop) bind(c, name="LGNSetStopTime")
@@ -1483,6 +1504,30 @@ contains
 
     name = FLGNString(LGNGetReturnFlagName(int(flag, c_long)))
   end function FLGNGetReturnFlagName
+
+  !> LGNWriteRestart with a Fortran file name (trailing blanks ignored).
+  !! @param lgn_mem  memory block
+  !! @param filename the restart file (one per MPI rank)
+  !! @return         the flag of LGNWriteRestart
+  function FLGNWriteRestart(lgn_mem, filename) result(flag)
+    type(c_ptr), intent(in) :: lgn_mem
+    character(len=*), intent(in) :: filename
+    integer(c_int) :: flag
+
+    flag = LGNWriteRestart(lgn_mem, trim(filename)//c_null_char)
+  end function FLGNWriteRestart
+
+  !> LGNReadRestart with a Fortran file name (trailing blanks ignored).
+  !! @param lgn_mem  memory block (after LGNInit, settings as the writer's)
+  !! @param filename the restart file
+  !! @return         the flag of LGNReadRestart
+  function FLGNReadRestart(lgn_mem, filename) result(flag)
+    type(c_ptr), intent(in) :: lgn_mem
+    character(len=*), intent(in) :: filename
+    integer(c_int) :: flag
+
+    flag = LGNReadRestart(lgn_mem, trim(filename)//c_null_char)
+  end function FLGNReadRestart
 
   !> Open a C stream (fopen) for LGNSetErrFile or LGNPrintAllStats.
   !! @param path file name (trailing blanks are ignored)

@@ -1095,6 +1095,9 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_LSETUP_FAIL:        return "LGN_LSETUP_FAIL";
   case LGN_LSOLVE_FAIL:        return "LGN_LSOLVE_FAIL";
   case LGN_LS_MISMATCH:        return "LGN_LS_MISMATCH";
+  case LGN_IO_FAIL:            return "LGN_IO_FAIL";
+  case LGN_RESTART_BAD_FILE:   return "LGN_RESTART_BAD_FILE";
+  case LGN_RESTART_MISMATCH:   return "LGN_RESTART_MISMATCH";
   case LGN_UNRECOGNIZED_ERR:   return "LGN_UNRECOGNIZED_ERR";
   default:                     return "NONE";
   }

@@ -81,6 +81,11 @@ extern "C" {
 #define LGN_LSOLVE_FAIL        -32  /**< SUNLinSolSolve failed                    */
 #define LGN_LS_MISMATCH        -33  /**< matrix / linear solver do not fit        */
 
+/* files -50 .. -59 (restart files, VTK output) */
+#define LGN_IO_FAIL            -50  /**< a file (restart, VTK output) could not be opened, read or written */
+#define LGN_RESTART_BAD_FILE   -51  /**< not a restart file of this format: magic, version, byte order, truncated, CRC-32 */
+#define LGN_RESTART_MISMATCH   -52  /**< a restart file of another problem: sizes, group, ranks, settings */
+
 #define LGN_UNRECOGNIZED_ERR   -99  /**< unknown failure                          */
 
 /* =============================================================================
@@ -851,6 +856,64 @@ LGN_EXPORT int LGNGetNewtonMode(void *lgn_mem, int *mode);
 LGN_EXPORT int LGNGetStepControl(void *lgn_mem, int *control);
 /** The tolerances in use (with LGNSVtolerances, atol is their mean). */
 LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol);
+
+/* =============================================================================
+ * Restart files (doc/restart-format.md)
+ * ===========================================================================*/
+
+/** Write the integrator's state at the current time to a restart file, so
+ *  that another integrator (or this one) can continue the run with
+ *  LGNReadRestart and take the same steps bit for bit: the state q, v,
+ *  vdot, a, lambda, the last step (dense output, GetDky), the Newmark
+ *  family's increments, predictor and error control, the BDF history,
+ *  order and controller, the perturbed start, root finding (the last g
+ *  values), the stop time and all counters; and the settings that decide
+ *  the steps, which LGNReadRestart compares. The format is versioned and
+ *  documented (doc/restart-format.md): header with magic, version, byte
+ *  order, type sizes, the model's sizes and the group's signature,
+ *  named entries, and a CRC-32 of the whole. The file is written to
+ *  filename.tmp and renamed, so a run stopped while writing leaves a
+ *  previous file whole. Across MPI ranks (a collective call) each rank
+ *  writes its own part: give each rank its own filename (e.g. with its
+ *  rank in it); the files are read on as many ranks. The user's own state
+ *  (callbacks' user data, e.g. a counter of impacts) is not in the file:
+ *  save it next to it.
+ *  Only after the first LGNSolve (before it, the state is q0, v0).
+ *  @param lgn_mem memory block
+ *  @param filename the file (overwritten)
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (filename NULL or empty, no step taken), LGN_MEM_FAIL,
+ *          LGN_IO_FAIL (the file could not be written). */
+LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
+
+/** Read a restart file of LGNWriteRestart into an integrator made as the
+ *  one that wrote it: LGNCreate, the same group, model callbacks, user
+ *  data, linear solver, root functions and settings, LGNInit (with any q0,
+ *  v0 of the right sizes), then LGNReadRestart and LGNSolve as before.
+ *  The run then continues as the uninterrupted one, bit for bit (with
+ *  modified Newton, LGN_NEWTON_MODIFIED, the factorised matrix is not in
+ *  the file: the first step sets one up, and the steps then differ at the
+ *  level of the Newton tolerance).
+ *  The settings that decide the steps (method and its parameters,
+ *  kinematics, constraint index, step control, step size, tolerances,
+ *  Newton's settings, limits, predictor, perturbed start, root directions,
+ *  the kind of linear solver) are not restored: they must equal the
+ *  file's and are compared, a difference refused with LGN_RESTART_MISMATCH
+ *  naming the setting. What is restored is the state (LGNWriteRestart);
+ *  the stop time is part of it.
+ *  A file that is not a restart file, of another format version, byte
+ *  order or type sizes, truncated or corrupt (CRC-32) is refused with
+ *  LGN_RESTART_BAD_FILE; a file of another problem (sizes, group, number
+ *  of root functions, rank or number of ranks, settings) with
+ *  LGN_RESTART_MISMATCH. A refused file leaves the state and every output
+ *  as they were. Across MPI ranks a collective call: each rank reads its
+ *  own file, and a refusal on one rank is returned on all.
+ *  @param lgn_mem memory block (after LGNInit)
+ *  @param filename the file
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (filename NULL or empty), LGN_MEM_FAIL, LGN_IO_FAIL,
+ *          LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH. */
+LGN_EXPORT int LGNReadRestart(void *lgn_mem, const char *filename);
 
 #ifdef __cplusplus
 }

@@ -1,7 +1,8 @@
 # Every public function and callback type of the Lignum headers has a
 # binding in one of the Fortran modules:
 #  - a function LGNxxx( declared in a header -> an interface with
-#    bind(c, name="LGNxxx") in a module;
+#    bind(c, name="LGNxxx") in a module, or bind(c, name="FLGNxxx") for a
+#    C shim of the Fortran interface (an MPI_Comm taken as a Fortran handle);
 #  - a callback typedef (*LGNxxxFn)( -> an abstract interface LGNxxxFn.
 #   cmake "-DLGN_HEADERS=a.h|b.h" "-DLGN_MODULES=flignum_mod.f90|x.f90"
 #         -P check_api_coverage.cmake
@@ -39,6 +40,11 @@ foreach(_h IN LISTS _headers)
     string(REGEX REPLACE "^.(LGN[A-Za-z0-9_]*)\\($" "\\1" _name "${_c}")
     math(EXPR _nfun "${_nfun} + 1")
     string(FIND "${_module}" "name=\"${_name}\"" _pos)
+    if(_pos EQUAL -1)
+      # a C shim FLGNxxx bound instead (an MPI_Comm argument taken as the
+      # Fortran handle: fortran/flignum_mpi_shim.c, flignum_petsc_shim.c)
+      string(FIND "${_module}" "name=\"F${_name}\"" _pos)
+    endif()
     if(_pos EQUAL -1)
       list(APPEND _missing "function ${_name} (${_hname})")
     endif()

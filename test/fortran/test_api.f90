@@ -152,6 +152,7 @@ program test_api
   call test_parameter_map()
   call test_oscillator()
   call test_adaptive()
+  call test_vtk()
   call ftest_finish("test_api")
 
 contains
@@ -182,6 +183,9 @@ contains
     call name_is(LGN_LSETUP_FAIL, "LGN_LSETUP_FAIL")
     call name_is(LGN_LSOLVE_FAIL, "LGN_LSOLVE_FAIL")
     call name_is(LGN_LS_MISMATCH, "LGN_LS_MISMATCH")
+    call name_is(LGN_IO_FAIL, "LGN_IO_FAIL")
+    call name_is(LGN_RESTART_BAD_FILE, "LGN_RESTART_BAD_FILE")
+    call name_is(LGN_RESTART_MISMATCH, "LGN_RESTART_MISMATCH")
     call name_is(LGN_UNRECOGNIZED_ERR, "LGN_UNRECOGNIZED_ERR")
     call name_is(LGN_ROOT_RETURN, "LGN_ROOT_RETURN")
     call name_is(LGN_RTFUNC_FAIL, "LGN_RTFUNC_FAIL")
@@ -593,11 +597,11 @@ contains
   !> and getter, output between steps, the stop time.
   subroutine test_adaptive()
     type(oscillator), target :: osc
-    type(c_ptr) :: ctx, G, q, v, atolv, ele, ewt, dky, A1, tmpl, LS, mem
+    type(c_ptr) :: ctx, G, q, v, atolv, ele, ewt, dky, A1, A2, tmpl, LS, LS2, mem, mem2
     type(LGNGroupRec), pointer :: rec
     real(c_double), pointer :: qq(:), vv(:), pe(:), pw(:), pd(:)
-    real(c_double) :: t, hcur, h0, hlast, errnorm, tm
-    integer(c_long) :: nsteps, netf
+    real(c_double) :: t, hcur, h0, hlast, errnorm, tm, q_ref, v_ref
+    integer(c_long) :: nsteps, netf, nsteps2
     integer(c_int) :: flag
     real(c_double), parameter :: rtol = 1.0e-6_c_double, atol = 1.0e-8_c_double
 
@@ -617,6 +621,7 @@ contains
     ewt = N_VNew_Serial(1_c_int64_t, ctx)
     dky = N_VNew_Serial(1_c_int64_t, ctx)
     A1 = SUNDenseMatrix(1_c_int64_t, 1_c_int64_t, ctx)
+    A2 = SUNDenseMatrix(1_c_int64_t, 1_c_int64_t, ctx)
     tmpl = N_VNew_Serial(1_c_int64_t, ctx)
     ! Lignum's dense LU in SUNLinSol_Dense's place (the oscillator above
     ! uses SUNDIALS'); a NULL argument gives a null pointer
@@ -720,9 +725,53 @@ contains
     call expect_flag(LGNGetDky(c_null_ptr, tm, 0_c_int, dky), LGN_MEM_NULL, "LGN_MEM_NULL", &
                      "LGNGetDky(NULL)")
 
+    ! a restart file: written at t = 1, read into a new integrator made with
+    ! the same settings; both go on to t = 1.7 and end bit for bit alike
+    call expect(FLGNWriteRestart(mem, "ftest_restart.lgr") == 0, "FLGNWriteRestart")
+    flag = LGNSolve(mem, 1.7_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_SUCCESS, "LGN_SUCCESS", "LGNSolve(1.7), uninterrupted")
+    call expect(LGNGetNumSteps(mem, nsteps) == 0, "LGNGetNumSteps")
+    q_ref = qq(1)
+    v_ref = vv(1)
+    mem2 = LGNCreate(ctx)
+    call expect(LGNSetGroup(mem2, G) == 0, "LGNSetGroup (restart)")
+    call expect(LGNSetUserData(mem2, c_loc(osc)) == 0, "LGNSetUserData (restart)")
+    call expect(LGNSetMassFn(mem2, c_funloc(osc_mass)) == 0, "LGNSetMassFn (restart)")
+    call expect(LGNSetForceFn(mem2, c_funloc(osc_force)) == 0, "LGNSetForceFn (restart)")
+    call expect(LGNSetConstraints(mem2, 0_c_int64_t, c_null_funptr, c_null_funptr) == 0, &
+                "LGNSetConstraints (restart)")
+    call expect(LGNInit(mem2, 0.0_c_double, q, v) == 0, "LGNInit (restart)")
+    LS2 = LGNLinSol_Dense(tmpl, A2, ctx)
+    call expect(LGNSetLinearSolver(mem2, LS2, A2) == 0, "LGNSetLinearSolver (restart)")
+    call expect(LGNSetGenAlpha(mem2, 0.9_c_double) == 0, "LGNSetGenAlpha (restart)")
+    call expect(LGNSetStepControl(mem2, LGN_STEP_ADAPTIVE) == 0, "LGNSetStepControl (restart)")
+    call expect(LGNSVtolerances(mem2, rtol, atolv) == 0, "LGNSVtolerances (restart)")
+    call expect(LGNSetInitStep(mem2, 1.0e-4_c_double) == 0, "LGNSetInitStep (restart)")
+    call expect(LGNSetMinStep(mem2, 1.0e-12_c_double) == 0, "LGNSetMinStep (restart)")
+    ! a setting left out: refused, naming it
+    call expect_flag(FLGNReadRestart(mem2, "ftest_restart.lgr"), LGN_RESTART_MISMATCH, &
+                     "LGN_RESTART_MISMATCH", "FLGNReadRestart without LGNSetMaxStep")
+    call expect(LGNSetMaxStep(mem2, 0.2_c_double) == 0, "LGNSetMaxStep (restart)")
+    call expect(LGNSetMaxErrTestFails(mem2, 0_c_int) == 0, "LGNSetMaxErrTestFails (restart)")
+    call expect(LGNSetMaxConvFails(mem2, 0_c_int) == 0, "LGNSetMaxConvFails (restart)")
+    call expect(LGNSetNonlinConvCoef(mem2, 0.0_c_double) == 0, "LGNSetNonlinConvCoef (restart)")
+    call expect_flag(FLGNReadRestart(mem2, "no-such-file.lgr"), LGN_IO_FAIL, "LGN_IO_FAIL", &
+                     "FLGNReadRestart of a missing file")
+    call expect(FLGNReadRestart(mem2, "ftest_restart.lgr") == 0, "FLGNReadRestart")
+    flag = LGNSolve(mem2, 1.7_c_double, t, q, v, LGN_NORMAL)
+    call expect_flag(flag, LGN_SUCCESS, "LGN_SUCCESS", "LGNSolve(1.7), restarted")
+    call expect(LGNGetNumSteps(mem2, nsteps2) == 0, "LGNGetNumSteps (restart)")
+    call expect(transfer(qq(1), 0_c_int64_t) == transfer(q_ref, 0_c_int64_t) .and. &
+                transfer(vv(1), 0_c_int64_t) == transfer(v_ref, 0_c_int64_t) .and. &
+                nsteps2 == nsteps, &
+                "the restarted run equals the uninterrupted one bit for bit")
+    call LGNFree(mem2)
+    call expect(SUNLinSolFree(LS2) == 0, "SUNLinSolFree (restart)")
+
     call LGNFree(mem)
     call expect(SUNLinSolFree(LS) == 0, "SUNLinSolFree")
     call SUNMatDestroy(A1)
+    call SUNMatDestroy(A2)
     call N_VDestroy(q)
     call N_VDestroy(v)
     call N_VDestroy(atolv)
@@ -733,6 +782,44 @@ contains
     call LGNGroup_Destroy(G)
     call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
   end subroutine test_adaptive
+
+  !> Trajectories for ParaView from Fortran (flignum_vtk_mod): a box and a
+  !> frame on one R^3 x SO(3) body, two outputs; bad input refused.
+  subroutine test_vtk()
+    use flignum_vtk_mod
+    type(c_ptr) :: ctx, G, q, w
+    real(c_double), pointer :: qq(:)
+    real(c_double) :: origin(3) = [0.0_c_double, 0.0_c_double, 0.5_c_double]
+    integer(c_int) :: nb
+    logical :: exists
+
+    call expect(FSUNContext_Create(ctx) == 0, "SUNContext_Create")
+    G = LGNGroup_R3xSO3()
+    q = N_VNew_Serial(7_c_int64_t, ctx)
+    qq => FN_VGetArray(q)
+    call expect(LGNGroup_Identity(G, qq) == 0, "LGNGroup_Identity")
+    w = FLGNVtk_Create(G, "ftest_vtk")
+    call expect(c_associated(w), "FLGNVtk_Create")
+    call expect(LGNVtk_GetNumBodies(w, nb) == 0 .and. nb == 1, "one body")
+    call expect(LGNVtk_SetBox(w, 0_c_int, 0.2_c_double, 0.1_c_double, 1.0_c_double) == 0, &
+                "LGNVtk_SetBox")
+    call expect_flag(LGNVtk_SetSphere(w, 1_c_int, 0.1_c_double), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNVtk_SetSphere(body 1 of 1)")
+    call expect(LGNVtk_AddFrame(w, 0_c_int, origin, c_null_ptr, 0.1_c_double) == 0, &
+                "LGNVtk_AddFrame")
+    call expect(LGNVtk_Write(w, 0.0_c_double, q) == 0, "LGNVtk_Write(0)")
+    qq(1) = 1.0_c_double
+    call expect(LGNVtk_Write(w, 0.5_c_double, q) == 0, "LGNVtk_Write(0.5)")
+    call LGNVtk_Destroy(w)
+    call expect(.not. c_associated(w), "LGNVtk_Destroy clears the pointer")
+    inquire (file="ftest_vtk_000001.vtp", exist=exists)
+    call expect(exists, "ftest_vtk_000001.vtp written")
+    inquire (file="ftest_vtk.pvd", exist=exists)
+    call expect(exists, "ftest_vtk.pvd written")
+    call N_VDestroy(q)
+    call LGNGroup_Destroy(G)
+    call expect(SUNContext_Free(ctx) == 0, "SUNContext_Free")
+  end subroutine test_vtk
 
   !> .true. if a line of the file contains text; deletes the file.
   function file_has(path, text) result(found)

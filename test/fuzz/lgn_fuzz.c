@@ -26,6 +26,9 @@
  *     acceleration, and the q, v it returns equal the last state returned;
  *     one that took steps (LGN_NORMAL) returns the last accepted state
  *     (tret = the current time, finite q and v);
+ *   - a restart file read back into the integrator that wrote it changes
+ *     none of those outputs; with a byte flipped it is refused with
+ *     LGN_RESTART_BAD_FILE and changes nothing either;
  *   - after a fault is removed an object that was set up sanely (the preset
  *     of Create, untouched by setters since) takes the next step.
  * Sanitizers (ASan, UBSan, LeakSanitizer) come with the build.
@@ -1178,6 +1181,38 @@ static void Run(In *in)
         flag = LGNGenAlphaFromRhoInf((double)U8(in) / 255.0, &am, &af, &b, &g);
         REQUIRE(flag <= 0 && (flag == 0 || strcmp(LGNGetReturnFlagName(flag), "NONE") != 0),
                 "LGNGenAlphaFromRhoInf returned %d", flag);
+      }
+      if (s & 8) {
+        /* a restart file written and read back into the same integrator,
+         * one byte flipped (s & 16): a refused file changes nothing, and
+         * the integrator's own file read back changes no output */
+        char name[64];
+        Snapshot sa, sb;
+        snprintf(name, sizeof name, "/tmp/lgn_fuzz_%ld.lgr", (long)getpid());
+        flag = CheckFlag(o, LGNWriteRestart(mem, name), "LGNWriteRestart");
+        if (flag == 0) {
+          const unsigned at = U8(in) * 64u + U8(in);
+          int flipped = 0;
+          if (s & 16) {
+            FILE *fp = fopen(name, "r+b");
+            int c;
+            if (fp != NULL && fseek(fp, (long)at, SEEK_SET) == 0 && (c = fgetc(fp)) != EOF &&
+                fseek(fp, (long)at, SEEK_SET) == 0)
+              flipped = fputc(c ^ (int)(1u + (s >> 5)), fp) != EOF;
+            if (fp != NULL) flipped = fclose(fp) == 0 && flipped;
+          }
+          Snap(o, &sa);
+          flag = CheckFlag(o, LGNReadRestart(mem, name), "LGNReadRestart");
+          Snap(o, &sb);
+          REQUIRE(memcmp(&sa, &sb, sizeof sa) == 0,
+                  "LGNReadRestart (%s, %s file) changed the outputs", LGNGetReturnFlagName(flag),
+                  flipped ? "a corrupted" : "its own");
+          REQUIRE(!flipped || flag == LGN_RESTART_BAD_FILE,
+                  "LGNReadRestart of a file with byte %u flipped returned %s", at,
+                  LGNGetReturnFlagName(flag));
+          remove(name);
+        }
+        flag = 0;
       }
       break;
     }

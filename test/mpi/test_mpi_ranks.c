@@ -26,7 +26,10 @@
  *       from every LGNSolve), Phi_t set on one rank only and
  *       a preconditioner failing once inside a Krylov solve on one rank (both
  *       run through, with the same steps everywhere); and q0, v0 freed after
- *       LGNInit (the same run).
+ *       LGNInit (the same run);
+ *   (f) restart files, one per rank (LGNWriteRestart after an output,
+ *       LGNReadRestart into a new integrator): the continued run equals the
+ *       uninterrupted one bit for bit (dense LU per rank, SPGMR).
  *
  * Generalized-alpha (modified kinematics) with full Newton and a dense LU
  * of each rank's block, BDF (orders up to 5) with modified Newton, and
@@ -192,6 +195,95 @@ static void FreeVector(int kind, N_Vector x)
   N_VDestroy(x);
 }
 
+/* (f): the output after which Integrate restarts from a file (0: none) */
+static int restart_after = 0;
+
+typedef struct {
+  void *mem;
+  N_Vector tmpl;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+} Solver;
+
+/* The integrator of Integrate: model, tolerances, method, roots, linear
+ * solver (made again for a restart, (f)). */
+static int MakeIntegrator(int method, int kind, MPI_Comm comm, int inject, sunrealtype tol,
+                          Model *md, LGNGroup G, N_Vector q, N_Vector v, sunindextype m,
+                          SUNContext ctx, int *nmsg, sunbooleantype *freed, Solver *out)
+{
+  const sunindextype nv = G->nv;
+  void *mem = LGNCreate(ctx);
+  N_Vector tmpl;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  int flag = 0;
+  *nmsg = 0;
+  if (!flag) flag = LGNSetErrHandlerFn(mem, CountMessages, nmsg);
+  if (!flag) flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNSetUserData(mem, md);
+  if (!flag) flag = LGNSetMassFn(mem, Mass);
+  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNSetForceFn(mem, Force);
+  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+  if (!flag) flag = LGNSStolerances(mem, inject == FAIL_SETTING ? 2.0 * tol : tol, tol);
+  if (!flag && inject == PHIT_HERE) flag = LGNSetConstraintTimeFn(mem, ZeroPhit);
+  if (method != 1) {
+    if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
+  } else {
+    if (!flag) flag = LGNSetBDF(mem, 5);
+    if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
+  }
+  if (!flag) flag = LGNInit(mem, 0.0, q, v);
+  if (!flag && inject == FREE_Q0) {
+    /* the integrator keeps no reference to q0, v0 (nor to their
+     * communicator): freed, and the outputs go to new vectors */
+    *freed = SUNTRUE;
+  }
+  if (!flag && inject != FAIL_NOROOT) flag = LGNRootInit(mem, 1, Event);
+  {
+    /* made on every rank: cloning an MPI vector is collective */
+    N_Vector atol = N_VClone(v);
+    N_VConst(tol, atol);
+    if (!flag && inject == FAIL_SVTOL)
+      flag = LGNSVtolerances(mem, tol, atol); /* a local call: no hang here */
+    N_VDestroy(atol);
+  }
+  if (method >= 2) {
+    /* Krylov over vectors of the ranks (its norms are collective); 3: a
+     * user preconditioner (none, really) that may fail */
+    tmpl = NewVector(kind, comm, nv + m, ctx);
+    A    = NULL;
+    LS   = SUNLinSol_SPGMR(tmpl, SUN_PREC_LEFT, method == 2 ? 10 : 40, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
+    if (!flag && method == 2) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
+    if (!flag && method == 3) flag = LGNSetPreconditioner(mem, NULL, Psolve);
+  } else {
+    /* each rank solves its own block: the tops do not couple */
+    tmpl = N_VNew_Serial(nv + m, ctx);
+    A    = SUNDenseMatrix(nv + m, nv + m, ctx);
+    LS   = LGNLinSol_Dense(tmpl, A, ctx);
+    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  }
+
+  out->mem  = mem;
+  out->tmpl = tmpl;
+  out->A    = A;
+  out->LS   = LS;
+  return flag;
+}
+
+static void FreeIntegrator(int method, int kind, Solver *s)
+{
+  LGNFree(&s->mem);
+  SUNLinSolFree(s->LS);
+  if (s->A != NULL) SUNMatDestroy(s->A);
+  if (method >= 2)
+    FreeVector(kind, s->tmpl);
+  else
+    N_VDestroy(s->tmpl);
+}
+
 /* Tops u0 ... u0 + K - 1 of the model, in vectors of the given kind on
  * comm; method 0: mod. generalized-alpha, full Newton; 1: BDF 5, modified;
  * 2: as 0 with SPGMR and the block preconditioner (one block per rank). */
@@ -205,10 +297,9 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   LGNGroup body = LGNGroup_R3xSO3(), G;
   LGNGroup *factors = (LGNGroup *)malloc((size_t)K * sizeof(LGNGroup));
   Model md = {NULL, NULL, inject, 0, u0 == 0};
-  N_Vector q, v, tmpl;
-  SUNMatrix A;
-  SUNLinearSolver LS;
-  void *mem;
+  N_Vector q, v;
+  Solver solver;
+  void *mem = NULL;
   sunindextype nq, nv, m;
   sunrealtype *qd, *vd, t = 0.0;
   int k, flag = 0, rootsfound = 0;
@@ -241,62 +332,26 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   }
   if (inject == FAIL_NAN_Q0) qd[3] = NAN;
 
-  mem = LGNCreate(ctx);
-  run->nmsg = 0;
-  if (!flag) flag = LGNSetErrHandlerFn(mem, CountMessages, &run->nmsg);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
-  if (!flag) flag = LGNSStolerances(mem, inject == FAIL_SETTING ? 2.0 * tol : tol, tol);
-  if (!flag && inject == PHIT_HERE) flag = LGNSetConstraintTimeFn(mem, ZeroPhit);
-  if (method != 1) {
-    if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
-  } else {
-    if (!flag) flag = LGNSetBDF(mem, 5);
-    if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
-  }
-  if (!flag) flag = LGNInit(mem, 0.0, q, v);
-  if (!flag && inject == FREE_Q0) {
-    /* the integrator keeps no reference to q0, v0 (nor to their
-     * communicator): freed, and the outputs go to new vectors */
-    N_Vector q2 = NewVector(kind, comm, nq, ctx), v2 = NewVector(kind, comm, nv, ctx);
-    FreeVector(kind, q);
-    FreeVector(kind, v);
-    q  = q2;
-    v  = v2;
-    qd = N_VGetArrayPointer(q);
-    vd = N_VGetArrayPointer(v);
-  }
-  if (!flag && inject != FAIL_NOROOT) flag = LGNRootInit(mem, 1, Event);
   {
-    /* made on every rank: cloning an MPI vector is collective */
-    N_Vector atol = N_VClone(v);
-    N_VConst(tol, atol);
-    if (!flag && inject == FAIL_SVTOL)
-      flag = LGNSVtolerances(mem, tol, atol); /* a local call: no hang here */
-    N_VDestroy(atol);
+    sunbooleantype freed = SUNFALSE;
+    if (!flag)
+      flag = MakeIntegrator(method, kind, comm, inject, tol, &md, G, q, v, m, ctx, &run->nmsg,
+                            &freed, &solver);
+    else
+      memset(&solver, 0, sizeof solver);
+    if (freed) {
+      /* the integrator keeps no reference to q0, v0 (nor to their
+       * communicator): freed, and the outputs go to new vectors */
+      N_Vector q2 = NewVector(kind, comm, nq, ctx), v2 = NewVector(kind, comm, nv, ctx);
+      FreeVector(kind, q);
+      FreeVector(kind, v);
+      q  = q2;
+      v  = v2;
+      qd = N_VGetArrayPointer(q);
+      vd = N_VGetArrayPointer(v);
+    }
+    mem = solver.mem;
   }
-  if (method >= 2) {
-    /* Krylov over vectors of the ranks (its norms are collective); 3: a
-     * user preconditioner (none, really) that may fail */
-    tmpl = NewVector(kind, comm, nv + m, ctx);
-    A    = NULL;
-    LS   = SUNLinSol_SPGMR(tmpl, SUN_PREC_LEFT, method == 2 ? 10 : 40, ctx);
-    if (!flag) flag = LGNSetLinearSolver(mem, LS, NULL);
-    if (!flag && method == 2) flag = LGNSetBlockPreconditioner(mem, 1, NULL);
-    if (!flag && method == 3) flag = LGNSetPreconditioner(mem, NULL, Psolve);
-  } else {
-    /* each rank solves its own block: the tops do not couple */
-    tmpl = N_VNew_Serial(nv + m, ctx);
-    A    = SUNDenseMatrix(nv + m, nv + m, ctx);
-    LS   = LGNLinSol_Dense(tmpl, A, ctx);
-    if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
-  }
-
   run->troot = -1.0;
   for (k = 1; k <= NOUT && !flag;) {
     flag = LGNSolve(mem,
@@ -311,6 +366,23 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     if (flag) break;
     memcpy(run->q + (size_t)(k - 1) * (size_t)nq, qd, (size_t)nq * sizeof(sunrealtype));
     memcpy(run->v + (size_t)(k - 1) * (size_t)nv, vd, (size_t)nv * sizeof(sunrealtype));
+    if (k == restart_after) {
+      /* (f) a restart file per rank, read into a new integrator */
+      char name[64];
+      sunbooleantype freed = SUNFALSE;
+      int rank;
+      MPI_Comm_rank(comm, &rank);
+      snprintf(name, sizeof name, "test_mpi_ranks.%d.lgr", rank);
+      flag = LGNWriteRestart(mem, name);
+      FreeIntegrator(method, kind, &solver);
+      if (!flag)
+        flag = MakeIntegrator(method, kind, comm, inject, tol, &md, G, q, v, m, ctx, &run->nmsg,
+                              &freed, &solver);
+      mem = solver.mem;
+      if (!flag) flag = LGNReadRestart(mem, name);
+      remove(name);
+      if (flag) break;
+    }
     k++;
   }
   run->flag = flag;
@@ -320,13 +392,7 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
   LGNGetNumNewtonIters(mem, &run->nni);
   LGNGetLastStep(mem, &run->hlast);
 
-  LGNFree(&mem);
-  SUNLinSolFree(LS);
-  if (A != NULL) SUNMatDestroy(A);
-  if (method >= 2)
-    FreeVector(kind, tmpl);
-  else
-    N_VDestroy(tmpl);
+  FreeIntegrator(method, kind, &solver);
   FreeVector(kind, q);
   FreeVector(kind, v);
   LGNJoints_Destroy(&md.joints);
@@ -542,6 +608,39 @@ int main(int argc, char **argv)
     Check(par.flag == 0 && SameOnAllRanks((double)par.nst, comm) &&
               SameOnAllRanks(par.hlast, comm), rank, what);
     FreeRun(&par);
+
+    /* (f) restart files, one per rank: written after the second output,
+     * read into a new integrator; the continued run equals the
+     * uninterrupted one bit for bit (every output, steps, event), with the
+     * dense LU of each rank and with SPGMR over the ranks (on 1 and 2
+     * ranks: kept cheap, 4 ranks oversubscribe the machine) */
+    if (size <= 2) {
+      static const int rmethods[2] = {0, 3};
+      static const char *rname[2] = {"GA, dense LU per rank", "GA, SPGMR over the ranks"};
+      int i;
+      for (i = 0; i < 2; i++) {
+        Run cont = NewRun(K);
+        int same;
+        par = NewRun(K);
+        Integrate(rmethods[i], VEC_MPIPLUSX, comm, u0, K, FAIL_NONE, 1e-7, ctx_par, &par);
+        restart_after = 2;
+        Integrate(rmethods[i], VEC_MPIPLUSX, comm, u0, K, FAIL_NONE, 1e-7, ctx_par, &cont);
+        restart_after = 0;
+        same = par.flag == 0 && cont.flag == 0 && par.nst == cont.nst &&
+               memcmp(&par.troot, &cont.troot, sizeof par.troot) == 0 &&
+               memcmp(par.q, cont.q, (size_t)NOUT * (size_t)(NQ_TOP * K) * sizeof(sunrealtype)) == 0 &&
+               memcmp(par.v, cont.v, (size_t)NOUT * (size_t)(NV_TOP * K) * sizeof(sunrealtype)) == 0;
+        if (rank == 0)
+          printf("  restart file per rank, %s: %s (%ld steps)\n", rname[i],
+                 same ? "continued bit for bit" : "DIFFERENT", cont.nst);
+        snprintf(what, sizeof what, "(f) %s: restarted from files, bit for bit (%s, %s)",
+                 rname[i], LGNGetReturnFlagName(par.flag),
+                 LGNGetReturnFlagName(cont.flag));
+        Check(same, rank, what);
+        FreeRun(&par);
+        FreeRun(&cont);
+      }
+    }
 
     par = NewRun(K);
     Integrate(3, VEC_MPIPLUSX, comm, u0, K, rank == last ? PSOLVE_REC : FAIL_NONE, 1e-7,
