@@ -101,7 +101,8 @@ static sunrealtype SumOfSquaresRatioV(sunindextype n, const sunrealtype *d,
  * The configuration and multiplier parts (same normalisation, norm^2 =
  * sigma part^2 + lambda part^2) go to t->norm_sigma and t->norm_lambda.
  * The tolerances are the step's (mem->nls_*): the user's in the fixed-step
- * mode, a fraction of the error test's with error control (lgn_adapt.c).
+ * mode, tied to the error test's with error control (lgn_adapt.c,
+ * lgnNewtonTolerances; the multipliers' part has its own, nls_l*).
  * The floors are the roundoff level of the iteration: the configuration is
  * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
  * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
@@ -122,7 +123,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   const sunrealtype lambda_unit = c->scale / h;
   /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
   const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
-  const sunrealtype lambda_atol = atol + roundoff / (beta * h);
+  const sunrealtype lambda_atol = mem->nls_latol + roundoff / (beta * h);
   const sunbooleantype ggl = m > 0 && mem->constr_index == LGN_CONSTR_GGL;
   const sunrealtype n = mem->nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->m_all;
   sunrealtype sum[2]; /* the configuration and multiplier parts */
@@ -130,8 +131,8 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   /* per-component tolerances (error control): the same weights with
    * atol_i h in place of atol h */
   sum[0] = mem->nls_atolv != NULL
-               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv, h,
-                                    roundoff, rtol)
+               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv,
+                                    h * mem->nls_vfac, roundoff, rtol)
                : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol,
                                    rtol);
   /* GGL: the unknown nu = mu / gamma' moves the configuration by T^{-1} B^T
@@ -139,7 +140,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   if (ggl) sum[0] += SumOfSquaresRatio(m, dmu + m, mem->ggl_mu, SUN_RCONST(0.0), sigma_atol,
                                        rtol);
   sum[1] = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
-                             lambda_unit * rtol);
+                             lambda_unit * mem->nls_lrtol);
   lgnSumAll(mem, sum, 2); /* over the ranks: every rank takes the same decision */
   t->norm_sigma  = sqrt(sum[0] / n);
   t->norm_lambda = sqrt(sum[1] / n);
