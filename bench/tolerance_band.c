@@ -7,7 +7,9 @@
  * variables suppressed, rtol = atol = tol on every differential component),
  * on the heavy top (t = 1, error of the centre of mass against the ARKODE
  * reference, test/reference) and the 3-rod chain (t = 1, error of the tip
- * against IDA at rtol 1e-12, bench/work_precision --chain-reference).
+ * against IDA at rtol 1e-12, bench/work_precision --chain-reference), and
+ * the suite's Andrews mechanism, car axis and IFToMM A01 pendulum
+ * (bench/suite: its error measures and references; IDA at index 2).
  *
  * Printed per problem and method: tol, error, error / tol, steps, failed
  * error tests, Newton iterations, LU factorisations; then per method the
@@ -28,6 +30,7 @@
 #include <lignum/lignum_ls.h>
 
 #include "ida_chain.h"
+#include "suite_run.h"
 #include "ida_heavy_top.h"
 #include "lgn_reference.h"
 #include "models/chain.h"
@@ -38,6 +41,8 @@
 #define CHAIN_N 3
 static const double CHAIN_TIP_REF[3] = {-1.855169400564356, -6.545653961586941e-03,
                                         -2.068593335280935};
+
+static const char *const PROBLEMS[5] = {"top", "chain", "andrews", "caraxis", "pendulum"};
 
 typedef struct {
   const char *name;
@@ -171,6 +176,36 @@ static void Chain(const Method *m, double tol, Row *r)
   }
 }
 
+/* The suite's problems (bench/suite): its error measure, Lignum's public
+ * API on R^n, IDA at index 2 with IDASetId / IDASetSuppressAlg.
+ * Generalized-alpha (order 2, error per unit step) only down to GA_TOL_MIN
+ * (A01 over 2000 s: 1e-6): its steps grow like tol^(-1/2). */
+static void Suite(const char *name, const Method *m, double tol, Row *r)
+{
+  const SuiteProblem *pb = suite_problem(name);
+  SuiteResult res;
+  memset(r, 0, sizeof *r);
+  r->err = NAN;
+  if (pb == NULL) return;
+  if (!m->ida && m->bdf == 0 && tol < (strcmp(name, "pendulum") == 0 ? 1e-6 : 1e-8)) return;
+  if (m->ida) {
+    suite_ida_run(pb, tol, 0, SUITE_IDA_INDEX2, &res);
+  } else {
+    SuiteLignumMethod lm;
+    lm.bdf_maxord = m->bdf;
+    lm.rho_inf = 0.9;
+    lm.constraints = LGN_CONSTR_INDEX3;
+    lm.newton = m->newton;
+    suite_lignum_run(pb, &lm, tol, &res);
+  }
+  r->ok = res.flag == 0;
+  r->err = res.err;
+  r->steps = res.nsteps;
+  r->netf = res.nrejected;
+  r->nni = res.nniters;
+  r->nlu = res.nlu;
+}
+
 /* slope of log err against log tol (least squares) */
 static double Exponent(const Row *rows, const double *tols, int n)
 {
@@ -192,7 +227,7 @@ int main(int argc, char **argv)
 {
   const char *csvname = NULL, *only = NULL;
   double tols[NTOL];
-  Row rows[2][NMETHODS][NTOL];
+  Row rows[5][NMETHODS][NTOL];
   LGNRefHeavyTop ref;
   const double tref = T_END;
   FILE *csv = NULL;
@@ -201,7 +236,8 @@ int main(int argc, char **argv)
     if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csvname = argv[++i];
     else if (strcmp(argv[i], "--problem") == 0 && i + 1 < argc) only = argv[++i];
     else {
-      printf("usage: %s [--csv FILE] [--problem top|chain]\n", argv[0]);
+      printf("usage: %s [--csv FILE] [--problem top|chain|andrews|caraxis|pendulum]\n",
+             argv[0]);
       return 2;
     }
   }
@@ -209,18 +245,19 @@ int main(int argc, char **argv)
   if (lgnref_heavy_top(&tref, 1, &ref, 1) != 0) return 1;
   if (csvname != NULL && (csv = fopen(csvname, "w")) == NULL) return 1;
   if (csv) fprintf(csv, "problem,method,tol,err,steps,netf,nni,nlu\n");
-  for (p = 0; p < 2; p++) {
-    const char *pname = p == 0 ? "heavy top" : "chain";
-    if (only != NULL && strcmp(only, p == 0 ? "top" : "chain") != 0) continue;
-    printf("\n== %s, t = %g: error / tol (steps, failed tests, Newton its, LUs)\n", pname, T_END);
+  for (p = 0; p < 5; p++) {
+    const char *pname = PROBLEMS[p];
+    if (only != NULL && strcmp(only, pname) != 0) continue;
+    printf("\n== %s: error / tol (steps, failed tests, Newton its, LUs)\n", pname);
     for (j = 0; j < NMETHODS; j++) {
       printf("%-14s", METHODS[j].name);
       for (i = 0; i < ntol; i++) {
         Row *r = &rows[p][j][i];
         if (p == 0) HeavyTop(&METHODS[j], tols[i], ref.x, r);
-        else Chain(&METHODS[j], tols[i], r);
+        else if (p == 1) Chain(&METHODS[j], tols[i], r);
+        else Suite(pname, &METHODS[j], tols[i], r);
         if (csv)
-          fprintf(csv, "%s,%s,%g,%.6e,%ld,%ld,%ld,%ld\n", p == 0 ? "top" : "chain",
+          fprintf(csv, "%s,%s,%g,%.6e,%ld,%ld,%ld,%ld\n", pname,
                   METHODS[j].name, tols[i], r->ok ? r->err : NAN, r->steps, r->netf, r->nni,
                   r->nlu);
       }
@@ -237,6 +274,7 @@ int main(int argc, char **argv)
       double worst = 0.0, ratio = 0.0;
       for (i = 0; i < ntol; i++) {
         const Row *r = &rows[p][j][i];
+        if (r->steps == 0) continue; /* not run */
         worst = fmax(worst, r->err / tols[i]);
         if (rows[p][NMETHODS - 1][i].ok) ratio = fmax(ratio, r->err / rows[p][NMETHODS - 1][i].err);
         if (i > 0 && !(r->err < rows[p][j][i - 1].err)) mono = 0;

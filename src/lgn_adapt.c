@@ -94,53 +94,6 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
   mem->a_step = mem->a_scaled;
 }
 
-/* Newton's tolerances in the fixed-step mode: the user's (LGNSStolerances). */
-void lgnFixedNewtonTolerances(LGNMem mem)
-{
-  mem->nls_rtol  = mem->rtol;
-  mem->nls_atol  = mem->atol;
-  mem->nls_atolv = NULL;
-  mem->nls_vfac  = SUN_RCONST(1.0);
-  mem->nls_lrtol = mem->rtol;
-  mem->nls_latol = mem->atol;
-}
-
-/* Newton's tolerances under the BDF family's error test (a configuration
- * increment, the velocities' error times h): share epcon times its
- * tolerances, on sigma / h, multipliers alike. */
-void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share)
-{
-  mem->nls_rtol  = share * mem->epcon * mem->rtol;
-  mem->nls_atol  = share * mem->epcon * mem->atol / h;
-  mem->nls_atolv = mem->atol_vec;
-  mem->nls_vfac  = share * mem->epcon / h;
-  mem->nls_lrtol = mem->nls_rtol;
-  mem->nls_latol = mem->nls_atol;
-}
-
-/* Newton's tolerances under the Newmark family's error test (error per
- * unit step, lgn_errtest.c), tied to it as IDA
- * ties them (idaNls: the correction in the error test's weights below
- * epcon): the velocity a correction d of the increment makes, gamma' d
- * (Newmark family: gamma / (beta h); BDF: c0), is at most epcon times the
- * error test's velocity tolerance atol + rtol |v|. Newton's unknown for the
- * configuration is sigma / h (lgn_newton.c), |sigma / h| ~ |v|, so its
- * tolerances are epcon / (gamma' h) times the user's. The multipliers,
- * outside the error test, keep epcon times the tolerances on h lambda
- * (their roundoff floor is in CorrectionNorm). */
-void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c)
-{
-  const sunrealtype f = mem->epcon / (c->gamma_p * c->h);
-  mem->nls_rtol  = f * mem->rtol;
-  mem->nls_atol  = f * mem->atol;
-  mem->nls_vfac  = f;
-  /* per component in the configuration part; the multipliers with the
-   * mean (LGNSVtolerances keeps it in atol) */
-  mem->nls_atolv = mem->atol_vec;
-  mem->nls_lrtol = mem->epcon * mem->rtol;
-  mem->nls_latol = mem->epcon * mem->atol / c->h;
-}
-
 /* One accepted step from tn (LGN_SUCCESS), or the flag of a failure, with
  * the state at tn as it was. A stop time is landed on exactly. */
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)

@@ -583,6 +583,9 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
+void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c);
+void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share);
+void lgnFixedNewtonTolerances(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
@@ -614,9 +617,6 @@ int lgnStep(LGNMem mem, sunrealtype h);
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
 sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout);
-void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c);
-void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share);
-void lgnFixedNewtonTolerances(LGNMem mem);
 
 /* ---- lgn_bdf.c: the BDF family ------------------------------------------ */
 
