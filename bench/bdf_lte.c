@@ -240,13 +240,13 @@ static int OneStep(SUNContext ctx, int k, double h, double tn, double tol, LteRe
     c.gamma_p = mem->bdf_c0; c.beta_p = mem->bdf_c0 * mem->bdf_c0;
     c.scale = 1.0 / c.beta_p; c.hmat = 1.0 / mem->bdf_c0;
     memcpy(mem->ele, est, sizeof est);
-    lgnErrorNorm(mem, &c, x1, &nrm);
+    lgnErrorNorm(mem, &c, x1, SUN_RCONST(1.0), &nrm);
     memcpy(estp, mem->ele, sizeof estp);
     res->estp_w = nrm;
     /* the velocities' h LTE_k, the same way */
     for (i = 0; i < 6; i++)
       mem->ele[i] = h * (lgnData(mem->v)[i] - mem->bdf_vpred[i]) / (mem->bdf_c0 * (k + 1) * h);
-    lgnErrorNorm(mem, &c, x1, &nrm);
+    lgnErrorNorm(mem, &c, x1, SUN_RCONST(1.0), &nrm);
     res->estv_w = nrm;
   }
   if (getenv("LTE_VERBOSE") != NULL) {

@@ -561,7 +561,9 @@ int ida_chain_run(const IdaChainOptions *opt, IdaChainResult *res)
   if (Initial(n, &ud->c, yy, pp, &rn) != 0) goto done;
   for (i = 0; i < ny; i++) {
     ii[i] = i < OL(n) ? 1.0 : 0.0;
-    aa[i] = opt->rtol * (i < OV(n) ? 1.0 : i < OL(n) ? 5.0 : 1e3);
+    aa[i] = opt->rtol * (i < OV(n) ? 1.0
+                         : i < OL(n) ? (opt->scale_v > 0.0 ? opt->scale_v : 5.0)
+                                     : 1e3);
   }
   if (opt->linsol == IDACH_KLU) {
     ud->nnz = Pattern(ud, yy, pp);

@@ -43,6 +43,7 @@ typedef struct {
    * lambda and mu (as for the heavy top) */
   double h0;         /* > 0: IDASetInitStep                              */
   long int max_steps;/* 0: 1000000                                       */
+  double scale_v;    /* > 0: atol of x' and p' = rtol * scale_v (0: 5)   */
 } IdaChainOptions;
 
 typedef struct {

@@ -38,11 +38,12 @@
 #define KEEP_BELOW  SUN_RCONST(1.2) /* 1 <= factor < 1.2: keep h           */
 #define CUT_FAIL    SUN_RCONST(0.25)
 
-/* The controller's factor for an error norm err (order 2: |e| ~ h^3). */
+/* The controller's factor for an error norm err: error per unit step, the
+ * estimate over h, |e| / h ~ h^2 (order 2, lgn_errtest.c). */
 static sunrealtype ErrorFactor(sunrealtype err)
 {
   if (err <= SUN_RCONST(0.0)) return FMAX;
-  return SAFETY * pow(err, -SUN_RCONST(1.0) / SUN_RCONST(3.0));
+  return SAFETY / sqrt(err);
 }
 
 /* The smallest step error control takes: the step divides by h^2, which
@@ -63,7 +64,7 @@ sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout)
 {
   const sunrealtype span = fabs(tout - mem->tn);
   sunrealtype h, anorm, vnorm;
-  lgnErrorWeights(mem, mem->zero_nv, mem->ewt);
+  lgnErrorWeights(mem, mem->zero_nv, SUN_RCONST(1.0), mem->ewt);
   anorm = lgnWrmsNorm(mem, lgnData(mem->vdot), mem->ewt);
   vnorm = lgnWrmsNorm(mem, lgnData(mem->v), mem->ewt);
   if (anorm > SUN_RCONST(0.0))
@@ -93,20 +94,6 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
   mem->a_step = mem->a_scaled;
 }
 
-/* Newton's tolerances for a step of size h: epcon times the error test's,
- * in the units of its norm (lgn_newton.c: configuration part atol h). */
-void lgnNewtonTolerances(LGNMem mem, sunrealtype h)
-{
-  mem->nls_rtol  = mem->epcon * mem->rtol;
-  mem->nls_atol  = mem->epcon * mem->atol / h;
-  mem->nls_atolv = NULL;
-  if (mem->atol_vec != NULL) {
-    /* per component in the configuration part; the multipliers with the
-     * mean (LGNSVtolerances keeps it in atol) */
-    mem->nls_atolv = mem->atol_vec;
-  }
-}
-
 /* One accepted step from tn (LGN_SUCCESS), or the flag of a failure, with
  * the state at tn as it was. A stop time is landed on exactly. */
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
@@ -133,8 +120,8 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     RescaleAux(mem, h);
-    lgnNewtonTolerances(mem, h);
     c    = lgnStepCoeffs(mem, h);
+    lgnNewtonTolerances(mem, &c);
     flag = lgnStepAttempt(mem, &c);
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
     mem->err_norm = err;

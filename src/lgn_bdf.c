@@ -76,7 +76,7 @@
 
 #define BDF_HMAX_RATIO SUN_RCONST(2.0)
 #define BDF_CUT_FAIL   SUN_RCONST(0.25)
-#define BDF_NEWTON_SHARE SUN_RCONST(0.1) /* of the Newmark family's Newton tolerance */
+#define BDF_NEWTON_SHARE SUN_RCONST(0.1) /* of epcon times the error test's tolerances */
 #define BDF_LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 % */
 /* the fixed-leading-coefficient form grows h once the estimate allows 1.5 h
  * (IDA: 2, IDASetEtaFixedStepBounds): measured on the heavy top, doc/theory.md
@@ -417,12 +417,12 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
   } else if (mem->bdf_nhist > 1) /* else the Taylor predictor: LTE_1 = y - y_pred */
     f = SUN_RCONST(1.0) / (mem->bdf_c0 * (c->t1 - mem->bdf_t[k]));
   for (i = 0; i < nv; i++) mem->ele[i] = f * (mem->sigma[i] - mem->bdf_xpred[i]);
-  flag = lgnErrorNorm(mem, c, mem->sigma, err);
+  flag = lgnErrorNorm(mem, c, mem->sigma, SUN_RCONST(1.0), err);
   if (flag != LGN_SUCCESS) return flag;
   /* the velocities, projected the same way (ele keeps the positions) */
   memcpy(mem->bdf_dd, mem->ele, (size_t)nv * sizeof(sunrealtype));
   for (i = 0; i < nv; i++) mem->ele[i] = c->h * f * (v1[i] - mem->bdf_vpred[i]);
-  flag = lgnErrorNorm(mem, c, mem->sigma, &ev);
+  flag = lgnErrorNorm(mem, c, mem->sigma, SUN_RCONST(1.0), &ev);
   memcpy(mem->ele, mem->bdf_dd, (size_t)nv * sizeof(sunrealtype));
   /* less what the positions' noise can make of it: h f (v_{n+1} - sum_j
    * p_j v_{n-j}), each v with its gain */
@@ -730,9 +730,7 @@ int lgnBDFStep(LGNMem mem, sunrealtype h)
   if (flag == LGN_SUCCESS) flag = Prepare(mem);
   if (flag != LGN_SUCCESS) return flag;
   k = SUNMIN(mem->bdf_maxord, mem->bdf_nhist);
-  mem->nls_rtol  = mem->rtol;
-  mem->nls_atol  = mem->atol;
-  mem->nls_atolv = NULL;
+  lgnFixedNewtonTolerances(mem);
   flag = Attempt(mem, h, k, &c);
   if (flag == LGN_CONV_FAILURE)
     LGN_ERROR(mem, LGN_CONV_FAILURE,
@@ -782,13 +780,11 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
     if (flag != LGN_SUCCESS) return flag;
     /* order k needs k + 1 points for its estimate (or the Taylor start) */
     k = SUNMAX(1, SpacingOrder(mem, h, SUNMIN(mem->bdf_order, mem->bdf_nhist - 1)));
-    lgnNewtonTolerances(mem, h);
     /* at index 3 a Newton error in x reaches v = T(x)(c0 x + r_x) times
-     * c0 ~ k/h, and the history: a tenth of the Newmark family's share
-     * (measured on the heavy top: with modified Newton the error then
-     * follows tol^1.0 instead of tol^0.8) */
-    mem->nls_rtol *= BDF_NEWTON_SHARE;
-    mem->nls_atol *= BDF_NEWTON_SHARE;
+     * c0 ~ k/h, and the history: a tenth of epcon times the error test's
+     * tolerances (measured on the heavy top: with modified Newton the error
+     * then follows tol^1.0 instead of tol^0.8) */
+    lgnNewtonTolerancesPerStep(mem, h, BDF_NEWTON_SHARE);
     mem->lsetup_recoverable = SUNTRUE;
     flag = Attempt(mem, h, k, &c);
     mem->lsetup_recoverable = SUNFALSE;

@@ -315,6 +315,9 @@ typedef struct LGNMemRec {
   sunrealtype nls_rtol;     /* Newton's tolerances in this step            */
   sunrealtype nls_atol;
   const sunrealtype *nls_atolv; /* ... per component (NULL: nls_atol)     */
+  sunrealtype nls_vfac;     /* ... nls_atolv's factor (fixed steps: 1)     */
+  sunrealtype nls_lrtol;    /* ... of the multipliers' part               */
+  sunrealtype nls_latol;
   long int netf;            /* error-test failures                         */
 
   /* ---- the last step, for dense output (lgn_dense.c) ---- */
@@ -580,6 +583,9 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
+void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c);
+void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share);
+void lgnFixedNewtonTolerances(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
@@ -588,9 +594,9 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
 int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c);
 int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
-                 sunrealtype *norm);
+                 sunrealtype unit, sunrealtype *norm);
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);
-void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype *w);
+void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunrealtype *w);
 
 /* ---- lgn_dense.c: output between steps ---------------------------------- */
 
@@ -611,7 +617,6 @@ int lgnStep(LGNMem mem, sunrealtype h);
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
 sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout);
-void lgnNewtonTolerances(LGNMem mem, sunrealtype h);
 
 /* ---- lgn_bdf.c: the BDF family ------------------------------------------ */
 

@@ -366,11 +366,11 @@ void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c)
   for (i = 0; i < nv; i++)
     w[i] = SUN_RCONST(1.0) /
            (mem->nls_atolv != NULL
-                ? h * mem->nls_atolv[i] + roundoff + rtol * fabs(mem->sigma[i])
+                ? h * mem->nls_vfac * mem->nls_atolv[i] + roundoff + rtol * fabs(mem->sigma[i])
                 : sigma_atol + rtol * fabs(mem->sigma[i]));
   for (i = 0; i < m; i++)
     w[nv + i] = SUN_RCONST(1.0) / (lambda_unit * lambda_atol +
-                                   lambda_unit * rtol * fabs(h * lambda1[i]));
+                                   lambda_unit * mem->nls_lrtol * fabs(h * lambda1[i]));
   mem->kry_newton = SUNTRUE;
 }
 

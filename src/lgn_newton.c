@@ -101,7 +101,8 @@ static sunrealtype SumOfSquaresRatioV(sunindextype n, const sunrealtype *d,
  * The configuration and multiplier parts (same normalisation, norm^2 =
  * sigma part^2 + lambda part^2) go to t->norm_sigma and t->norm_lambda.
  * The tolerances are the step's (mem->nls_*): the user's in the fixed-step
- * mode, a fraction of the error test's with error control (lgn_adapt.c).
+ * mode, tied to the error test's with error control (below,
+ * lgnNewtonTolerances; the multipliers' part has its own, nls_l*).
  * The floors are the roundoff level of the iteration: the configuration is
  * known to ~eps |q|, so sigma to eps |q| and, through the scaling of the
  * index-3 equations, lambda only to ~eps |q| / (beta h^2). Without them a
@@ -122,7 +123,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   const sunrealtype lambda_unit = c->scale / h;
   /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
   const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
-  const sunrealtype lambda_atol = atol + roundoff / (beta * h);
+  const sunrealtype lambda_atol = mem->nls_latol + roundoff / (beta * h);
   const sunbooleantype ggl = m > 0 && mem->constr_index == LGN_CONSTR_GGL;
   const sunrealtype n = mem->nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->m_all;
   sunrealtype sum[2]; /* the configuration and multiplier parts */
@@ -130,8 +131,8 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   /* per-component tolerances (error control): the same weights with
    * atol_i h in place of atol h */
   sum[0] = mem->nls_atolv != NULL
-               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv, h,
-                                    roundoff, rtol)
+               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv,
+                                    h * mem->nls_vfac, roundoff, rtol)
                : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol,
                                    rtol);
   /* GGL: the unknown nu = mu / gamma' moves the configuration by T^{-1} B^T
@@ -139,11 +140,62 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   if (ggl) sum[0] += SumOfSquaresRatio(m, dmu + m, mem->ggl_mu, SUN_RCONST(0.0), sigma_atol,
                                        rtol);
   sum[1] = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
-                             lambda_unit * rtol);
+                             lambda_unit * mem->nls_lrtol);
   lgnSumAll(mem, sum, 2); /* over the ranks: every rank takes the same decision */
   t->norm_sigma  = sqrt(sum[0] / n);
   t->norm_lambda = sqrt(sum[1] / n);
   t->norm        = sqrt((sum[0] + sum[1]) / n);
+}
+
+/* =============================================================================
+ * The tolerances of a step
+ * ===========================================================================*/
+
+/* Newton's tolerances in the fixed-step mode: the user's (LGNSStolerances). */
+void lgnFixedNewtonTolerances(LGNMem mem)
+{
+  mem->nls_rtol  = mem->rtol;
+  mem->nls_atol  = mem->atol;
+  mem->nls_atolv = NULL;
+  mem->nls_vfac  = SUN_RCONST(1.0);
+  mem->nls_lrtol = mem->rtol;
+  mem->nls_latol = mem->atol;
+}
+
+/* Newton's tolerances under the BDF family's error test (a configuration
+ * increment, the velocities' error times h): share epcon times its
+ * tolerances, on sigma / h, multipliers alike. */
+void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share)
+{
+  mem->nls_rtol  = share * mem->epcon * mem->rtol;
+  mem->nls_atol  = share * mem->epcon * mem->atol / h;
+  mem->nls_atolv = mem->atol_vec;
+  mem->nls_vfac  = share * mem->epcon / h;
+  mem->nls_lrtol = mem->nls_rtol;
+  mem->nls_latol = mem->nls_atol;
+}
+
+/* Newton's tolerances under the Newmark family's error test (error per
+ * unit step, lgn_errtest.c), tied to it as IDA
+ * ties them (idaNls: the correction in the error test's weights below
+ * epcon): the velocity a correction d of the increment makes, gamma' d
+ * (Newmark family: gamma / (beta h); BDF: c0), is at most epcon times the
+ * error test's velocity tolerance atol + rtol |v|. Newton's unknown for the
+ * configuration is sigma / h (lgn_newton.c), |sigma / h| ~ |v|, so its
+ * tolerances are epcon / (gamma' h) times the user's. The multipliers,
+ * outside the error test, keep epcon times the tolerances on h lambda
+ * (their roundoff floor is in CorrectionNorm). */
+void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c)
+{
+  const sunrealtype f = mem->epcon / (c->gamma_p * c->h);
+  mem->nls_rtol  = f * mem->rtol;
+  mem->nls_atol  = f * mem->atol;
+  mem->nls_vfac  = f;
+  /* per component in the configuration part; the multipliers with the
+   * mean (LGNSVtolerances keeps it in atol) */
+  mem->nls_atolv = mem->atol_vec;
+  mem->nls_lrtol = mem->epcon * mem->rtol;
+  mem->nls_latol = mem->epcon * mem->atol / c->h;
 }
 
 /* =============================================================================

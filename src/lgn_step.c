@@ -219,9 +219,7 @@ int lgnStep(LGNMem mem, sunrealtype h)
   if (flag != LGN_SUCCESS) return flag;
 
   mem->a_step    = lgnData(mem->a);
-  mem->nls_rtol  = mem->rtol;
-  mem->nls_atol  = mem->atol;
-  mem->nls_atolv = NULL;
+  lgnFixedNewtonTolerances(mem);
   flag = lgnStepAttempt(mem, &c);
   if (flag == LGN_CONV_FAILURE)
     LGN_ERROR(mem, LGN_CONV_FAILURE,

@@ -703,8 +703,8 @@ contains
     call expect(errnorm >= 0.0_c_double .and. errnorm <= 1.0_c_double, "accepted: |e| <= 1")
     pe => FN_VGetArray(ele)
     pw => FN_VGetArray(ewt)
-    call expect(pw(1) > 0.0_c_double .and. pw(1) <= 1.0_c_double / atol, &
-                "weight 1/(atol + rtol |s|) <= 1/atol")
+    call expect(pw(1) > 0.0_c_double .and. pw(1) <= (1.0_c_double + 1.0e-12_c_double) / (hlast * atol), &
+                "weight 1/(h atol + rtol |s|) <= 1/(h atol)")
     call expect_near(abs(pe(1) * pw(1)), errnorm, 1.0e-12_c_double, &
                      "|e| = |ele * ewt| (one component)")
 
