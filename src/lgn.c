@@ -50,6 +50,8 @@ void *LGNCreate(SUNContext sunctx)
   mem->maxnef       = LGN_MAXNEF_DEFAULT;
   mem->maxncf       = LGN_MAXNCF_DEFAULT;
   mem->eplifac      = LGN_EPLIFAC_DEFAULT;
+  mem->out_consistent = SUNTRUE;
+  mem->out_project    = SUNTRUE;
   lgnErrSinkInit(&mem->err);
   return mem;
 }
@@ -83,6 +85,7 @@ static void ResetCounters(LGNMem mem)
   mem->lambda_noise = mem->lambda_noise_h = SUN_RCONST(0.0);
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;
+  mem->nout = 0;
 }
 
 /* q0 is an element of the group up to rounding: its normalisation (on a
@@ -489,6 +492,14 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   const long int nst0 = mem != NULL ? mem->nst : 0, nstall0 = mem != NULL ? mem->nstall : 0;
   int flag = Solve(lgn_mem, tout, tret, q, v, itask);
   if (mem != NULL && mem->malloc_done) WarnStalls(mem, nst0, nstall0);
+  if (mem == NULL || !mem->malloc_done) return flag;
+  if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
+    /* the output: projected, with its consistent vdot and lambda (lgn_output.c) */
+    const int oflag = lgnOutputAt(mem, *tret, q, v);
+    if (oflag != LGN_SUCCESS) flag = oflag;
+  } else if (mem->nst != nst0) {
+    mem->out_valid = SUNFALSE; /* steps taken, then a failure: the state at tn */
+  }
   return flag;
 }
 

@@ -490,9 +490,26 @@ LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
  *  (nsteps[0] = 0); six entries. */
 LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
 
-/** Acceleration vdot at the current time (length nv). */
+/** Acceleration vdot (length nv) at the last output of LGNSolve (its
+ *  tret, whether a step end, a stop time, an event or an interpolated
+ *  tout): with consistent outputs (LGNSetConsistentOutputs, the default)
+ *  the index-1 value at the returned (tret, q, v), accurate to the
+ *  tolerance in every method and constraint form and equal to LGNGetDky(tret,
+ *  2); without them, or before the first LGNSolve, or after an LGNSolve that
+ *  failed after taking steps, the step's own vdot at the current time
+ *  (LGNGetCurrentTime). */
 LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
-/** Multipliers lambda at the current time (length m). */
+/** Multipliers lambda (length m) at the last output of LGNSolve: with
+ *  consistent outputs (LGNSetConsistentOutputs, the default) the index-1
+ *  multipliers at the returned (tret, q, v), from
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g, -z), accurate to the tolerance
+ *  at every output; B(q)^T lambda at the returned q (LGNJoints_ConstraintForce)
+ *  is the joint forces and motor torques. Without them (or before the first
+ *  LGNSolve, or after one that failed after taking steps) the step's own
+ *  multipliers at the current time, which no error test measures
+ *  (generalized-alpha's carry O(h) errors after a change of step size).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (lambda
+ *          NULL or of the wrong length, or no multipliers yet). */
 LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
 /** Algorithmic acceleration a at the current time (length nv). */
 LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
@@ -608,12 +625,51 @@ LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
 
 /** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
  *  the last step [t_n, t_{n+1}], from the dense output on the group: a
- *  cubic Hermite interpolant in the chart of the step, matching q and v at
- *  both ends, of the order of the method (vdot first order).
+ *  cubic Hermite interpolant in the chart of the step (BDF: its own
+ *  polynomials), matching q and v at both ends, of the order of the
+ *  method. As LGNSolve's outputs: with projected outputs (the default) q
+ *  and v are projected onto Phi(q, t) = 0 and B v + Phi_t = 0; with
+ *  consistent outputs (the default) vdot is the index-1 acceleration at
+ *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
+ *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
+ *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
+ *  not changed.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
  *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
- *          (dky NULL or of the wrong length), LGN_GROUP_FAIL. */
+ *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
+ *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
+ *          system at t singular, or the projection not converging). */
 LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
+
+/** Consistent outputs (default SUNTRUE): at every output of LGNSolve (step
+ *  end, stop time, event, interpolated tout) Lignum solves the index-1 form
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g(q, v, t), -z(q, v, t)) at the
+ *  returned (t, q, v) - one factorisation of the saddle-point matrix per
+ *  output, shared with the projection - and LGNGetAcceleration,
+ *  LGNGetMultipliers and LGNGetDky(t, 2) return that vdot and lambda,
+ *  accurate to the tolerance in both method families and every constraint
+ *  form. SUNFALSE: they return the step's own vdot_{n+1}, lambda_{n+1} at the
+ *  current time (cheaper; the multipliers are outside every error test).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
+ *          SUNFALSE). */
+LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
+
+/** Projected outputs (default SUNTRUE): the q and v that LGNSolve and
+ *  LGNGetDky return are projected onto Phi(q, t) = 0 (Newton on the group,
+ *  minimum-norm steps in the metric of M, to roundoff) and then onto
+ *  B(q, t) v + Phi_t = 0, so that the outputs satisfy the position and
+ *  velocity constraints to roundoff at every output, interpolated or not,
+ *  at every index. Only the returned values are projected: the integrator
+ *  goes on from its own state, and the results at later times do not
+ *  change. SUNFALSE: the interpolant's (or the step's) q and v as they are.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
+ *          SUNFALSE). */
+LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, sunbooleantype on);
+
+/** The number of outputs made consistent or projected (LGNSolve's and
+ *  LGNGetDky's), each one or more factorisations of the saddle-point
+ *  matrix (counted in LGNGetNumLinSolvSetups as well). */
+LGN_EXPORT int LGNGetNumOutputSolves(void *lgn_mem, long int *nout);
 
 /** The step size to be tried next (error control) or the fixed h. */
 LGN_EXPORT int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur);
