@@ -676,6 +676,16 @@ module flignum_mod
       integer(c_int), value :: on
     end function LGNSetProjectOutputs
 
+    !> The multipliers in the error test on (1, with their absolute
+    !> tolerance atol_lambda > 0) or off (0, the default).
+    integer(c_int) function LGNSetMultiplierErrorControl(lgn_mem, on, atol_lambda) &
+        bind(c, name="LGNSetMultiplierErrorControl")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: on
+      real(c_double), value :: atol_lambda
+    end function LGNSetMultiplierErrorControl
+
     !> The number of outputs made consistent or projected.
     integer(c_int) function LGNGetNumOutputSolves(lgn_mem, nout) &
         bind(c, name="LGNGetNumOutputSolves")

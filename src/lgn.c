@@ -271,6 +271,14 @@ static int CheckSettings(LGNMem mem)
       return LGN_ILL_INPUT;
     }
   }
+  if (mem->step_control == LGN_STEP_ADAPTIVE && mem->lambda_errcon && mem->m > 0 &&
+      mem->constr_index == LGN_CONSTR_INDEX3) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The multipliers in the error test (LGNSetMultiplierErrorControl) need "
+              "LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL: at index 3 they are determined "
+              "only to Newton's tolerance ~ atol / h, which grows as h shrinks.");
+    return LGN_ILL_INPUT;
+  }
   if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;
@@ -293,7 +301,10 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
     "the initial step", "hmin", "hmax", "maxnef", "maxncf", "the stop time",
     "the acceptance of stalls", "the tolerances set", "vector tolerances (LGNSVtolerances)",
     "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)",
-    "ghost bodies (LGNSetHalo)"};
+    "ghost bodies (LGNSetHalo)", "the consistent outputs (LGNSetConsistentOutputs)",
+    "the projected outputs (LGNSetProjectOutputs)",
+    "the multipliers in the error test (LGNSetMultiplierErrorControl)",
+    "the multipliers' atol (LGNSetMultiplierErrorControl)"};
   const sunrealtype x[] = {
     (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->bdf_form,
     (sunrealtype)mem->step_control,
@@ -306,7 +317,9 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
     (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
     mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
     (sunrealtype)mem->tols_set, (sunrealtype)(mem->atol_vec != NULL), tout,
-    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL)};
+    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL),
+    (sunrealtype)mem->out_consistent, (sunrealtype)mem->out_project,
+    (sunrealtype)mem->lambda_errcon, mem->lambda_errcon ? mem->lambda_atol : SUN_RCONST(0.0)};
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");

@@ -148,6 +148,11 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     c    = lgnStepCoeffs(mem, h);
     flag = lgnStepAttempt(mem, &c);
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
+    if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
+      sunrealtype err_l;
+      flag = lgnMultiplierError(mem, c.t1, &err_l);
+      err  = SUNMAX(err, err_l);
+    }
     mem->err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {

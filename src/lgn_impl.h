@@ -335,6 +335,10 @@ typedef struct LGNMemRec {
   sunrealtype *out_save;    /* q1, v1, vdot1, lambda1 kept while an output
                                is computed (nq + 3 nv + m)                 */
   N_Vector out_q, out_v;    /* LGNGetDky's q and v (clones; NULL until used) */
+  sunrealtype *out_lwork;   /* the iterate's consistent lambda (m)         */
+  sunbooleantype lambda_errcon; /* LGNSetMultiplierErrorControl (default off) */
+  sunrealtype lambda_atol;  /* ... its absolute tolerance of the multipliers */
+  sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
   long int nout;            /* outputs made consistent or projected        */
 
   /* ---- root finding (lgn_root.c; arrays allocated by lgn_mem.c) ---- */
@@ -623,6 +627,10 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 
 int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v);
 int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky);
+/* The multipliers in the error test (LGNSetMultiplierErrorControl): the
+ * weighted RMS norm of lambda1 - lambda_c at the iterate (t1, q1, v1), 0
+ * when off; the slots are kept. */
+int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm);
 
 /* ---- lgn_step.c: one step ----------------------------------------------- */
 

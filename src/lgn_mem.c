@@ -426,7 +426,7 @@ void lgnFreeWork(LGNMem mem)
   mem->ggl_mu = mem->ggl_Bn = NULL;
   mem->ggl_Bn_valid = SUNFALSE;
   free(mem->out_vdot); /* the outputs' block (lgn_output.c) */
-  mem->out_vdot = mem->out_lambda = mem->out_save = NULL;
+  mem->out_vdot = mem->out_lambda = mem->out_save = mem->out_lwork = NULL;
   mem->out_valid = SUNFALSE;
   DestroyVector(&mem->out_q);
   DestroyVector(&mem->out_v);
@@ -714,7 +714,7 @@ int lgnAllocWork(LGNMem mem)
     /* the redundant constraints of a singular matrix (lgn_diag.c) */
     mem->diag_red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
     /* the outputs (lgn_output.c): vdot, lambda, the kept slots */
-    mem->out_vdot = (sunrealtype *)calloc((size_t)(mem->nq + 4 * nv + 2 * m),
+    mem->out_vdot = (sunrealtype *)calloc((size_t)(mem->nq + 4 * nv + 3 * m),
                                           sizeof(sunrealtype));
     fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL ||
                   mem->out_vdot == NULL);
@@ -748,6 +748,7 @@ int lgnAllocWork(LGNMem mem)
   mem->ggl_Bn_valid = SUNFALSE;
   mem->out_lambda  = m > 0 ? mem->out_vdot + nv : NULL;
   mem->out_save    = mem->out_vdot + nv + m;
+  mem->out_lwork   = m > 0 ? mem->out_save + mem->nq + 3 * nv + m : NULL;
   mem->out_valid   = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
@@ -887,7 +888,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
     rw += 17 * nv + 3 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
-    rw += nq + 4 * nv + 2 * m;                            /* the outputs' block  */
+    rw += nq + 4 * nv + 3 * m;                            /* the outputs' block  */
     if (mem->out_q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }

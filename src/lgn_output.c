@@ -228,6 +228,48 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky)
 }
 
 /* =============================================================================
+ * The multipliers in the error test (LGNSetMultiplierErrorControl)
+ * ===========================================================================*/
+
+/* The step's multipliers lambda1 against the consistent ones lambda_c of
+ * the index-1 system at its own (t1, q1, v1) (not projected):
+ *   e_i = lambda1_i - lambda_c_i,  w_i = 1 / (atol_lambda + rtol |lambda_c_i|),
+ *   |e_lambda| = sqrt( (1/m) sum_i (e_i w_i)^2 ),
+ * the part of the step's multipliers its configuration does not account
+ * for (generalized-alpha's O(1) error after a change of h, BDF's of its
+ * order), as IDA's error test takes algebraic variables with
+ * IDASetSuppressAlg(FALSE). */
+int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm)
+{
+  const sunindextype m = mem->m;
+  const sunbooleantype project = mem->out_project;
+  const sunrealtype *l1;
+  sunrealtype sum[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)};
+  sunindextype i;
+  int flag;
+  *norm = SUN_RCONST(0.0);
+  mem->lambda_err = SUN_RCONST(0.0);
+  if (!mem->lambda_errcon || m == 0 || mem->out_save == NULL) return LGN_SUCCESS;
+  mem->out_project = SUNFALSE; /* the iterate itself */
+  KeepSlots(mem, SUNFALSE);
+  flag = Compute(mem, t1, mem->q1, mem->v1, mem->dense_work, mem->out_lwork);
+  KeepSlots(mem, SUNTRUE);
+  mem->out_project = project;
+  if (flag != LGN_SUCCESS) return flag;
+  l1 = lgnData(mem->lambda1);
+  for (i = 0; i < m; i++) {
+    const sunrealtype e = (l1[i] - mem->out_lwork[i]) /
+                          (mem->lambda_atol + mem->rtol * fabs(mem->out_lwork[i]));
+    sum[0] += e * e;
+  }
+  sum[1] = (sunrealtype)m;
+  lgnSumAll(mem, sum, 2);
+  *norm = sqrt(sum[0] / SUNMAX(sum[1], SUN_RCONST(1.0)));
+  mem->lambda_err = *norm;
+  return LGN_SUCCESS;
+}
+
+/* =============================================================================
  * The settings
  * ===========================================================================*/
 
@@ -261,6 +303,26 @@ int LGNSetProjectOutputs(void *lgn_mem, sunbooleantype on)
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
   return SetSwitch(mem, on, __func__, &mem->out_project);
+}
+
+int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on, sunrealtype atol_lambda)
+{
+  LGNMem mem;
+  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (on != SUNTRUE && on != SUNFALSE) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "on = %d illegal: use SUNTRUE or SUNFALSE.", (int)on);
+    return LGN_ILL_INPUT;
+  }
+  if (on && !(atol_lambda > SUN_RCONST(0.0) && isfinite(atol_lambda))) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "atol_lambda = %g illegal: the multipliers' absolute tolerance must "
+              "be > 0 and finite (in their units: forces, torques).", (double)atol_lambda);
+    return LGN_ILL_INPUT;
+  }
+  mem->lambda_errcon = on;
+  if (on) mem->lambda_atol = atol_lambda;
+  return LGN_SUCCESS;
 }
 
 int LGNGetNumOutputSolves(void *lgn_mem, long int *nout)

@@ -666,6 +666,27 @@ LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
  *          SUNFALSE). */
 LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, sunbooleantype on);
 
+/** The multipliers in the error test (as IDA's IDASetSuppressAlg(FALSE);
+ *  default off): every error-controlled step also computes the consistent
+ *  multipliers lambda_c of the index-1 system at its new (t, q, v) and
+ *  accepts the step only when its own multipliers agree with them,
+ *  sqrt((1/m) sum_i ((lambda_i - lambda_c_i) / (atol_lambda + rtol
+ *  |lambda_c_i|))^2) <= 1, with the rtol of LGNSStolerances. The step's
+ *  own multipliers (LGNSetConsistentOutputs off) are then accurate to the
+ *  tolerance, at the price of smaller steps where they are not and of one
+ *  more factorisation of [[M, B^T], [B, 0]] per attempt. Not needed for
+ *  accurate outputs: the consistent outputs (default) give them at every
+ *  output. Fixed steps are not affected. Index 2 and GGL only: at index 3
+ *  the multipliers are determined only to Newton's tolerance ~ atol / h,
+ *  and LGNSolve refuses the setting (LGN_ILL_INPUT).
+ *  @param on          SUNTRUE or SUNFALSE
+ *  @param atol_lambda the multipliers' absolute tolerance, > 0, in their
+ *                     units (forces, torques); ignored when off
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not a boolean, or
+ *          atol_lambda not > 0 and finite while on). */
+LGN_EXPORT int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on,
+                                            sunrealtype atol_lambda);
+
 /** The number of outputs made consistent or projected (LGNSolve's and
  *  LGNGetDky's), each one or more factorisations of the saddle-point
  *  matrix (counted in LGNGetNumLinSolvSetups as well). */

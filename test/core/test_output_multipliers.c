@@ -29,8 +29,11 @@
  *       exact motion, and their multipliers exact to roundoff);
  *   (e) without the projection the interpolated outputs leave the
  *       constraints by more than 1e-10 somewhere at tol 1e-6 (what (c) fixes),
- *       and LGNSetConsistentOutputs / LGNSetProjectOutputs refuse a
- *       non-boolean.
+ *       and the setters refuse bad input (LGNSetMultiplierErrorControl at
+ *       index 3 in LGNSolve);
+ *   (f) with the multipliers in the error test (LGNSetMultiplierErrorControl,
+ *       atol_lambda 1e-6) the step's own multipliers (consistent outputs
+ *       off) are within 1e-5 max |lambda_exact| at tol 1e-8, index 2 and GGL.
  * The errors of the step's own multipliers (LGNSetConsistentOutputs off) are
  * printed beside them: the table of doc/user-guide.md §8.5.
  * SPDX-License-Identifier: BSD-3-Clause
@@ -38,7 +41,6 @@
 
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include <lignum/lignum.h>
@@ -192,6 +194,7 @@ typedef struct {
   int model, bdf, index, mode;
   double tol;
   sunbooleantype consistent, project;
+  double lambda_atol; /* > 0: LGNSetMultiplierErrorControl on */
 } Setup;
 
 typedef struct {
@@ -223,8 +226,6 @@ static void AtOutput(void *mem, Model *md, const Setup *s, double t, N_Vector q,
   LGNGetMultipliers(mem, lam);
   r->lam_max = fmax(r->lam_max, fabs(exact));
   r->lam_err = fmax(r->lam_err, fabs(l[drv] - exact));
-  if (getenv("LGN_TEST_VERBOSE") != NULL)
-    printf("  t = %.6f lambda_drv = %.10f exact %.10f\n", t, l[drv], exact);
   if (s->model == ROTOR)
     for (i = 0; i < 5; i++) r->lam_err = fmax(r->lam_err, fabs(l[i]));
 
@@ -308,6 +309,8 @@ static Result Run(SUNContext ctx, const Setup *s)
   if (!flag && s->index == LGN_CONSTR_GGL) flag = LGNSetMaxStep(mem, 0.02);
   if (!flag) flag = LGNSetConsistentOutputs(mem, s->consistent);
   if (!flag) flag = LGNSetProjectOutputs(mem, s->project);
+  if (!flag && s->lambda_atol > 0.0)
+    flag = LGNSetMultiplierErrorControl(mem, SUNTRUE, s->lambda_atol);
   if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_V);
   if (s->mode == MODE_ONE_STEP) {
     while (!flag && t < tend) {
@@ -351,23 +354,13 @@ int main(int argc, char **argv)
   SUNContext ctx;
   int model, bdf, ii, mode;
   SUNContext_Create(NULL, &ctx);
-  if (getenv("LGN_TEST_ONE") != NULL) {
-    int a[4];
-    sscanf(getenv("LGN_TEST_ONE"), "%d,%d,%d,%d", &a[0], &a[1], &a[2], &a[3]);
-    {
-      Setup s = {a[0], a[1], indices[a[2]], a[3], 1e-8, SUNTRUE, SUNTRUE};
-      Result r = Run(ctx, &s);
-      printf("err %.3e flag %d\n", r.lam_err, r.flag);
-    }
-    return 0;
-  }
 
   /* (a)-(c): every method, form and output mode at tol 1e-8 */
   for (model = 0; model < 2; model++)
     for (bdf = 0; bdf < 2; bdf++)
       for (ii = 0; ii < 3; ii++)
         for (mode = 0; mode < 3; mode++) {
-          Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNTRUE, SUNTRUE};
+          Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNTRUE, SUNTRUE, 0.0};
           Setup s0 = s;
           Result r = Run(ctx, &s), r0;
           const char *name = bdf ? "BDF5" : "gen-alpha";
@@ -403,7 +396,7 @@ int main(int argc, char **argv)
       double err[3];
       int k;
       for (k = 0; k < 3; k++) {
-        Setup s = {model, bdf, LGN_CONSTR_INDEX3, MODE_TSTOP, tols[k], SUNTRUE, SUNFALSE};
+        Setup s = {model, bdf, LGN_CONSTR_INDEX3, MODE_TSTOP, tols[k], SUNTRUE, SUNFALSE, 0.0};
         Result r = Run(ctx, &s);
         err[k] = r.flag == 0 ? r.lam_err : HUGE_VAL;
       }
@@ -415,9 +408,34 @@ int main(int argc, char **argv)
             err[1], err[2]);
     }
 
+  /* (f) the multipliers in the error test: the step's own multipliers
+   * (consistent outputs off) within 1e-5 of max |lambda| at tol 1e-8 and
+   * atol_lambda = 1e-6, stop times and LGN_ONE_STEP, index 2 and GGL (at
+   * index 3 it is refused: the multipliers are determined only to Newton's
+   * tolerance ~ atol / h there) */
+  for (model = 0; model < 2; model++)
+    for (bdf = 0; bdf < 2; bdf++)
+      for (ii = 1; ii < 3; ii++)
+      for (mode = 0; mode < 3; mode += 2) {
+        Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNFALSE, SUNTRUE, 1e-6};
+        Setup s0 = s;
+        Result r, r0;
+        s0.lambda_atol = 0.0;
+        r  = Run(ctx, &s);
+        r0 = Run(ctx, &s0);
+        printf("(f) %s %s %s %s: the step's own lambda error %.2e with the multipliers in "
+               "the error test (%ld steps), %.2e without (%ld steps)\n",
+               model == ROTOR ? "rotor" : "slider-crank", bdf ? "BDF5" : "gen-alpha",
+               IndexName(indices[ii]), mode_name[mode], r.lam_err, r.nst, r0.lam_err, r0.nst);
+        CHECK(r.flag == 0 && r.lam_err <= 1e-5 * r.lam_max,
+              "(f) %s %s %s %s: the step's own lambda error %.2e > 1e-5 x %.2f (flag %d)",
+              model == ROTOR ? "rotor" : "slider-crank", bdf ? "BDF5" : "gen-alpha",
+              IndexName(indices[ii]), mode_name[mode], r.lam_err, r.lam_max, r.flag);
+      }
+
   /* (e) without the projection, interpolated outputs leave the constraints */
   {
-    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-6, SUNTRUE, SUNFALSE};
+    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-6, SUNTRUE, SUNFALSE, 0.0};
     Result r = Run(ctx, &s);
     printf("(e) rotor, gen-alpha, index 3, tol 1e-6, LGN_NORMAL, not projected: |Phi| %.2e, "
            "|B v + Phi_t| %.2e\n", r.phi, r.bv);
@@ -426,12 +444,24 @@ int main(int argc, char **argv)
           fmax(r.phi, r.bv));
   }
   {
+    /* index 3: the multipliers in the error test refused by LGNSolve */
+    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-8, SUNFALSE, SUNTRUE, 1e-6};
+    Result r = Run(ctx, &s);
+    CHECK(r.flag == LGN_ILL_INPUT && r.nst == 0,
+          "(e) LGNSetMultiplierErrorControl at index 3: flag %d after %ld steps, not refused",
+          r.flag, r.nst);
+  }
+  {
     void *mem = LGNCreate(ctx);
     LGNSetErrFile(mem, NULL);
     CHECK(LGNSetConsistentOutputs(mem, 2) == LGN_ILL_INPUT &&
               LGNSetProjectOutputs(mem, -1) == LGN_ILL_INPUT &&
               LGNSetConsistentOutputs(NULL, SUNTRUE) == LGN_MEM_NULL &&
-              LGNGetNumOutputSolves(mem, NULL) == LGN_ILL_INPUT,
+              LGNGetNumOutputSolves(mem, NULL) == LGN_ILL_INPUT &&
+              LGNSetMultiplierErrorControl(mem, SUNTRUE, 0.0) == LGN_ILL_INPUT &&
+              LGNSetMultiplierErrorControl(mem, SUNTRUE, NAN) == LGN_ILL_INPUT &&
+              LGNSetMultiplierErrorControl(mem, 3, 1.0) == LGN_ILL_INPUT &&
+              LGNSetMultiplierErrorControl(mem, SUNFALSE, 0.0) == LGN_SUCCESS,
           "(e) bad input accepted");
     LGNFree(&mem);
   }
@@ -450,7 +480,7 @@ int main(int argc, char **argv)
                    bdf ? "BDF5" : "gen-alpha", mode_name[mode], variant[c]);
             for (k = 0; k < 3; k++) {
               Setup s = {model, bdf, LGN_CONSTR_INDEX3, mode, tols[k], (sunbooleantype)(c > 0),
-                         (sunbooleantype)(c == 2)};
+                         (sunbooleantype)(c == 2), 0.0};
               Result r = Run(ctx, &s);
               printf(" %.1e |", r.flag == 0 ? r.lam_err : HUGE_VAL);
             }

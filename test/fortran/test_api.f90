@@ -479,6 +479,10 @@ contains
     call expect(LGNSetProjectOutputs(mem, 1_c_int) == 0, "LGNSetProjectOutputs(1)")
     call expect_flag(LGNSetProjectOutputs(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "LGNSetProjectOutputs(7)")
+    call expect_flag(LGNSetMultiplierErrorControl(mem, 1_c_int, 0.0_c_double), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNSetMultiplierErrorControl(1, 0)")
+    call expect(LGNSetMultiplierErrorControl(mem, 0_c_int, 0.0_c_double) == 0, &
+                "LGNSetMultiplierErrorControl(0)")
     call expect(LGNGetNumOutputSolves(mem, nge) == 0 .and. nge == 0, &
                 "LGNGetNumOutputSolves before a solve")
     call expect_flag(LGNCalcIC(mem, 9_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
