@@ -107,6 +107,10 @@ module flignum_mod
   integer(c_int), parameter :: LGN_IC_PROJECT_Q  = 141
   integer(c_int), parameter :: LGN_IC_PROJECT_V  = 142
   integer(c_int), parameter :: LGN_IC_PROJECT_QV = 143
+  ! LGNSetProjectOutputs
+  integer(c_int), parameter :: LGN_PROJECT_NONE = 0
+  integer(c_int), parameter :: LGN_PROJECT_INTERPOLATED = 1
+  integer(c_int), parameter :: LGN_PROJECT_ALL = 2
 
   ! LGNGroupKind
   enum, bind(c)
@@ -667,13 +671,13 @@ module flignum_mod
       integer(c_int), value :: on
     end function LGNSetConsistentOutputs
 
-    !> Projected outputs on (SUNTRUE = 1, the default: q and v returned on
-    !> Phi = 0 and B v + Phi_t = 0) or off (0).
-    integer(c_int) function LGNSetProjectOutputs(lgn_mem, on) &
+    !> Which outputs are projected onto Phi = 0 and B v + Phi_t = 0:
+    !> LGN_PROJECT_NONE, LGN_PROJECT_INTERPOLATED, LGN_PROJECT_ALL (default).
+    integer(c_int) function LGNSetProjectOutputs(lgn_mem, which) &
         bind(c, name="LGNSetProjectOutputs")
       import :: c_int, c_ptr
       type(c_ptr), value :: lgn_mem
-      integer(c_int), value :: on
+      integer(c_int), value :: which
     end function LGNSetProjectOutputs
 
     !> The multipliers in the error test on (1, with their absolute

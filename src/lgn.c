@@ -51,7 +51,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->maxncf       = LGN_MAXNCF_DEFAULT;
   mem->eplifac      = LGN_EPLIFAC_DEFAULT;
   mem->out_consistent = SUNTRUE;
-  mem->out_project    = SUNTRUE;
+  mem->out_project    = LGN_PROJECT_ALL;
   lgnErrSinkInit(&mem->err);
   return mem;
 }

@@ -327,7 +327,7 @@ typedef struct LGNMemRec {
 
   /* ---- what LGNSolve returns (lgn_output.c) ---- */
   sunbooleantype out_consistent; /* LGNSetConsistentOutputs (default on)  */
-  sunbooleantype out_project;    /* LGNSetProjectOutputs (default on)     */
+  int out_project;          /* LGNSetProjectOutputs: LGN_PROJECT_*        */
   sunbooleantype out_valid; /* out_vdot, out_lambda hold the last output's */
   sunrealtype out_t;        /* ... time                                    */
   sunrealtype *out_vdot;    /* consistent vdot at the last output (nv)     */

@@ -6,7 +6,8 @@
  * (t, q, v) of a step end, a stop time, an event or an interpolated tout,
  * and the accelerations and multipliers that belong to it.
  *
- * Projected outputs (LGNSetProjectOutputs, default on): q onto Phi(q, t) = 0
+ * Projected outputs (LGNSetProjectOutputs: by default all, the step ends
+ * too; LGN_PROJECT_INTERPOLATED those between steps): q onto Phi(q, t) = 0
  * by Newton on the group with minimum-norm steps in the metric of M,
  *   [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q, t)),  q <- q o exp(dq),
  * down to roundoff (lgnProjectQAt, lgn_ic.c), then v onto B(q, t) v + Phi_t
@@ -126,11 +127,10 @@ static int ProjectV(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 
 /* The projection (when on) and the consistent vdot and lambda (into vdot,
  * lambda when vdot is not NULL; lambda may be NULL), with the slots kept. */
-static int Compute(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, sunrealtype *vdot,
-                   sunrealtype *lambda)
+static int Compute(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                   sunbooleantype project, sunrealtype *vdot, sunrealtype *lambda)
 {
   const sunindextype nv = mem->nv, m = mem->m;
-  const sunbooleantype project = mem->out_project && m > 0;
   int flag = LGN_SUCCESS;
 
   if (project) {
@@ -162,12 +162,12 @@ static int Compute(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, sunrealtyp
 
 /* Compute with the slots kept, counted; a recoverable callback failure
  * becomes LGN_REPTD_CALLBACK_ERR: there is no step to retry. */
-static int ComputeKept(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, sunrealtype *vdot,
-                       sunrealtype *lambda)
+static int ComputeKept(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                       sunbooleantype project, sunrealtype *vdot, sunrealtype *lambda)
 {
   int flag;
   KeepSlots(mem, SUNFALSE);
-  flag = Compute(mem, t, q, v, vdot, lambda);
+  flag = Compute(mem, t, q, v, project, vdot, lambda);
   KeepSlots(mem, SUNTRUE);
   mem->nout++;
   if (flag == LGN_RECOVERABLE) {
@@ -178,22 +178,31 @@ static int ComputeKept(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, sunrea
   return flag;
 }
 
-/* Is there anything to do: a projection (constraints) or consistent values. */
-static sunbooleantype Active(LGNMem mem, sunbooleantype want_vdot)
+/* Is the output at t projected: between the ends of the last step (or at
+ * any t with LGN_PROJECT_ALL), with constraints. */
+static sunbooleantype Projects(LGNMem mem, sunrealtype t)
 {
-  return (sunbooleantype)(mem->work_done && mem->mat_done && mem->out_save != NULL &&
-                          ((mem->out_project && mem->m > 0) ||
-                           (want_vdot && mem->out_consistent)));
+  const sunbooleantype end = t == mem->tn || (mem->dense_valid && t == mem->tprev);
+  return (sunbooleantype)(mem->m > 0 && (mem->out_project == LGN_PROJECT_ALL ||
+                                         (mem->out_project == LGN_PROJECT_INTERPOLATED && !end)));
 }
 
-/* The output (t, q, v) that LGNSolve returns: projected in place (when on),
- * and its vdot and lambda into out_vdot, out_lambda (when on; out_valid). */
+/* The work space and matrices an output needs (made by LGNSolve). */
+static sunbooleantype Ready(LGNMem mem)
+{
+  return (sunbooleantype)(mem->work_done && mem->mat_done && mem->out_save != NULL);
+}
+
+/* The output (t, q, v) that LGNSolve returns: projected in place (when
+ * due), and its vdot and lambda into out_vdot, out_lambda (when on;
+ * out_valid). */
 int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 {
+  const sunbooleantype project = Projects(mem, t);
   int flag;
   mem->out_valid = SUNFALSE;
-  if (!Active(mem, SUNTRUE)) return LGN_SUCCESS;
-  flag = ComputeKept(mem, t, q, v, mem->out_consistent ? mem->out_vdot : NULL,
+  if (!Ready(mem) || !(project || mem->out_consistent)) return LGN_SUCCESS;
+  flag = ComputeKept(mem, t, q, v, project, mem->out_consistent ? mem->out_vdot : NULL,
                      mem->out_lambda);
   if (flag == LGN_SUCCESS && mem->out_consistent) {
     mem->out_valid = SUNTRUE;
@@ -208,10 +217,10 @@ int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
  * gave. The last output's values (the getters') stay as they are. */
 int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky)
 {
+  const sunbooleantype project = Projects(mem, t);
   int flag;
-  const sunbooleantype act = k == 2 ? mem->out_consistent : (sunbooleantype)(mem->out_project &&
-                                                                           mem->m > 0);
-  if (!act || !Active(mem, k == 2)) return lgnDenseOutput(mem, t, k, lgnData(dky));
+  if (!Ready(mem) || !(k == 2 ? mem->out_consistent : project))
+    return lgnDenseOutput(mem, t, k, lgnData(dky));
   if (mem->out_q == NULL) mem->out_q = N_VClone(mem->q);
   if (mem->out_v == NULL) mem->out_v = N_VClone(mem->v);
   flag = mem->out_q == NULL || mem->out_v == NULL ? LGN_MEM_FAIL : LGN_SUCCESS;
@@ -221,7 +230,8 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky)
   if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 1, lgnData(mem->out_v));
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
-  flag = ComputeKept(mem, t, mem->out_q, mem->out_v, k == 2 ? lgnData(dky) : NULL, NULL);
+  flag = ComputeKept(mem, t, mem->out_q, mem->out_v, project, k == 2 ? lgnData(dky) : NULL,
+                     NULL);
   if (flag == LGN_SUCCESS && k < 2)
     N_VScale(SUN_RCONST(1.0), k == 0 ? mem->out_q : mem->out_v, dky);
   return flag;
@@ -242,7 +252,6 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky)
 int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm)
 {
   const sunindextype m = mem->m;
-  const sunbooleantype project = mem->out_project;
   const sunrealtype *l1;
   sunrealtype sum[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)};
   sunindextype i;
@@ -250,11 +259,9 @@ int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm)
   *norm = SUN_RCONST(0.0);
   mem->lambda_err = SUN_RCONST(0.0);
   if (!mem->lambda_errcon || m == 0 || mem->out_save == NULL) return LGN_SUCCESS;
-  mem->out_project = SUNFALSE; /* the iterate itself */
-  KeepSlots(mem, SUNFALSE);
-  flag = Compute(mem, t1, mem->q1, mem->v1, mem->dense_work, mem->out_lwork);
+  KeepSlots(mem, SUNFALSE); /* the iterate itself, not projected */
+  flag = Compute(mem, t1, mem->q1, mem->v1, SUNFALSE, mem->dense_work, mem->out_lwork);
   KeepSlots(mem, SUNTRUE);
-  mem->out_project = project;
   if (flag != LGN_SUCCESS) return flag;
   l1 = lgnData(mem->lambda1);
   for (i = 0; i < m; i++) {
@@ -297,12 +304,20 @@ int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on)
   return flag;
 }
 
-int LGNSetProjectOutputs(void *lgn_mem, sunbooleantype on)
+int LGNSetProjectOutputs(void *lgn_mem, int which)
 {
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  return SetSwitch(mem, on, __func__, &mem->out_project);
+  if (which != LGN_PROJECT_NONE && which != LGN_PROJECT_INTERPOLATED &&
+      which != LGN_PROJECT_ALL) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "which = %d illegal: use LGN_PROJECT_NONE, LGN_PROJECT_INTERPOLATED or "
+              "LGN_PROJECT_ALL.", which);
+    return LGN_ILL_INPUT;
+  }
+  mem->out_project = which;
+  return LGN_SUCCESS;
 }
 
 int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on, sunrealtype atol_lambda)

@@ -627,8 +627,8 @@ LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
  *  the last step [t_n, t_{n+1}], from the dense output on the group: a
  *  cubic Hermite interpolant in the chart of the step (BDF: its own
  *  polynomials), matching q and v at both ends, of the order of the
- *  method. As LGNSolve's outputs: with projected outputs (the default) q
- *  and v are projected onto Phi(q, t) = 0 and B v + Phi_t = 0; with
+ *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
+ *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
  *  consistent outputs (the default) vdot is the index-1 acceleration at
  *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
  *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
@@ -654,17 +654,29 @@ LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
  *          SUNFALSE). */
 LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
 
-/** Projected outputs (default SUNTRUE): the q and v that LGNSolve and
- *  LGNGetDky return are projected onto Phi(q, t) = 0 (Newton on the group,
+/* Which outputs LGNSetProjectOutputs projects. */
+#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
+#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
+#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
+
+/** Outputs on the constraints: the q and v that LGNSolve and LGNGetDky
+ *  return are projected onto Phi(q, t) = 0 (Newton on the group,
  *  minimum-norm steps in the metric of M, to roundoff) and then onto
- *  B(q, t) v + Phi_t = 0, so that the outputs satisfy the position and
- *  velocity constraints to roundoff at every output, interpolated or not,
- *  at every index. Only the returned values are projected: the integrator
- *  goes on from its own state, and the results at later times do not
- *  change. SUNFALSE: the interpolant's (or the step's) q and v as they are.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
- *          SUNFALSE). */
-LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, sunbooleantype on);
+ *  B(q, t) v + Phi_t = 0, so that they satisfy the position and velocity
+ *  constraints to roundoff, at every index:
+ *  - LGN_PROJECT_ALL (default): every output, the step ends (stop time,
+ *    LGN_ONE_STEP, a fixed step landing on tout) too: at index 3 their
+ *    B v + Phi_t is not at roundoff, at index 2 their Phi drifts, and the
+ *    consistent multipliers (LGNSetConsistentOutputs) of an unprojected
+ *    index-3 step end carry that velocity error;
+ *  - LGN_PROJECT_INTERPOLATED: the outputs between steps (an interpolated
+ *    tout, an event); a step end is returned as the integrator's state;
+ *  - LGN_PROJECT_NONE: no projection: the interpolant's or the step's q, v.
+ *  Only the returned values are projected: the integrator goes on from its
+ *  own state, and the results at later times do not change (a restart from
+ *  the returned q, v, e.g. LGNReInit, starts from the projected values).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another which). */
+LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
 
 /** The multipliers in the error test (as IDA's IDASetSuppressAlg(FALSE);
  *  default off): every error-controlled step also computes the consistent

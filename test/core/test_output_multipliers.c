@@ -22,8 +22,8 @@
  * stop time at each output (LGN_NORMAL lands there), LGN_NORMAL
  * interpolated, and LGN_ONE_STEP (every step end). Asserted, for
  * generalized-alpha (rho_inf 0.9) and BDF (maxord 5) at index 3, 2 and GGL,
- * tol = rtol = atol = 1e-8, with the default (consistent, projected)
- * outputs:
+ * tol = rtol = atol = 1e-8, with the default outputs (consistent, all
+ * projected: no setter called):
  *   (a) max |lambda - lambda_exact| <= 1e-5 max |lambda_exact|;
  *   (b) LGNGetDky(tret, 2) equals LGNGetAcceleration after the output (to
  *       1e-12 relative), and B(q)^T lambda of the joint helpers
@@ -279,7 +279,8 @@ static LGNGroup Build(SUNContext ctx, int model, Model *md, LGNGroup body, N_Vec
 typedef struct {
   int model, bdf, index, mode;
   double tol;
-  sunbooleantype consistent, project;
+  sunbooleantype consistent;
+  int project;        /* LGN_PROJECT_*, -1: the default */
   double lambda_atol; /* > 0: LGNSetMultiplierErrorControl on */
 } Setup;
 
@@ -401,8 +402,9 @@ static Result Run(SUNContext ctx, const Setup *s)
    * of the outputs: the step's end values are exact but on the wrong
    * branch). A step limit keeps the runs on the branch. */
   if (!flag && s->index == LGN_CONSTR_GGL) flag = LGNSetMaxStep(mem, 0.02);
-  if (!flag) flag = LGNSetConsistentOutputs(mem, s->consistent);
-  if (!flag) flag = LGNSetProjectOutputs(mem, s->project);
+  /* the defaults (consistent outputs, LGN_PROJECT_ALL) unless told */
+  if (!flag && !s->consistent) flag = LGNSetConsistentOutputs(mem, SUNFALSE);
+  if (!flag && s->project >= 0) flag = LGNSetProjectOutputs(mem, s->project);
   if (!flag && s->lambda_atol > 0.0)
     flag = LGNSetMultiplierErrorControl(mem, SUNTRUE, s->lambda_atol);
   if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_V);
@@ -454,7 +456,7 @@ int main(int argc, char **argv)
     for (bdf = 0; bdf < 2; bdf++)
       for (ii = 0; ii < 3; ii++)
         for (mode = 0; mode < 3; mode++) {
-          Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNTRUE, SUNTRUE, 0.0};
+          Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNTRUE, -1, 0.0};
           Result r = Run(ctx, &s);
           const char *name = bdf ? "BDF5" : "gen-alpha";
           printf("%-12s %-9s %-7s %-12s: %4ld steps, %4ld output solves, max|lambda err| "
@@ -485,7 +487,8 @@ int main(int argc, char **argv)
       double err[3];
       int k;
       for (k = 0; k < 3; k++) {
-        Setup s = {model, bdf, LGN_CONSTR_INDEX3, MODE_TSTOP, tols[k], SUNTRUE, SUNFALSE, 0.0};
+        Setup s = {model, bdf, LGN_CONSTR_INDEX3, MODE_TSTOP, tols[k], SUNTRUE,
+                   LGN_PROJECT_NONE, 0.0};
         Result r = Run(ctx, &s);
         err[k] = r.flag == 0 ? r.lam_err : HUGE_VAL;
       }
@@ -506,7 +509,7 @@ int main(int argc, char **argv)
     for (bdf = 0; bdf < 2; bdf++)
       for (ii = 1; ii < 3; ii++)
       for (mode = 0; mode < 3; mode += 2) {
-        Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNFALSE, SUNTRUE, 1e-6};
+        Setup s = {model, bdf, indices[ii], mode, 1e-8, SUNFALSE, LGN_PROJECT_ALL, 1e-6};
         Result r = Run(ctx, &s);
         printf("(f) %s %s %s %s: the step's own lambda error %.2e with the multipliers in "
                "the error test (%ld steps)\n", model_name[model], bdf ? "BDF5" : "gen-alpha",
@@ -519,7 +522,7 @@ int main(int argc, char **argv)
 
   /* (e) without the projection, interpolated outputs leave the constraints */
   {
-    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-6, SUNTRUE, SUNFALSE, 0.0};
+    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-6, SUNTRUE, LGN_PROJECT_NONE, 0.0};
     Result r = Run(ctx, &s);
     printf("(e) rotor, gen-alpha, index 3, tol 1e-6, LGN_NORMAL, not projected: |Phi| %.2e, "
            "|B v + Phi_t| %.2e\n", r.phi, r.bv);
@@ -529,7 +532,7 @@ int main(int argc, char **argv)
   }
   {
     /* index 3: the multipliers in the error test refused by LGNSolve */
-    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-8, SUNFALSE, SUNTRUE, 1e-6};
+    Setup s = {ROTOR, 0, LGN_CONSTR_INDEX3, MODE_NORMAL, 1e-8, SUNFALSE, LGN_PROJECT_ALL, 1e-6};
     Result r = Run(ctx, &s);
     CHECK(r.flag == LGN_ILL_INPUT && r.nst == 0,
           "(e) LGNSetMultiplierErrorControl at index 3: flag %d after %ld steps, not refused",
@@ -540,6 +543,7 @@ int main(int argc, char **argv)
     LGNSetErrFile(mem, NULL);
     CHECK(LGNSetConsistentOutputs(mem, 2) == LGN_ILL_INPUT &&
               LGNSetProjectOutputs(mem, -1) == LGN_ILL_INPUT &&
+              LGNSetProjectOutputs(mem, 3) == LGN_ILL_INPUT &&
               LGNSetConsistentOutputs(NULL, SUNTRUE) == LGN_MEM_NULL &&
               LGNGetNumOutputSolves(mem, NULL) == LGN_ILL_INPUT &&
               LGNSetMultiplierErrorControl(mem, SUNTRUE, 0.0) == LGN_ILL_INPUT &&
@@ -564,7 +568,7 @@ int main(int argc, char **argv)
                    bdf ? "BDF5" : "gen-alpha", mode_name[mode], variant[c]);
             for (k = 0; k < 3; k++) {
               Setup s = {model, bdf, LGN_CONSTR_INDEX3, mode, tols[k], (sunbooleantype)(c > 0),
-                         (sunbooleantype)(c == 2), 0.0};
+                         c == 2 ? LGN_PROJECT_ALL : LGN_PROJECT_NONE, 0.0};
               Result r = Run(ctx, &s);
               printf(" %.1e |", r.flag == 0 ? r.lam_err : HUGE_VAL);
             }

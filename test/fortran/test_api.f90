@@ -476,7 +476,8 @@ contains
     call expect(LGNSetInitialAux(mem, vdot) == 0, "LGNSetInitialAux")
     call expect(LGNSetPerturbedStart(mem, 0_c_int) == 0, "LGNSetPerturbedStart(0)")
     call expect(LGNSetConsistentOutputs(mem, 1_c_int) == 0, "LGNSetConsistentOutputs(1)")
-    call expect(LGNSetProjectOutputs(mem, 1_c_int) == 0, "LGNSetProjectOutputs(1)")
+    call expect(LGNSetProjectOutputs(mem, LGN_PROJECT_INTERPOLATED) == 0, &
+                "LGNSetProjectOutputs(LGN_PROJECT_INTERPOLATED)")
     call expect_flag(LGNSetProjectOutputs(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "LGNSetProjectOutputs(7)")
     call expect_flag(LGNSetMultiplierErrorControl(mem, 1_c_int, 0.0_c_double), LGN_ILL_INPUT, &
