@@ -296,10 +296,12 @@ int lgnInitialConditions(LGNMem mem)
 /* q onto Phi(q, t) = 0 by Newton on the group, minimum-norm steps in M,
  *   [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q, t)),  q <- q o exp(dq),
  * until |Phi|_inf <= 100 eps max(1, |q|_inf), or it stalls (stops
- * contracting) below tol_stall; v only for the model's evaluation. what
- * names the projection in messages. */
+ * contracting) below tol_stall, after at least min_it iterations unless
+ * Phi = 0 (so that the number of iterations does not hang on roundoff
+ * near the threshold, e.g. on the number of ranks); v only for the
+ * model's evaluation. what names the projection in messages. */
 int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
-                  sunrealtype tol_stall, const char *what)
+                  sunrealtype tol_stall, int min_it, const char *what)
 {
   const sunindextype nv = mem->nv, m = mem->m;
   const sunrealtype tol_round = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * QScaleOf(mem, q);
@@ -311,7 +313,7 @@ int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
     flag = EvalPhi(mem, t, q);
     if (flag != LGN_SUCCESS) return flag;
     nrm = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), m, &imax));
-    if (nrm <= tol_round) return LGN_SUCCESS;
+    if (nrm <= tol_round && (it >= min_it || nrm == SUN_RCONST(0.0))) return LGN_SUCCESS;
     /* no longer contracting: roundoff level of this model's Phi */
     if (it >= 2 && nrm > SUN_RCONST(0.5) * prev && nrm <= tol_stall) return LGN_SUCCESS;
     if (it == LGN_IC_MAXIT || !isfinite(nrm)) {
@@ -347,7 +349,7 @@ int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
  * hundredth of the check's tolerance. */
 static int ProjectQ(LGNMem mem)
 {
-  return lgnProjectQAt(mem, mem->tn, mem->q, mem->v, SUN_RCONST(0.01) * TolPhi(mem),
+  return lgnProjectQAt(mem, mem->tn, mem->q, mem->v, SUN_RCONST(0.01) * TolPhi(mem), 0,
                        "LGNCalcIC: the projection of q0");
 }
 

@@ -603,7 +603,7 @@ int lgnSaddlePointFactor(LGNMem mem, sunrealtype t);
 int lgnSaddlePointBackSolve(LGNMem mem);
 int lgnIndex1Rhs(LGNMem mem, sunrealtype t);
 int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
-                  sunrealtype tol_stall, const char *what);
+                  sunrealtype tol_stall, int min_it, const char *what);
 
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 

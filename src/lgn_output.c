@@ -134,12 +134,13 @@ static int Compute(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   int flag = LGN_SUCCESS;
 
   if (project) {
-    /* q: to roundoff; a stall is accepted only near it (1e4 eps |q|) */
     sunrealtype qs = SUN_RCONST(1.0);
     sunindextype i;
     for (i = 0; i < mem->nq; i++) qs = SUNMAX(qs, fabs(lgnData(q)[i]));
     qs   = lgnMaxAll(mem, qs);
-    flag = lgnProjectQAt(mem, t, q, v, SUN_RCONST(1.0e4) * SUN_UNIT_ROUNDOFF * qs,
+    /* q: to roundoff, one Newton iteration at least (the same work on
+     * any number of ranks); a stall is accepted only near it (1e4 eps |q|) */
+    flag = lgnProjectQAt(mem, t, q, v, SUN_RCONST(1.0e4) * SUN_UNIT_ROUNDOFF * qs, 1,
                          "the projection of the output q");
   }
   if (flag == LGN_SUCCESS) flag = FactorAt(mem, t, q, v);
