@@ -166,7 +166,7 @@ static double Run(SUNContext ctx, int bdf, double dt_out, sunbooleantype consist
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, 1e-8, 1e-8);
   if (!flag) flag = LGNSetConsistentOutputs(mem, consistent);
-  if (!flag) flag = LGNSetProjectOutputs(mem, project);
+  if (!flag) flag = LGNSetProjectOutputs(mem, project ? LGN_PROJECT_ALL : LGN_PROJECT_NONE);
   if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_V);
   c0 = clock();
   for (k = 1; k <= nk && !flag; k++) flag = LGNSolve(mem, k * dt_out, &t, q, v, LGN_NORMAL);

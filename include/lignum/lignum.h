@@ -691,6 +691,7 @@ LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
  *  output. Fixed steps are not affected. Index 2 and GGL only: at index 3
  *  the multipliers are determined only to Newton's tolerance ~ atol / h,
  *  and LGNSolve refuses the setting (LGN_ILL_INPUT).
+ *  @param lgn_mem     the integrator memory (LGNCreate)
  *  @param on          SUNTRUE or SUNFALSE
  *  @param atol_lambda the multipliers' absolute tolerance, > 0, in their
  *                     units (forces, torques); ignored when off
