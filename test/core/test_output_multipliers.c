@@ -565,7 +565,7 @@ int main(int argc, char **argv)
       for (bdf = 0; bdf < 2; bdf++)
         for (mode = 0; mode < 3; mode += 2) {
           const double tols[3] = {1e-6, 1e-8, 1e-10};
-          static const char *variant[3] = {"step's own (before)", "consistent, not projected",
+          static const char *variant[3] = {"step's own", "consistent, not projected",
                                            "consistent, projected (default)"};
           int k, c;
           for (c = 0; c < 3; c++) {
