@@ -25,7 +25,8 @@
  * generalized-alpha (rho_inf 0.9) and BDF (maxord 5) at index 3, 2 and GGL,
  * tol = rtol = atol = 1e-8, with the default outputs (consistent, all
  * projected: no setter called):
- *   (a) max |lambda - lambda_exact| <= 1e-5 max |lambda_exact|;
+ *   (a) max |lambda - lambda_exact| <= 1e-5 max |lambda_exact| (and with
+ *       fixed steps h = 1e-3, LGN_NORMAL, index 3 and 2);
  *   (b) LGNGetDky(tret, 2) equals LGNGetAcceleration after the output (to
  *       1e-12 relative), and B(q)^T lambda of the joint helpers
  *       (LGNJoints_ConstraintForce) balances M vdot + g at the output;
@@ -396,8 +397,12 @@ static Result Run(SUNContext ctx, const Setup *s)
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = s->bdf ? LGNSetBDF(mem, 5) : LGNSetGenAlpha(mem, 0.9);
   if (!flag) flag = LGNSetConstraintIndex(mem, s->index);
-  if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
-  if (!flag) flag = LGNSStolerances(mem, s->tol, s->tol);
+  if (s->tol > 0.0) { /* error control; tol < 0: fixed steps h = -tol */
+    if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
+    if (!flag) flag = LGNSStolerances(mem, s->tol, s->tol);
+  } else if (!flag) {
+    flag = LGNSetStepSize(mem, -s->tol);
+  }
   /* GGL: both mechanisms are driven in all but (slider-crank) the rod's
    * spin, and GGL's error estimate (projected onto the constraints'
    * tangent space, where Phi = 0 and B v + Phi_t = 0 both hold at the step
@@ -479,6 +484,22 @@ int main(int argc, char **argv)
           CHECK(r.phi <= 1e-12 && r.bv <= 1e-12, "(c) %s %s %s: |Phi| %.2e, |B v + Phi_t| %.2e",
                 name, IndexName(indices[ii]), mode_name[mode], r.phi, r.bv);
         }
+
+  /* (a), (c) with fixed steps (h = 1e-3; LGN_NORMAL: the Newmark family
+   * lands on tout, BDF steps past it and interpolates), at index 3 and 2 */
+  for (model = 0; model < NMODEL; model++)
+    for (bdf = 0; bdf < 2; bdf++)
+      for (ii = 0; ii < 2; ii++) {
+        Setup s = {model, bdf, indices[ii], MODE_NORMAL, -1e-3, SUNTRUE, -1, 0.0};
+        Result r = Run(ctx, &s);
+        printf("fixed h = 1e-3: %-12s %-9s %-7s: max|lambda err| %.2e of max %.2f; |Phi| %.1e, "
+               "|Bv+Phi_t| %.1e\n", model_name[model], bdf ? "BDF5" : "gen-alpha",
+               IndexName(indices[ii]), r.lam_err, r.lam_max, r.phi, r.bv);
+        CHECK(r.flag == 0 && r.lam_err <= 1e-5 * r.lam_max && r.phi <= 1e-12 && r.bv <= 1e-12,
+              "(a, c) fixed steps %s %s %s: flag %d, lambda error %.2e, |Phi| %.2e, |B v + "
+              "Phi_t| %.2e", model_name[model], bdf ? "BDF5" : "gen-alpha",
+              IndexName(indices[ii]), r.flag, r.lam_err, r.phi, r.bv);
+      }
 
   /* (d) the lambda error falls with the tolerance (slider-crank, stop
    * times, index 3): without the projection, since with it these driven
