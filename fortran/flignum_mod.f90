@@ -112,6 +112,10 @@ module flignum_mod
   integer(c_int), parameter :: LGN_IC_PROJECT_Q  = 141
   integer(c_int), parameter :: LGN_IC_PROJECT_V  = 142
   integer(c_int), parameter :: LGN_IC_PROJECT_QV = 143
+  ! LGNSetProjectOutputs
+  integer(c_int), parameter :: LGN_PROJECT_NONE = 0
+  integer(c_int), parameter :: LGN_PROJECT_INTERPOLATED = 1
+  integer(c_int), parameter :: LGN_PROJECT_ALL = 2
 
   ! LGNGroupKind
   enum, bind(c)
@@ -669,7 +673,8 @@ module flignum_mod
     end function LGNClearStopTime
 
     !> q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at t in
-    !> the last step, from the dense output (dky: an N_Vector).
+    !> the last step, from the dense output (dky: an N_Vector), projected
+    !> and consistent as LGNSolve's outputs are.
     integer(c_int) function LGNGetDky(lgn_mem, t, k, dky) bind(c, name="LGNGetDky")
       import :: c_int, c_double, c_ptr
       type(c_ptr), value :: lgn_mem
@@ -677,6 +682,42 @@ module flignum_mod
       integer(c_int), value :: k
       type(c_ptr), value :: dky
     end function LGNGetDky
+
+    !> Consistent outputs on (SUNTRUE = 1, the default: vdot and lambda of
+    !> the index-1 system at every output) or off (0: the step's own).
+    integer(c_int) function LGNSetConsistentOutputs(lgn_mem, on) &
+        bind(c, name="LGNSetConsistentOutputs")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: on
+    end function LGNSetConsistentOutputs
+
+    !> Which outputs are projected onto Phi = 0 and B v + Phi_t = 0:
+    !> LGN_PROJECT_NONE, LGN_PROJECT_INTERPOLATED, LGN_PROJECT_ALL (default).
+    integer(c_int) function LGNSetProjectOutputs(lgn_mem, which) &
+        bind(c, name="LGNSetProjectOutputs")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: which
+    end function LGNSetProjectOutputs
+
+    !> The multipliers in the error test on (1, with their absolute
+    !> tolerance atol_lambda > 0) or off (0, the default).
+    integer(c_int) function LGNSetMultiplierErrorControl(lgn_mem, on, atol_lambda) &
+        bind(c, name="LGNSetMultiplierErrorControl")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: on
+      real(c_double), value :: atol_lambda
+    end function LGNSetMultiplierErrorControl
+
+    !> The number of outputs made consistent or projected.
+    integer(c_int) function LGNGetNumOutputSolves(lgn_mem, nout) &
+        bind(c, name="LGNGetNumOutputSolves")
+      import :: c_int, c_long, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_long), intent(out) :: nout
+    end function LGNGetNumOutputSolves
 
     !> The step size to be tried next (error control) or the fixed h.
     integer(c_int) function LGNGetCurrentStep(lgn_mem, hcur) &

@@ -50,6 +50,8 @@ void *LGNCreate(SUNContext sunctx)
   mem->maxnef       = LGN_MAXNEF_DEFAULT;
   mem->maxncf       = LGN_MAXNCF_DEFAULT;
   mem->eplifac      = LGN_EPLIFAC_DEFAULT;
+  mem->out_consistent = SUNTRUE;
+  mem->out_project    = LGN_PROJECT_ALL;
   lgnErrSinkInit(&mem->err);
   return mem;
 }
@@ -83,6 +85,7 @@ static void ResetCounters(LGNMem mem)
   mem->lambda_noise = mem->lambda_noise_h = SUN_RCONST(0.0);
   mem->hlast = SUN_RCONST(0.0);
   mem->last_lin_flag = 0;
+  mem->nout = 0;
 }
 
 /* q0 is an element of the group up to rounding: its normalisation (on a
@@ -268,6 +271,14 @@ static int CheckSettings(LGNMem mem)
       return LGN_ILL_INPUT;
     }
   }
+  if (mem->step_control == LGN_STEP_ADAPTIVE && mem->lambda_errcon && mem->m > 0 &&
+      mem->constr_index == LGN_CONSTR_INDEX3) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The multipliers in the error test (LGNSetMultiplierErrorControl) need "
+              "LGN_CONSTR_INDEX2 or LGN_CONSTR_GGL: at index 3 they are determined "
+              "only to Newton's tolerance ~ atol / h, which grows as h shrinks.");
+    return LGN_ILL_INPUT;
+  }
   if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;
@@ -290,7 +301,10 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
     "the initial step", "hmin", "hmax", "maxnef", "maxncf", "the stop time",
     "the acceptance of stalls", "the tolerances set", "vector tolerances (LGNSVtolerances)",
     "tout (LGNSolve)", "itask (LGNSolve)", "the current time (a rank left behind)",
-    "ghost bodies (LGNSetHalo)"};
+    "ghost bodies (LGNSetHalo)", "the consistent outputs (LGNSetConsistentOutputs)",
+    "the projected outputs (LGNSetProjectOutputs)",
+    "the multipliers in the error test (LGNSetMultiplierErrorControl)",
+    "the multipliers' atol (LGNSetMultiplierErrorControl)"};
   const sunrealtype x[] = {
     (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->bdf_form,
     (sunrealtype)mem->step_control,
@@ -303,7 +317,9 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
     (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
     mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
     (sunrealtype)mem->tols_set, (sunrealtype)(mem->atol_vec != NULL), tout,
-    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL)};
+    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL),
+    (sunrealtype)mem->out_consistent, (sunrealtype)mem->out_project,
+    (sunrealtype)mem->lambda_errcon, mem->lambda_errcon ? mem->lambda_atol : SUN_RCONST(0.0)};
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");
@@ -489,6 +505,14 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   const long int nst0 = mem != NULL ? mem->nst : 0, nstall0 = mem != NULL ? mem->nstall : 0;
   int flag = Solve(lgn_mem, tout, tret, q, v, itask);
   if (mem != NULL && mem->malloc_done) WarnStalls(mem, nst0, nstall0);
+  if (mem == NULL || !mem->malloc_done) return flag;
+  if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
+    /* the output: projected, with its consistent vdot and lambda (lgn_output.c) */
+    const int oflag = lgnOutputAt(mem, *tret, q, v);
+    if (oflag != LGN_SUCCESS) flag = oflag;
+  } else if (mem->nst != nst0) {
+    mem->out_valid = SUNFALSE; /* steps taken, then a failure: the state at tn */
+  }
   return flag;
 }
 

@@ -19,6 +19,9 @@
  *   Newton failure or a recoverable callback error: h *= 0.25;
  *   each retried up to maxnef / maxncf times, and not below hmin.
  *
+ * A stop time is landed on without a short step: within 1.1 h it is
+ * reached in one step, within 2.2 h in two halves of the rest.
+ *
  * Before every attempt of size h after a step of size h_old, the auxiliary
  * variable is rescaled: a_n approximates vdot(t_n + (alpha_m - alpha_f) h),
  * so its meaning depends on h, and without
@@ -37,6 +40,7 @@
 #define SAFETY      SUN_RCONST(0.9)
 #define KEEP_BELOW  SUN_RCONST(1.2) /* 1 <= factor < 1.2: keep h           */
 #define CUT_FAIL    SUN_RCONST(0.25)
+#define LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 %   */
 
 /* The controller's factor for an error norm err: error per unit step, the
  * estimate over h, |e| / h ~ h^2 (order 2, lgn_errtest.c). */
@@ -110,12 +114,19 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
   }
   h = lgnLimitStep(mem, mem->hnext); /* the limits may have changed since */
   for (;;) {
-    /* a stop time ahead within this step (or nearly): land on it */
+    /* a stop time ahead: a step that would leave less than a tenth of
+     * itself stretches to land on it, and one that would leave less than a
+     * step (up to 1.1 h) takes half the rest, so that no landing step is
+     * short (as the BDF family does, lgn_bdf.c): a short step is an
+     * abrupt change of h, which generalized-alpha's rescaled a_n and its
+     * multipliers follow badly. The stretch stays within hmax. */
     h_wanted = h;
-    landing  = mem->tstop_set &&
-               mem->tn + h * (SUN_RCONST(1.0) + SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF) >=
-                   mem->tstop;
-    if (landing) h = mem->tstop - mem->tn;
+    landing  = mem->tstop_set && mem->tn + h * LAND_STRETCH >= mem->tstop &&
+               !(mem->hmax > SUN_RCONST(0.0) && mem->tstop - mem->tn > mem->hmax);
+    if (landing)
+      h = mem->tstop - mem->tn;
+    else if (mem->tstop_set && mem->tn + SUN_RCONST(2.0) * h * LAND_STRETCH > mem->tstop)
+      h = SUN_RCONST(0.5) * (mem->tstop - mem->tn);
 
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
@@ -124,6 +135,11 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     lgnNewtonTolerances(mem, &c);
     flag = lgnStepAttempt(mem, &c);
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
+    if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
+      sunrealtype err_l;
+      flag = lgnMultiplierError(mem, c.t1, &err_l);
+      err  = SUNMAX(err, err_l);
+    }
     mem->err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {

@@ -789,6 +789,11 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
     flag = Attempt(mem, h, k, &c);
     mem->lsetup_recoverable = SUNFALSE;
     if (flag == LGN_SUCCESS) flag = LocalError(mem, &c, k, &err);
+    if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
+      sunrealtype err_l;
+      flag = lgnMultiplierError(mem, c.t1, &err_l);
+      err  = SUNMAX(err, err_l);
+    }
     mem->err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {

@@ -55,7 +55,7 @@
  * ===========================================================================*/
 
 /* M, g, B at (t, q, v) through the iterate slots q1, v1 (q, v may be them). */
-static int EvalAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
+int lgnEvalAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 {
   if (q != mem->q1) N_VScale(SUN_RCONST(1.0), q, mem->q1);
   if (v != mem->v1) N_VScale(SUN_RCONST(1.0), v, mem->v1);
@@ -64,36 +64,50 @@ static int EvalAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
   return lgnAgree(mem, lgnEvalModel(mem, t, SUNTRUE));
 }
 
-/* Assemble and factorise [[M, B^T], [B, 0]] from the M, B just evaluated,
- * and solve for the right-hand side in mem->rhs (solution in mem->sol). */
-static int SaddlePointSolve(LGNMem mem, sunrealtype t)
+/* Assemble and factorise [[M, B^T], [B, 0]] from the M, B just evaluated
+ * (EvalAt). */
+int lgnSaddlePointFactor(LGNMem mem, sunrealtype t)
 {
   LGNMatrixTerms terms;
   int flag;
-  sunindextype i;
   lgnInvalidate(mem, LGN_CHANGE_MATRIX); /* A now holds the saddle-point matrix */
   lgnSaddlePointTerms(&terms);
-  /* GGL: mu's rows are mu = 0 (identity, lgn_matrix.c) */
-  for (i = mem->nv + mem->m; i < mem->nv + mem->nalg; i++) lgnData(mem->rhs)[i] = SUN_RCONST(0.0);
   flag = lgnAssembleIterationMatrix(mem, t, &terms);
   if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
-  flag = lgnAgree(mem, flag); /* across ranks: before a (collective) solve */
-  if (flag == LGN_SUCCESS) flag = lgnLsSolve(mem, mem->sol, mem->rhs);
+  return lgnAgree(mem, flag); /* across ranks: before a (collective) solve */
+}
+
+/* Solve with the factorised saddle-point matrix for the right-hand side in
+ * mem->rhs (solution in mem->sol). */
+int lgnSaddlePointBackSolve(LGNMem mem)
+{
+  sunindextype i;
+  int flag;
+  /* GGL: mu's rows are mu = 0 (identity, lgn_matrix.c) */
+  for (i = mem->nv + mem->m; i < mem->nv + mem->nalg; i++) lgnData(mem->rhs)[i] = SUN_RCONST(0.0);
+  flag = lgnLsSolve(mem, mem->sol, mem->rhs);
   if (flag == LGN_SUCCESS && !lgnAllFinite(lgnData(mem->sol), mem->nv + mem->m))
     flag = LGN_IC_FAIL;
   return lgnAgree(mem, flag);
 }
 
-/* The index-1 system at (t, q, v): (vdot, lambda) into mem->sol. */
-static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
+/* Both: factorise and solve for mem->rhs. */
+static int SaddlePointSolve(LGNMem mem, sunrealtype t)
+{
+  int flag = lgnSaddlePointFactor(mem, t);
+  if (flag == LGN_SUCCESS) flag = lgnSaddlePointBackSolve(mem);
+  return flag;
+}
+
+/* The index-1 right-hand side (-g, -z) at the (t, q1, v1) of EvalAt into
+ * mem->rhs: LGN_SUCCESS, a callback's flag or LGN_NONFINITE (reported). */
+int lgnIndex1Rhs(LGNMem mem, sunrealtype t)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype *rhs = lgnData(mem->rhs);
   const sunrealtype *g = lgnData(mem->g);
   int ret = LGN_SUCCESS, flag;
 
-  flag = EvalAt(mem, t, q, v); /* B: the matrix below */
-  if (flag != LGN_SUCCESS) return flag;
   for (i = 0; i < nv; i++) rhs[i] = -g[i];
   if (m > 0) {
     if (mem->curvature != NULL) {
@@ -108,11 +122,17 @@ static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
   flag = ret;
   if (flag == LGN_SUCCESS && !lgnAllFinite(rhs, nv + m)) {
     LGN_ERROR(mem, LGN_NONFINITE,
-              MSG_TIME "NaN or Inf in the forces or constraint curvature at "
-              "the initial state.", (double)t);
+              MSG_TIME "NaN or Inf in the forces or constraint curvature.", (double)t);
     flag = LGN_NONFINITE;
   }
-  flag = lgnAgree(mem, flag);
+  return lgnAgree(mem, flag);
+}
+
+/* The index-1 system at (t, q, v): (vdot, lambda) into mem->sol. */
+static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
+{
+  int flag = lgnEvalAt(mem, t, q, v); /* B: the matrix below */
+  if (flag == LGN_SUCCESS) flag = lgnIndex1Rhs(mem, t);
   if (flag != LGN_SUCCESS) return flag;
   flag = SaddlePointSolve(mem, t);
   if (flag == LGN_IC_FAIL) {
@@ -169,12 +189,12 @@ static sunrealtype MaxAbs(const sunrealtype *x, sunindextype n, sunindextype *im
   return r;
 }
 
-/* Phi(q) into mem->phi (t = tn). */
-static int EvalPhi(LGNMem mem, N_Vector q)
+/* Phi(q, t) into mem->phi. */
+static int EvalPhi(LGNMem mem, sunrealtype t, N_Vector q)
 {
   int ret;
   N_VConst(SUN_RCONST(0.0), mem->phi);
-  ret = mem->constr(mem->tn, q, mem->phi, mem->user_data);
+  ret = mem->constr(t, q, mem->phi, mem->user_data);
   return lgnAgree(mem, lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->phi, __func__));
 }
 
@@ -189,13 +209,19 @@ static int EvalBv(LGNMem mem, N_Vector q, N_Vector v)
                                              mem->work_m));
 }
 
-static sunrealtype QScale(LGNMem mem)
+/* max(1, |q|_inf) over the ranks. */
+static sunrealtype QScaleOf(LGNMem mem, N_Vector qv)
 {
   sunindextype i;
   sunrealtype s = SUN_RCONST(1.0);
-  const sunrealtype *q = lgnData(mem->q);
+  const sunrealtype *q = lgnData(qv);
   for (i = 0; i < mem->nq; i++) s = SUNMAX(s, fabs(q[i]));
   return lgnMaxAll(mem, s);
+}
+
+static sunrealtype QScale(LGNMem mem)
+{
+  return QScaleOf(mem, mem->q);
 }
 
 /* The check's tolerances (header comment). */
@@ -223,7 +249,7 @@ static int CheckConsistency(LGNMem mem)
   int flag;
   if (mem->m == 0 || mem->user_vdot0) return LGN_SUCCESS;
   if (mem->constr_index != LGN_CONSTR_INDEX2) { /* index 3 and GGL: Phi */
-    flag = EvalPhi(mem, mem->q);
+    flag = EvalPhi(mem, mem->tn, mem->q);
     if (flag != LGN_SUCCESS) return flag;
     viol = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), mem->m, &i));
     tol  = TolPhi(mem);
@@ -267,53 +293,64 @@ int lgnInitialConditions(LGNMem mem)
  * The projections of LGNCalcIC
  * ===========================================================================*/
 
-/* q onto Phi(q) = 0 by Newton on the group, minimum-norm steps in M. */
-static int ProjectQ(LGNMem mem)
+/* q onto Phi(q, t) = 0 by Newton on the group, minimum-norm steps in M,
+ *   [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q, t)),  q <- q o exp(dq),
+ * until |Phi|_inf <= 100 eps max(1, |q|_inf), or it stalls (stops
+ * contracting) below tol_stall, after at least min_it iterations unless
+ * Phi = 0 (so that the number of iterations does not hang on roundoff
+ * near the threshold, e.g. on the number of ranks); v only for the
+ * model's evaluation. what names the projection in messages. */
+int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                  sunrealtype tol_stall, int min_it, const char *what)
 {
   const sunindextype nv = mem->nv, m = mem->m;
-  const sunrealtype qscale = QScale(mem);
-  const sunrealtype tol_round = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * qscale;
-  const sunrealtype tol_stall = SUN_RCONST(0.01) * TolPhi(mem);
+  const sunrealtype tol_round = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * QScaleOf(mem, q);
   sunrealtype *rhs = lgnData(mem->rhs), nrm, prev = SUN_RCONST(0.0);
   sunindextype i, imax;
   int it, flag, ret;
 
   for (it = 0;; it++) {
-    flag = EvalPhi(mem, mem->q);
+    flag = EvalPhi(mem, t, q);
     if (flag != LGN_SUCCESS) return flag;
     nrm = lgnMaxAll(mem, MaxAbs(lgnData(mem->phi), m, &imax));
-    if (nrm <= tol_round) return LGN_SUCCESS;
+    if (nrm <= tol_round && (it >= min_it || nrm == SUN_RCONST(0.0))) return LGN_SUCCESS;
     /* no longer contracting: roundoff level of this model's Phi */
     if (it >= 2 && nrm > SUN_RCONST(0.5) * prev && nrm <= tol_stall) return LGN_SUCCESS;
     if (it == LGN_IC_MAXIT || !isfinite(nrm)) {
       LGN_ERROR(mem, LGN_IC_FAIL,
-                MSG_TIME "LGNCalcIC: the projection of q0 onto Phi(q) = 0 did "
-                "not converge in %d Newton iterations: |Phi|_inf = %g "
-                "(constraint %lld), wanted <= %g.", (double)mem->tn, it,
-                (double)nrm, (long long)imax, (double)tol_stall);
+                MSG_TIME "%s onto Phi(q) = 0 did not converge in %d Newton "
+                "iterations: |Phi|_inf = %g (constraint %lld), wanted <= %g.",
+                (double)t, what, it, (double)nrm, (long long)imax, (double)tol_stall);
       return LGN_IC_FAIL;
     }
     prev = nrm;
-    flag = EvalAt(mem, mem->tn, mem->q, mem->v);
+    flag = lgnEvalAt(mem, t, q, v);
     if (flag != LGN_SUCCESS) return flag;
     for (i = 0; i < nv; i++) rhs[i] = SUN_RCONST(0.0);
     for (i = 0; i < m; i++) rhs[nv + i] = -lgnData(mem->phi)[i];
-    flag = SaddlePointSolve(mem, mem->tn);
+    flag = SaddlePointSolve(mem, t);
     if (flag != LGN_SUCCESS) {
       LGN_ERROR(mem, LGN_IC_FAIL,
-                MSG_TIME "LGNCalcIC: the projection of q0 failed: [[M, B^T], "
-                "[B, 0]] is singular or the solve failed (check M and B near "
-                "q0).", (double)mem->tn);
+                MSG_TIME "%s failed: [[M, B^T], [B, 0]] is singular or the "
+                "solve failed (check M and B near q).", (double)t, what);
       return LGN_IC_FAIL;
     }
     /* q <- q o exp(dq) (through q1: compose_exp may not alias) */
-    ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q), lgnData(mem->sol),
+    ret = mem->G->ops.compose_exp(mem->G, lgnData(q), lgnData(mem->sol),
                                   lgnData(mem->q1));
     ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__)
                                   : LGN_SUCCESS);
     if (ret != LGN_SUCCESS) return ret;
-    N_VScale(SUN_RCONST(1.0), mem->q1, mem->q);
+    N_VScale(SUN_RCONST(1.0), mem->q1, q);
   }
+}
+
+/* q0 onto Phi(q) = 0 (LGNCalcIC): down to roundoff, or to a stall below a
+ * hundredth of the check's tolerance. */
+static int ProjectQ(LGNMem mem)
+{
+  return lgnProjectQAt(mem, mem->tn, mem->q, mem->v, SUN_RCONST(0.01) * TolPhi(mem), 0,
+                       "LGNCalcIC: the projection of q0");
 }
 
 /* v onto B(q) v + Phi_t = 0, the M-orthogonal projection. */
@@ -331,7 +368,7 @@ static int ProjectV(LGNMem mem)
     nrm = lgnMaxAll(mem, MaxAbs(mem->work_m, m, &imax));
     if (nrm <= SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * N_VMaxNorm(mem->v)) break;
     for (i = 0; i < m; i++) rhs[nv + i] = -mem->work_m[i];
-    flag = EvalAt(mem, mem->tn, mem->q, mem->v);
+    flag = lgnEvalAt(mem, mem->tn, mem->q, mem->v);
     if (flag != LGN_SUCCESS) return flag;
     for (i = 0; i < nv; i++) rhs[i] = SUN_RCONST(0.0);
     flag = SaddlePointSolve(mem, mem->tn);
@@ -437,7 +474,7 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
     if (flag == LGN_SUCCESS) {
       for (i = 0; i < nv; i++)
         vdp[i] = h * c0 * hvdd[i] - h * h * SUN_RCONST(2.0) * w[i] / SUN_RCONST(12.0);
-      flag = EvalAt(mem, mem->tn, mem->q, mem->v); /* B(q0) */
+      flag = lgnEvalAt(mem, mem->tn, mem->q, mem->v); /* B(q0) */
     }
     if (flag == LGN_SUCCESS) {
       for (i = 0; i < nv; i++) rhs[i] = SUN_RCONST(0.0);

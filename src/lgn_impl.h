@@ -328,6 +328,22 @@ typedef struct LGNMemRec {
   sunrealtype *zero_nv;     /* zeros (nv), the algebra's origin            */
   sunrealtype *dense_work;  /* the dense output's scratch (4 nv)           */
 
+  /* ---- what LGNSolve returns (lgn_output.c) ---- */
+  sunbooleantype out_consistent; /* LGNSetConsistentOutputs (default on)  */
+  int out_project;          /* LGNSetProjectOutputs: LGN_PROJECT_*        */
+  sunbooleantype out_valid; /* out_vdot, out_lambda hold the last output's */
+  sunrealtype out_t;        /* ... time                                    */
+  sunrealtype *out_vdot;    /* consistent vdot at the last output (nv)     */
+  sunrealtype *out_lambda;  /* ... and lambda (m; NULL when m = 0)         */
+  sunrealtype *out_save;    /* q1, v1, vdot1, lambda1 kept while an output
+                               is computed (nq + 3 nv + m)                 */
+  N_Vector out_q, out_v;    /* LGNGetDky's q and v (clones; NULL until used) */
+  sunrealtype *out_lwork;   /* the iterate's consistent lambda (m)         */
+  sunbooleantype lambda_errcon; /* LGNSetMultiplierErrorControl (default off) */
+  sunrealtype lambda_atol;  /* ... its absolute tolerance of the multipliers */
+  sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
+  long int nout;            /* outputs made consistent or projected        */
+
   /* ---- root finding (lgn_root.c; arrays allocated by lgn_mem.c) ---- */
   int nrtfn;                /* number of root functions (0: off)           */
   LGNRootFn gfun;           /* g(t, q, v, gout, user_data)                 */
@@ -581,6 +597,17 @@ int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    
 int lgnProjectIC(LGNMem mem, int icopt);
 int lgnPerturbedStart(LGNMem mem, sunrealtype h);
 
+/* The saddle-point system [[M, B^T], [B, 0]] at (t, q, v), through the
+ * iterate slots q1, v1 (vdot1, lambda1 zeroed): lgnEvalAt evaluates M, g,
+ * B there, lgnSaddlePointFactor factorises, lgnSaddlePointBackSolve solves
+ * for mem->rhs into mem->sol, lgnIndex1Rhs writes (-g, -z) into mem->rhs. */
+int lgnEvalAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v);
+int lgnSaddlePointFactor(LGNMem mem, sunrealtype t);
+int lgnSaddlePointBackSolve(LGNMem mem);
+int lgnIndex1Rhs(LGNMem mem, sunrealtype t);
+int lgnProjectQAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
+                  sunrealtype tol_stall, int min_it, const char *what);
+
 /* ---- lgn_newton.c: the Newton iteration of a step ----------------------- */
 
 void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c);
@@ -601,6 +628,15 @@ void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunr
 /* ---- lgn_dense.c: output between steps ---------------------------------- */
 
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+
+/* ---- lgn_output.c: the outputs LGNSolve and LGNGetDky return ------------- */
+
+int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v);
+int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky);
+/* The multipliers in the error test (LGNSetMultiplierErrorControl): the
+ * weighted RMS norm of lambda1 - lambda_c at the iterate (t1, q1, v1), 0
+ * when off; the slots are kept. */
+int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm);
 
 /* ---- lgn_step.c: one step ----------------------------------------------- */
 

@@ -625,7 +625,7 @@ int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky)
     return LGN_BAD_T;
   }
   t = SUNMIN(SUNMAX(t, mem->tprev), mem->tn);
-  return lgnDenseOutput(mem, t, k, N_VGetArrayPointer(dky));
+  return lgnOutputDky(mem, t, k, dky); /* projected, consistent (lgn_output.c) */
 }
 
 /* The getters' output x (length nv; NULL: no step attempted yet, zeros)
@@ -805,7 +805,10 @@ int LGNGetAcceleration(void *lgn_mem, N_Vector vdot)
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, vdot, mem->nv, "vdot", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
+  if (mem->out_valid) /* the last output's consistent value (lgn_output.c) */
+    memcpy(N_VGetArrayPointer(vdot), mem->out_vdot, (size_t)mem->nv * sizeof(sunrealtype));
+  else
+    N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
   return LGN_SUCCESS;
 }
 
@@ -822,7 +825,10 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
                 "No multipliers yet: they are computed at the first LGNSolve.");
       return LGN_ILL_INPUT;
     }
-    N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
+    if (mem->out_valid) /* the last output's consistent value (lgn_output.c) */
+      memcpy(N_VGetArrayPointer(lambda), mem->out_lambda, (size_t)mem->m * sizeof(sunrealtype));
+    else
+      N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
   }
   return LGN_SUCCESS;
 }

@@ -76,6 +76,7 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->dense_valid = SUNFALSE;
     mem->rt_started  = SUNFALSE; /* root finding restarts at the new t0 */
     mem->rt_pending  = SUNFALSE;
+    mem->out_valid   = SUNFALSE; /* the last output's vdot, lambda */
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
   if (what & (LGN_CHANGE_STATE | LGN_CHANGE_MODEL | LGN_CHANGE_METHOD))
@@ -424,6 +425,11 @@ void lgnFreeWork(LGNMem mem)
   mem->ele = mem->ewt = mem->a_scaled = mem->incr = mem->zero_nv = NULL;
   mem->ggl_mu = mem->ggl_Bn = NULL;
   mem->ggl_Bn_valid = SUNFALSE;
+  free(mem->out_vdot); /* the outputs' block (lgn_output.c) */
+  mem->out_vdot = mem->out_lambda = mem->out_save = mem->out_lwork = NULL;
+  mem->out_valid = SUNFALSE;
+  DestroyVector(&mem->out_q);
+  DestroyVector(&mem->out_v);
   free(mem->diag_red);
   mem->diag_red  = NULL;
   mem->diag_nred = 0;
@@ -707,7 +713,11 @@ int lgnAllocWork(LGNMem mem)
                                        sizeof(sunrealtype));
     /* the redundant constraints of a singular matrix (lgn_diag.c) */
     mem->diag_red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
-    fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL);
+    /* the outputs (lgn_output.c): vdot, lambda, the kept slots */
+    mem->out_vdot = (sunrealtype *)calloc((size_t)(mem->nq + 4 * nv + 3 * m),
+                                          sizeof(sunrealtype));
+    fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL ||
+                  mem->out_vdot == NULL);
   }
   if (lgnAgree(mem, fail ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeWork(mem);
@@ -736,6 +746,10 @@ int lgnAllocWork(LGNMem mem)
                                                                   : NULL;
   mem->ggl_Bn      = mem->ggl_mu != NULL ? mem->ggl_mu + m : NULL;
   mem->ggl_Bn_valid = SUNFALSE;
+  mem->out_lambda  = m > 0 ? mem->out_vdot + nv : NULL;
+  mem->out_save    = mem->out_vdot + nv + m;
+  mem->out_lwork   = m > 0 ? mem->out_save + mem->nq + 3 * nv + m : NULL;
+  mem->out_valid   = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
@@ -874,6 +888,8 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
     rw += 17 * nv + 3 * m + 3 * (long int)(mem->tlen + mem->blk_max);
     if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
+    rw += nq + 4 * nv + 3 * m;                            /* the outputs' block  */
+    if (mem->out_q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

@@ -95,6 +95,8 @@ static const RsField SettingFields[] = {
   SCALAR(hmin, RS_REAL),           SCALAR(hmax, RS_REAL),
   SCALAR(maxnef, RS_INT),          SCALAR(maxncf, RS_INT),
   SCALAR(accept_stalls, RS_BOOL),  ARRAY(rootdir, RS_INTS, LEN_NRTFN),
+  SCALAR(out_consistent, RS_BOOL), SCALAR(out_project, RS_INT),
+  SCALAR(lambda_errcon, RS_BOOL),  SCALAR(lambda_atol, RS_REAL),
 };
 
 /* The state at t_n and everything of the past steps the next ones read:
@@ -122,6 +124,11 @@ static const RsField StateFields[] = {
   SCALAR(err_norm, RS_REAL),        SCALAR(err_prev, RS_REAL),
   SCALAR(nls_rtol, RS_REAL),        SCALAR(nls_atol, RS_REAL),
   SCALAR(tstop, RS_REAL),           SCALAR(tstop_set, RS_BOOL),
+  SCALAR(nls_vfac, RS_REAL),        SCALAR(nls_lrtol, RS_REAL),
+  SCALAR(nls_latol, RS_REAL),       SCALAR(lambda_err, RS_REAL),
+  /* the last output's consistent vdot and lambda (LGNGetAcceleration ...) */
+  SCALAR(out_valid, RS_BOOL),       SCALAR(out_t, RS_REAL),
+  ARRAY(out_vdot, RS_REALS, LEN_NV), ARRAY(out_lambda, RS_REALS, LEN_M),
   /* GGL */
   ARRAY(ggl_mu, RS_REALS, LEN_M),   ARRAY(ggl_Bn, RS_REALS, LEN_GGL_MNV),
   SCALAR(ggl_Bn_valid, RS_BOOL),    SCALAR(ggl_t1, RS_REAL),
@@ -159,7 +166,7 @@ static const RsField StateFields[] = {
   SCALAR(nklu_copy, RS_LONG), SCALAR(nklu_values, RS_LONG),
   SCALAR(nklu_refactor, RS_LONG), SCALAR(nklu_solve, RS_LONG),
   SCALAR(nklu_newpattern, RS_LONG), SCALAR(nklu_nocopy, RS_LONG),
-  SCALAR(last_lin_flag, RS_LONG),
+  SCALAR(last_lin_flag, RS_LONG), SCALAR(nout, RS_LONG),
 };
 
 #define NUM_FIELDS(t) (sizeof(t) / sizeof((t)[0]))

@@ -919,6 +919,11 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
     flag = LGNSetStepControl(o->mem, LGN_STEP_ADAPTIVE);
     if (flag == 0) flag = LGNSetStopTime(o->mem, opt->t_end);
   }
+  /* the heavy top's studies measure the method itself: the step's own
+   * vdot_n and lambda_n, and the step's q, v (not the consistent and
+   * projected outputs of LGNSetConsistentOutputs / LGNSetProjectOutputs) */
+  if (flag == 0) flag = LGNSetConsistentOutputs(o->mem, SUNFALSE);
+  if (flag == 0) flag = LGNSetProjectOutputs(o->mem, LGN_PROJECT_NONE);
   if (flag == 0) flag = LGNSetPredictor(o->mem, opt->predictor);
   if (flag == 0) flag = LGNSetNewtonMode(o->mem, opt->newton);
   if (flag == 0) flag = LGNSetLSetupFrequency(o->mem, opt->msbp);

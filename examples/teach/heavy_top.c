@@ -17,8 +17,9 @@
  * all from the helpers: the model callbacks below only forward to them.
  * Output: t, the centre of mass x, the energy and |Phi|_2 every 0.1 s, then
  * the step statistics. With error control LGNSolve (LGN_NORMAL) returns the
- * dense output at tout, interpolated inside a step: there |Phi| is of the
- * size of the tolerances, not the round-off of the step ends.
+ * dense output at tout, interpolated inside a step, projected onto the
+ * constraints (LGNSetProjectOutputs): |Phi| is at round-off there too (the
+ * interpolant itself is off by about the tolerances, 1e-6).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 

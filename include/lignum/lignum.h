@@ -495,9 +495,26 @@ LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
  *  (nsteps[0] = 0); six entries. */
 LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
 
-/** Acceleration vdot at the current time (length nv). */
+/** Acceleration vdot (length nv) at the last output of LGNSolve (its
+ *  tret, whether a step end, a stop time, an event or an interpolated
+ *  tout): with consistent outputs (LGNSetConsistentOutputs, the default)
+ *  the index-1 value at the returned (tret, q, v), accurate to the
+ *  tolerance in every method and constraint form and equal to LGNGetDky(tret,
+ *  2); without them, or before the first LGNSolve, or after an LGNSolve that
+ *  failed after taking steps, the step's own vdot at the current time
+ *  (LGNGetCurrentTime). */
 LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
-/** Multipliers lambda at the current time (length m). */
+/** Multipliers lambda (length m) at the last output of LGNSolve: with
+ *  consistent outputs (LGNSetConsistentOutputs, the default) the index-1
+ *  multipliers at the returned (tret, q, v), from
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g, -z), accurate to the tolerance
+ *  at every output; B(q)^T lambda at the returned q (LGNJoints_ConstraintForce)
+ *  is the joint forces and motor torques. Without them (or before the first
+ *  LGNSolve, or after one that failed after taking steps) the step's own
+ *  multipliers at the current time, which no error test measures
+ *  (generalized-alpha's carry O(h) errors after a change of step size).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (lambda
+ *          NULL or of the wrong length, or no multipliers yet). */
 LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
 /** Algorithmic acceleration a at the current time (length nv). */
 LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
@@ -613,12 +630,85 @@ LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
 
 /** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
  *  the last step [t_n, t_{n+1}], from the dense output on the group: a
- *  cubic Hermite interpolant in the chart of the step, matching q and v at
- *  both ends, of the order of the method (vdot first order).
+ *  cubic Hermite interpolant in the chart of the step (BDF: its own
+ *  polynomials), matching q and v at both ends, of the order of the
+ *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
+ *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
+ *  consistent outputs (the default) vdot is the index-1 acceleration at
+ *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
+ *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
+ *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
+ *  not changed.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
  *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
- *          (dky NULL or of the wrong length), LGN_GROUP_FAIL. */
+ *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
+ *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
+ *          system at t singular, or the projection not converging). */
 LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
+
+/** Consistent outputs (default SUNTRUE): at every output of LGNSolve (step
+ *  end, stop time, event, interpolated tout) Lignum solves the index-1 form
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g(q, v, t), -z(q, v, t)) at the
+ *  returned (t, q, v) - one factorisation of the saddle-point matrix per
+ *  output, shared with the projection - and LGNGetAcceleration,
+ *  LGNGetMultipliers and LGNGetDky(t, 2) return that vdot and lambda,
+ *  accurate to the tolerance in both method families and every constraint
+ *  form. SUNFALSE: they return the step's own vdot_{n+1}, lambda_{n+1} at the
+ *  current time (cheaper; the multipliers are outside every error test).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
+ *          SUNFALSE). */
+LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
+
+/* Which outputs LGNSetProjectOutputs projects. */
+#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
+#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
+#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
+
+/** Outputs on the constraints: the q and v that LGNSolve and LGNGetDky
+ *  return are projected onto Phi(q, t) = 0 (Newton on the group,
+ *  minimum-norm steps in the metric of M, to roundoff) and then onto
+ *  B(q, t) v + Phi_t = 0, so that they satisfy the position and velocity
+ *  constraints to roundoff, at every index:
+ *  - LGN_PROJECT_ALL (default): every output, the step ends (stop time,
+ *    LGN_ONE_STEP, a fixed step landing on tout) too: at index 3 their
+ *    B v + Phi_t is not at roundoff, at index 2 their Phi drifts, and the
+ *    consistent multipliers (LGNSetConsistentOutputs) of an unprojected
+ *    index-3 step end carry that velocity error;
+ *  - LGN_PROJECT_INTERPOLATED: the outputs between steps (an interpolated
+ *    tout, an event); a step end is returned as the integrator's state;
+ *  - LGN_PROJECT_NONE: no projection: the interpolant's or the step's q, v.
+ *  Only the returned values are projected: the integrator goes on from its
+ *  own state, and the results at later times do not change (a restart from
+ *  the returned q, v, e.g. LGNReInit, starts from the projected values).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another which). */
+LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
+
+/** The multipliers in the error test (as IDA's IDASetSuppressAlg(FALSE);
+ *  default off): every error-controlled step also computes the consistent
+ *  multipliers lambda_c of the index-1 system at its new (t, q, v) and
+ *  accepts the step only when its own multipliers agree with them,
+ *  sqrt((1/m) sum_i ((lambda_i - lambda_c_i) / (atol_lambda + rtol
+ *  |lambda_c_i|))^2) <= 1, with the rtol of LGNSStolerances. The step's
+ *  own multipliers (LGNSetConsistentOutputs off) are then accurate to the
+ *  tolerance, at the price of smaller steps where they are not and of one
+ *  more factorisation of [[M, B^T], [B, 0]] per attempt. Not needed for
+ *  accurate outputs: the consistent outputs (default) give them at every
+ *  output. Fixed steps are not affected. Index 2 and GGL only: at index 3
+ *  the multipliers are determined only to Newton's tolerance ~ atol / h,
+ *  and LGNSolve refuses the setting (LGN_ILL_INPUT).
+ *  @param lgn_mem     the integrator memory (LGNCreate)
+ *  @param on          SUNTRUE or SUNFALSE
+ *  @param atol_lambda the multipliers' absolute tolerance, > 0, in their
+ *                     units (forces, torques); ignored when off
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not a boolean, or
+ *          atol_lambda not > 0 and finite while on). */
+LGN_EXPORT int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on,
+                                            sunrealtype atol_lambda);
+
+/** The number of outputs made consistent or projected (LGNSolve's and
+ *  LGNGetDky's), each one or more factorisations of the saddle-point
+ *  matrix (counted in LGNGetNumLinSolvSetups as well). */
+LGN_EXPORT int LGNGetNumOutputSolves(void *lgn_mem, long int *nout);
 
 /** The step size to be tried next (error control) or the fixed h. */
 LGN_EXPORT int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur);

@@ -294,7 +294,13 @@ LGN_EXPORT int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q,
  * forming B. For use in an LGNConstrForceFn. f is overwritten entirely:
  * the entries of bodies in no joint become 0. Equals B(q)^T lambda of
  * LGNJoints_Jacobian to round-off. With no joints (m = 0), lambda is not
- * read and f = 0.
+ * read and f = 0. The joint forces and motor torques at an output of
+ * LGNSolve: t, q as returned and lambda from LGNGetMultipliers (by default
+ * the consistent multipliers at that (t, q, v), LGNSetConsistentOutputs),
+ * so that M vdot + g + f = 0 holds there with vdot from
+ * LGNGetAcceleration: the joints act on the bodies with -f (a driver's
+ * body b feels -lambda_i times its axis: lambda_i is minus the motor
+ * torque or actuator force, doc/conventions.md).
  */
 LGN_EXPORT int LGNJoints_ConstraintForce(LGNJoints J, sunrealtype t,
                                          N_Vector q, N_Vector lambda,

@@ -194,6 +194,10 @@ static int RunCreate(Run *r, SUNContext ctx, int klu, int index, double h,
     r->LS = SUNLinSol_Dense(r->tmpl, r->A, ctx);
   }
   r->mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   if (!r->G || !r->q || !r->v || !r->A || !r->LS || !r->mem) return LGN_MEM_FAIL;
   Start(r, dx, du);
   flag = LGNSetGroup(r->mem, r->G);

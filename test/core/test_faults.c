@@ -297,6 +297,10 @@ static int RunCreate(Run *r, SUNContext ctx, int solver, int newton, int with_cf
 #endif
   }
   r->mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   InitialState(r->q, r->v);
   /* as LGNInit stores it, so that the state before the first call is the
    * integrator's */

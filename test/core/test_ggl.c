@@ -157,6 +157,10 @@ static int RunCreate(Run *r, SUNContext ctx, int index, int n)
   r->A   = SUNDenseMatrix(n, n, ctx);
   r->LS  = LGNLinSol_Dense(r->y, r->A, ctx);
   r->mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   flag = LGNSetGroup(r->mem, r->G);
   if (!flag) flag = LGNSetUserData(r->mem, &r->top);
   if (!flag) flag = LGNSetMassFn(r->mem, Mass);
@@ -426,6 +430,10 @@ static double PendulumTextbook(SUNContext ctx, int k, double h, int nsteps)
   SUNMatrix A = SUNDenseMatrix(4, 4, ctx); /* nv + 2m = 4 */
   SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
   void *mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(mem, SUNFALSE);
+  LGNSetProjectOutputs(mem, LGN_PROJECT_NONE);
   sunrealtype t;
   int n, j, kk, it, i, c, flag;
 
@@ -550,6 +558,10 @@ static int BeadRun(SUNContext ctx, double tol, double *err, double *phi, double 
   SUNMatrix A = SUNDenseMatrix(4, 4, ctx), B = SUNDenseMatrix(1, 2, ctx);
   SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
   void *mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(mem, SUNFALSE);
+  LGNSetProjectOutputs(mem, LGN_PROJECT_NONE);
   sunrealtype t;
   double r;
   int flag;

@@ -144,6 +144,10 @@ static int RunCreate(Run *r, SUNContext ctx, int index, int n)
   r->A   = SUNDenseMatrix(n, n, ctx);
   r->LS  = LGNLinSol_Dense(r->y, r->A, ctx);
   r->mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   flag = LGNSetGroup(r->mem, r->G);
   if (!flag) flag = LGNSetUserData(r->mem, &r->top);
   if (!flag) flag = LGNSetMassFn(r->mem, Mass);
@@ -483,6 +487,10 @@ static double PendulumTextbook(SUNContext ctx, int kin, double rho, double h, in
   SUNMatrix A = SUNDenseMatrix(4, 4, ctx);
   SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
   void *mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(mem, SUNFALSE);
+  LGNSetProjectOutputs(mem, LGN_PROJECT_NONE);
   sunrealtype am, af, be, ga, t;
   PendState s = {{0.6, -0.8}, {1.2, 0.9}, {0, 0}, {0, 0}, 0};
   double dmax = HUGE_VAL;
@@ -587,6 +595,10 @@ static int BeadRun(SUNContext ctx, int kin, double h, double *err, double *phi, 
   SUNMatrix A = SUNDenseMatrix(4, 4, ctx), B = SUNDenseMatrix(1, 2, ctx);
   SUNLinearSolver LS = LGNLinSol_Dense(y, A, ctx);
   void *mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(mem, SUNFALSE);
+  LGNSetProjectOutputs(mem, LGN_PROJECT_NONE);
   sunrealtype t;
   double r;
   int flag;

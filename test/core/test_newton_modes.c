@@ -131,6 +131,10 @@ static int OscCreate(Oscillator *o, int mode, int maxcor)
   o->A    = SUNDenseMatrix(1, 1, o->ctx);
   o->LS   = SUNLinSol_Dense(o->tmpl, o->A, o->ctx);
   o->mem  = LGNCreate(o->ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(o->mem, SUNFALSE);
+  LGNSetProjectOutputs(o->mem, LGN_PROJECT_NONE);
   NV_Ith_S(o->q, 0) = 1.0;
   NV_Ith_S(o->v, 0) = 0.0;
   flag = LGNSetGroup(o->mem, o->G);

@@ -190,6 +190,10 @@ static int RunCreate(Run *r, SUNContext ctx, LGNGroup G, int pinned, const Body 
     N_VDestroy(y);
   }
   r->mem = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   InitialState(b, pinned, r->q, r->v);
   flag = LGNSetGroup(r->mem, G);
   if (!flag) flag = LGNSetUserData(r->mem, (void *)b);

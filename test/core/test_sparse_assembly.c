@@ -295,6 +295,10 @@ static int RunCreate(Run *r, RigidSystem *sys, const Config *c, int dense, int f
     r->LS = SUNLinSol_KLU(r->tmpl, r->A, ctx);
   }
   r->mem    = LGNCreate(ctx);
+  /* the step's own values (q_n, v_n, vdot_n, lambda_n): not the consistent,
+   * projected outputs (LGNSetConsistentOutputs, LGNSetProjectOutputs) */
+  LGNSetConsistentOutputs(r->mem, SUNFALSE);
+  LGNSetProjectOutputs(r->mem, LGN_PROJECT_NONE);
   r->md.mem = r->mem;
   flag = LGNSetGroup(r->mem, sys->G);
   if (!flag) flag = LGNInit(r->mem, 0.0, sys->q0, sys->v0);

@@ -479,6 +479,17 @@ contains
                 "LGNSetInitialAcceleration(vdot0, NULL)")
     call expect(LGNSetInitialAux(mem, vdot) == 0, "LGNSetInitialAux")
     call expect(LGNSetPerturbedStart(mem, 0_c_int) == 0, "LGNSetPerturbedStart(0)")
+    call expect(LGNSetConsistentOutputs(mem, 1_c_int) == 0, "LGNSetConsistentOutputs(1)")
+    call expect(LGNSetProjectOutputs(mem, LGN_PROJECT_INTERPOLATED) == 0, &
+                "LGNSetProjectOutputs(LGN_PROJECT_INTERPOLATED)")
+    call expect_flag(LGNSetProjectOutputs(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetProjectOutputs(7)")
+    call expect_flag(LGNSetMultiplierErrorControl(mem, 1_c_int, 0.0_c_double), LGN_ILL_INPUT, &
+                     "LGN_ILL_INPUT", "LGNSetMultiplierErrorControl(1, 0)")
+    call expect(LGNSetMultiplierErrorControl(mem, 0_c_int, 0.0_c_double) == 0, &
+                "LGNSetMultiplierErrorControl(0)")
+    call expect(LGNGetNumOutputSolves(mem, nge) == 0 .and. nge == 0, &
+                "LGNGetNumOutputSolves before a solve")
     call expect_flag(LGNCalcIC(mem, 9_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "LGNCalcIC(icopt = 9)")
     call expect(LGNGetConsistentIC(mem, q, c_null_ptr) == 0, "LGNGetConsistentIC(q0, NULL)")

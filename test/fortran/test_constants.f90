@@ -110,6 +110,9 @@ program test_constants
   call check("LGN_IC_PROJECT_Q", LGN_IC_PROJECT_Q)
   call check("LGN_IC_PROJECT_V", LGN_IC_PROJECT_V)
   call check("LGN_IC_PROJECT_QV", LGN_IC_PROJECT_QV)
+  call check("LGN_PROJECT_NONE", LGN_PROJECT_NONE)
+  call check("LGN_PROJECT_INTERPOLATED", LGN_PROJECT_INTERPOLATED)
+  call check("LGN_PROJECT_ALL", LGN_PROJECT_ALL)
 
   ! --- lignum_group.h: LGNGroupKind -------------------------------------------------
   call check("LGN_GROUP_CUSTOM", LGN_GROUP_CUSTOM)

@@ -93,6 +93,9 @@ program heavy_top_f
   call check(LGNSetStepSize(mem, h), "LGNSetStepSize")
   if (rtol > 0.0_c_double .or. atol > 0.0_c_double) &
     call check(LGNSStolerances(mem, rtol, atol), "LGNSStolerances")
+  ! the step's own values, as the C model (bench/models/heavy_top.c)
+  call check(LGNSetConsistentOutputs(mem, 0_c_int), "LGNSetConsistentOutputs")
+  call check(LGNSetProjectOutputs(mem, LGN_PROJECT_NONE), "LGNSetProjectOutputs")
   call check(LGNSetPredictor(mem, predictor), "LGNSetPredictor")
 
   ! --- integrate: consistent initial values, then output at t_k = k h -------------
