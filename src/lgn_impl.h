@@ -167,6 +167,12 @@ typedef struct LGNMemRec {
   sunrealtype tn;
   N_Vector q, v, vdot, a;   /* configuration, velocity, acceleration, aux  */
   N_Vector lambda;          /* multipliers (NULL when m = 0)               */
+  sunbooleantype lambda_valid; /* lambda holds multipliers computed (or
+                                  given) at t_n, not the work space's zeros */
+  sunrealtype *lambda_keep; /* the last valid multipliers while the work
+                               space is dropped (a setter changed sizes):
+                               restored when it is made again with this m */
+  sunindextype lambda_keep_len;
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */

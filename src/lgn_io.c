@@ -749,6 +749,7 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
   if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  mem->lambda_valid = SUNTRUE;
   lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */
   mem->user_vdot0 = SUNTRUE;
   return LGN_SUCCESS;
@@ -817,12 +818,20 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
   flag = lgnCheckVector(mem, lambda, mem->m, "lambda", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (mem->m > 0) {
-    if (mem->lambda == NULL) {
+    /* the last valid multipliers: in the work space, or kept while a
+     * setter dropped it (never the zeros of a new work space) */
+    if (mem->lambda != NULL && mem->lambda_valid) {
+      N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
+    } else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
+      memcpy(N_VGetArrayPointer(lambda), mem->lambda_keep,
+             (size_t)mem->m * sizeof(sunrealtype));
+    } else {
       LGN_ERROR(mem, LGN_ILL_INPUT,
-                "No multipliers yet: they are computed at the first LGNSolve.");
+                "No multipliers yet for the %lld constraints: they are computed "
+                "at the start of the next LGNSolve that gets that far.",
+                (long long)mem->m);
       return LGN_ILL_INPUT;
     }
-    N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
   }
   return LGN_SUCCESS;
 }

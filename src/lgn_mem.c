@@ -399,9 +399,37 @@ void lgnFreeMatrices(LGNMem mem)
   mem->ls_restart = SUNTRUE;
 }
 
+/* The last valid multipliers outlive the work space that holds them (a
+ * setter of the sizes drops it; LGNGetMultipliers then still reports them,
+ * never the zeros of a new work space): kept here, restored by
+ * lgnAllocWork when m is the same. */
+static void KeepMultipliers(LGNMem mem)
+{
+  const sunindextype m = mem->lambda != NULL ? lgnLocalLength(mem->lambda) : 0;
+  if (!mem->lambda_valid || m == 0) return;
+  free(mem->lambda_keep);
+  mem->lambda_keep     = (sunrealtype *)malloc((size_t)m * sizeof(sunrealtype));
+  mem->lambda_keep_len = mem->lambda_keep != NULL ? m : 0;
+  if (mem->lambda_keep != NULL)
+    memcpy(mem->lambda_keep, lgnData(mem->lambda), (size_t)m * sizeof(sunrealtype));
+  mem->lambda_valid = SUNFALSE;
+}
+
+static void RestoreMultipliers(LGNMem mem)
+{
+  if (mem->lambda != NULL && mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
+    memcpy(lgnData(mem->lambda), mem->lambda_keep, (size_t)mem->m * sizeof(sunrealtype));
+    mem->lambda_valid = SUNTRUE;
+  }
+  free(mem->lambda_keep);
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
+}
+
 void lgnFreeWork(LGNMem mem)
 {
   lgnFreeMatrices(mem);
+  KeepMultipliers(mem);
   DestroyVector(&mem->lambda);
   DestroyVector(&mem->lambda1);
   DestroyVector(&mem->g);
@@ -455,6 +483,9 @@ void lgnFreeAll(LGNMem mem)
   mem->atol_vec = NULL;
   lgnFreeRoots(mem);
   lgnParallelFree(&mem->par);
+  free(mem->lambda_keep); /* (kept by lgnFreeWork above) */
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
 }
 
 /* =============================================================================
@@ -587,6 +618,9 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
 {
   lgnFreeWork(mem);
   lgnFreeState(mem);
+  free(mem->lambda_keep); /* a new problem: the old multipliers are not its */
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
   mem->nq    = mem->G->nq;
   mem->nv    = mem->G->nv;
   mem->nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
@@ -737,6 +771,8 @@ int lgnAllocWork(LGNMem mem)
   mem->ggl_Bn      = mem->ggl_mu != NULL ? mem->ggl_mu + m : NULL;
   mem->ggl_Bn_valid = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
+  mem->lambda_valid = SUNFALSE;
+  RestoreMultipliers(mem); /* the last valid ones, if m is the same */
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
 }

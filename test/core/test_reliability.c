@@ -1,0 +1,245 @@
+/* -----------------------------------------------------------------------------
+ * Lignum test: reliability after failures and of settings (issue 31).
+ *
+ * A heavy top (R^3 x SO(3), pinned at Xp: 6 velocities, 3 constraints).
+ * (a) After a failed LGNSolve every getter returns the last valid values or
+ *     a flag, never made-up numbers with success: the multipliers after
+ *     LGN_LS_MISMATCH (GGL with the index-3 solver still attached) are the
+ *     last ones computed, bit for bit; before any are computed the getter
+ *     says so (it returned zeros with success before).
+ * SPDX-License-Identifier: BSD-3-Clause
+ * ---------------------------------------------------------------------------*/
+
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lignum/lignum.h>
+#include <lignum/lignum_bodies.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunmatrix/sunmatrix_dense.h>
+
+#include "test_util.h"
+
+#define GRAV 9.81
+static const double MASS = 2.0, JB[3] = {0.3, 0.5, 0.7}, XP[3] = {0.0, 0.0, 0.4};
+
+/* (d): the force callback fails recoverably (+1) at t > t_fail while set */
+static int force_broken = 0;
+static const double t_fail = 0.02;
+
+/* the last message of the error handler, and its code */
+static char last_msg[1024];
+static int last_code = 0;
+
+static void Handler(int code, const char *module, const char *function, const char *msg,
+                    void *data)
+{
+  (void)module; (void)function; (void)data;
+  last_code = code;
+  if (getenv("LGN_TEST_VERBOSE") != NULL) printf("  [%d] %s: %s\n", code, function, msg);
+  snprintf(last_msg, sizeof last_msg, "%s", msg);
+}
+
+static void Rotation(N_Vector q, double R[9])
+{
+  LGNQuaternionToRotation(N_VGetArrayPointer(q) + 3, R);
+}
+
+static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
+{
+  int i;
+  (void)t; (void)q; (void)ud;
+  for (i = 0; i < 3; i++) {
+    SM_ELEMENT_D(M, i, i)         = MASS;
+    SM_ELEMENT_D(M, i + 3, i + 3) = JB[i];
+  }
+  return 0;
+}
+
+/* g = (m g e3, W x J W) */
+static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  const double *W = N_VGetArrayPointer(v) + 3;
+  double *gg = N_VGetArrayPointer(g);
+  (void)q; (void)ud;
+  if (force_broken && t > t_fail) return 1;
+  gg[0] = gg[1] = 0.0;
+  gg[2] = MASS * GRAV;
+  gg[3] = W[1] * JB[2] * W[2] - W[2] * JB[1] * W[1];
+  gg[4] = W[2] * JB[0] * W[0] - W[0] * JB[2] * W[2];
+  gg[5] = W[0] * JB[1] * W[1] - W[1] * JB[0] * W[0];
+  return 0;
+}
+
+/* Phi = x + R Xp */
+static int Phi(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
+{
+  const double *x = N_VGetArrayPointer(q);
+  double R[9];
+  int i;
+  (void)t; (void)ud;
+  Rotation(q, R);
+  for (i = 0; i < 3; i++)
+    N_VGetArrayPointer(phi)[i] = x[i] + R[3 * i] * XP[0] + R[3 * i + 1] * XP[1] + R[3 * i + 2] * XP[2];
+  return 0;
+}
+
+/* B = [I, -R Xp~] */
+static int Jac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
+{
+  const double S[9] = {0.0, -XP[2], XP[1], XP[2], 0.0, -XP[0], -XP[1], XP[0], 0.0};
+  double R[9];
+  int i, j, k;
+  (void)t; (void)ud;
+  Rotation(q, R);
+  for (i = 0; i < 3; i++) {
+    SM_ELEMENT_D(B, i, i) = 1.0;
+    for (j = 0; j < 3; j++) {
+      double rs = 0.0;
+      for (k = 0; k < 3; k++) rs += R[3 * i + k] * S[3 * k + j];
+      SM_ELEMENT_D(B, i, 3 + j) = -rs;
+    }
+  }
+  return 0;
+}
+
+/* A consistent start: rotation exp(psi0), body rates W0, the pivot at rest. */
+static void InitialState(N_Vector q, N_Vector v)
+{
+  const double psi0[3] = {0.3, -0.2, 0.5}, W0[3] = {1.0, -2.0, 8.0};
+  double *x = N_VGetArrayPointer(q), *u = N_VGetArrayPointer(v), R[9], c[3];
+  int i;
+  LGNQuaternionFromRotationVector(psi0, x + 3);
+  Rotation(q, R);
+  c[0] = W0[1] * XP[2] - W0[2] * XP[1];
+  c[1] = W0[2] * XP[0] - W0[0] * XP[2];
+  c[2] = W0[0] * XP[1] - W0[1] * XP[0];
+  for (i = 0; i < 3; i++) {
+    x[i]     = -(R[3 * i] * XP[0] + R[3 * i + 1] * XP[1] + R[3 * i + 2] * XP[2]);
+    u[i]     = -(R[3 * i] * c[0] + R[3 * i + 1] * c[1] + R[3 * i + 2] * c[2]);
+    u[3 + i] = W0[i];
+  }
+}
+
+typedef struct {
+  SUNContext ctx;
+  LGNGroup G;
+  void *mem;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  N_Vector q, v, lam;
+} Top;
+
+/* A heavy top at index 3, generalized-alpha 0.8, dense LU of size n (9 fits),
+ * fixed h = 1e-3 unless adaptive (tolerances tol). */
+static int TopCreate(Top *T, SUNContext ctx, sunindextype n, int adaptive, double tol)
+{
+  int flag;
+  memset(T, 0, sizeof *T);
+  T->ctx = ctx;
+  T->G   = LGNGroup_R3xSO3();
+  T->q   = N_VNew_Serial(7, ctx);
+  T->v   = N_VNew_Serial(6, ctx);
+  T->lam = N_VNew_Serial(3, ctx);
+  T->A   = SUNDenseMatrix(n, n, ctx);
+  {
+    N_Vector y = N_VNew_Serial(n, ctx);
+    T->LS = SUNLinSol_Dense(y, T->A, ctx);
+    N_VDestroy(y);
+  }
+  T->mem = LGNCreate(ctx);
+  InitialState(T->q, T->v);
+  flag = LGNSetGroup(T->mem, T->G);
+  if (!flag) flag = LGNSetErrHandlerFn(T->mem, Handler, NULL);
+  if (!flag) flag = LGNSetMassFn(T->mem, Mass);
+  if (!flag) flag = LGNSetForceFn(T->mem, Force);
+  if (!flag) flag = LGNSetConstraints(T->mem, 3, Phi, Jac);
+  if (!flag) flag = LGNInit(T->mem, 0.0, T->q, T->v);
+  if (!flag) flag = LGNSetLinearSolver(T->mem, T->LS, T->A);
+  if (!flag) flag = LGNSetGenAlpha(T->mem, 0.8);
+  if (!flag) flag = LGNSetStepSize(T->mem, 1e-3);
+  if (!flag) flag = LGNSStolerances(T->mem, tol, tol);
+  if (!flag && adaptive) flag = LGNSetStepControl(T->mem, LGN_STEP_ADAPTIVE);
+  return flag;
+}
+
+static void TopFree(Top *T)
+{
+  LGNFree(&T->mem);
+  SUNLinSolFree(T->LS);
+  SUNMatDestroy(T->A);
+  N_VDestroy(T->q);
+  N_VDestroy(T->v);
+  N_VDestroy(T->lam);
+  LGNGroup_Destroy(T->G);
+}
+
+static int SameBits(N_Vector x, N_Vector y)
+{
+  return N_VGetLength(x) == N_VGetLength(y) &&
+         memcmp(N_VGetArrayPointer(x), N_VGetArrayPointer(y),
+                (size_t)N_VGetLength(x) * sizeof(sunrealtype)) == 0;
+}
+
+/* (a) The multipliers after a failed LGNSolve. */
+static void GettersAfterFailure(SUNContext ctx)
+{
+  Top T;
+  N_Vector lam0 = N_VNew_Serial(3, ctx), vd0 = N_VNew_Serial(6, ctx), vd = N_VNew_Serial(6, ctx);
+  double t = 0.0;
+  int flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  if (!flag) flag = LGNGetMultipliers(T.mem, lam0);
+  if (!flag) flag = LGNGetAcceleration(T.mem, vd0);
+  CHECK(flag == LGN_SUCCESS && N_VMaxNorm(lam0) > 1.0, "(a) a first solve: %s, |lambda| = %g",
+        LGNGetReturnFlagName(flag), N_VMaxNorm(lam0));
+  /* GGL needs a 12 x 12 solver: the next solve fails */
+  flag = LGNSetConstraintIndex(T.mem, LGN_CONSTR_GGL);
+  if (!flag) flag = LGNSolve(T.mem, 0.1, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_LS_MISMATCH, "(a) GGL with a 9 x 9 solver: %s (LGN_LS_MISMATCH expected)",
+        LGNGetReturnFlagName(flag));
+  N_VConst(-7.0, T.lam);
+  flag = LGNGetMultipliers(T.mem, T.lam);
+  CHECK(flag != LGN_SUCCESS || SameBits(T.lam, lam0),
+        "(a) LGNGetMultipliers after the failure: %s with lambda = (%g, %g, %g), the "
+        "last valid ones are (%g, %g, %g)", LGNGetReturnFlagName(flag),
+        NV_Ith_S(T.lam, 0), NV_Ith_S(T.lam, 1), NV_Ith_S(T.lam, 2), NV_Ith_S(lam0, 0),
+        NV_Ith_S(lam0, 1), NV_Ith_S(lam0, 2));
+  flag = LGNGetAcceleration(T.mem, vd);
+  CHECK(flag != LGN_SUCCESS || SameBits(vd, vd0), "(a) LGNGetAcceleration after the failure");
+  /* back to index 3: it goes on from the kept state */
+  flag = LGNSetConstraintIndex(T.mem, LGN_CONSTR_INDEX3);
+  if (!flag) flag = LGNSolve(T.mem, 0.1, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == 0.1, "(a) index 3 again: %s", LGNGetReturnFlagName(flag));
+  TopFree(&T);
+
+  /* a first solve that fails before any multipliers are computed (a 6 x 6
+   * solver for 9 unknowns): no zeros reported as multipliers */
+  flag = TopCreate(&T, ctx, 6, 0, 1e-10);
+  if (!flag) flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_LS_MISMATCH, "(a) a 6 x 6 solver for 9 unknowns: %s",
+        LGNGetReturnFlagName(flag));
+  N_VConst(-7.0, T.lam);
+  flag = LGNGetMultipliers(T.mem, T.lam);
+  CHECK(flag != LGN_SUCCESS, "(a) LGNGetMultipliers before any were computed: %s with "
+        "lambda = (%g, %g, %g)", LGNGetReturnFlagName(flag), NV_Ith_S(T.lam, 0),
+        NV_Ith_S(T.lam, 1), NV_Ith_S(T.lam, 2));
+  TopFree(&T);
+  N_VDestroy(lam0);
+  N_VDestroy(vd0);
+  N_VDestroy(vd);
+}
+
+int main(void)
+{
+  SUNContext ctx;
+  if (SUNContext_Create(NULL, &ctx) != 0) return 1;
+  GettersAfterFailure(ctx);
+  SUNContext_Free(&ctx);
+  return test_summary("test_reliability");
+}
