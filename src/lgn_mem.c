@@ -596,15 +596,23 @@ int lgnAllocRootVectors(LGNMem mem)
  * LGNRootInit is not. */
 int lgnAllocRoots(LGNMem mem, int nrtfn)
 {
+  /* sizes in size_t (3 nrtfn overflows an int; LGNRootInit refuses
+   * nrtfn > LGN_MAX_ROOTS); the old arrays stay until the new ones exist */
+  const size_t n = (size_t)nrtfn;
+  sunrealtype *glo  = (sunrealtype *)calloc(3 * n, sizeof(sunrealtype));
+  int *iroots       = (int *)calloc(2 * n, sizeof(int));
+  sunbooleantype *gactive = (sunbooleantype *)calloc(n, sizeof(sunbooleantype));
   int i;
-  lgnFreeRoots(mem);
-  mem->glo     = (sunrealtype *)calloc((size_t)(3 * nrtfn), sizeof(sunrealtype));
-  mem->iroots  = (int *)calloc((size_t)(2 * nrtfn), sizeof(int));
-  mem->gactive = (sunbooleantype *)calloc((size_t)nrtfn, sizeof(sunbooleantype));
-  if (mem->glo == NULL || mem->iroots == NULL || mem->gactive == NULL) {
-    lgnFreeRoots(mem);
+  if (glo == NULL || iroots == NULL || gactive == NULL) {
+    free(glo);
+    free(iroots);
+    free(gactive);
     return LGN_MEM_FAIL;
   }
+  lgnFreeRoots(mem);
+  mem->glo     = glo;
+  mem->iroots  = iroots;
+  mem->gactive = gactive;
   mem->ghi     = mem->glo + nrtfn;
   mem->grout   = mem->glo + 2 * nrtfn;
   mem->rootdir = mem->iroots + nrtfn;

@@ -7,6 +7,8 @@
  *     LGN_LS_MISMATCH (GGL with the index-3 solver still attached) are the
  *     last ones computed, bit for bit; before any are computed the getter
  *     says so (it returned zeros with success before).
+ * (b) LGNRootInit(mem, INT_MAX, g) is refused naming nrtfn (3 nrtfn
+ *     overflowed an int), and the root functions set before stay in force.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -235,11 +237,44 @@ static void GettersAfterFailure(SUNContext ctx)
   N_VDestroy(vd);
 }
 
+/* (b) a root at t = 0.02 */
+static int Root(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *g, void *ud)
+{
+  (void)q; (void)v; (void)ud;
+  g[0] = t - 0.02;
+  return 0;
+}
+
+static void RootInitOverflow(SUNContext ctx)
+{
+  Top T;
+  double t = 0.0;
+  int flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNRootInit(T.mem, 1, Root);
+  CHECK(flag == LGN_SUCCESS, "(b) LGNRootInit(1): %s", LGNGetReturnFlagName(flag));
+  last_msg[0] = '\0';
+  flag = LGNRootInit(T.mem, INT_MAX, Root);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "nrtfn") != NULL,
+        "(b) LGNRootInit(INT_MAX): %s, \"%s\" (LGN_ILL_INPUT naming nrtfn expected)",
+        LGNGetReturnFlagName(flag), last_msg);
+  last_msg[0] = '\0';
+  flag = LGNRootInit(T.mem, INT_MAX / 3 + 1, Root);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "nrtfn") != NULL,
+        "(b) LGNRootInit(INT_MAX / 3 + 1): %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  /* the root function set before is still in force */
+  flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_ROOT_RETURN && fabs(t - 0.02) < 1e-10,
+        "(b) the earlier root function after the refused calls: %s at t = %.17g",
+        LGNGetReturnFlagName(flag), t);
+  TopFree(&T);
+}
+
 int main(void)
 {
   SUNContext ctx;
   if (SUNContext_Create(NULL, &ctx) != 0) return 1;
   GettersAfterFailure(ctx);
+  RootInitOverflow(ctx);
   SUNContext_Free(&ctx);
   return test_summary("test_reliability");
 }
