@@ -598,8 +598,11 @@ LGN_EXPORT int LGNSetMaxConvFails(void *lgn_mem, int maxncf);
  *  @return LGN_ILL_INPUT unless 0 <= epcon <= 1 (0: default). */
 LGN_EXPORT int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon);
 
-/** A time error control must not step past: LGNSolve lands on it exactly
- *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared.
+/** A time LGNSolve must not step past (with error control or fixed steps:
+ *  the step that would cross it is shortened): LGNSolve lands on it exactly
+ *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared. A stop
+ *  time behind t (after LGNReInit to a later t0) makes LGNSolve return
+ *  LGN_ILL_INPUT, the state unchanged.
  *  @return LGN_ILL_INPUT if tstop is not finite or behind the current time. */
 LGN_EXPORT int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
 

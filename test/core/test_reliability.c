@@ -9,6 +9,10 @@
  *     says so (it returned zeros with success before).
  * (b) LGNRootInit(mem, INT_MAX, g) is refused naming nrtfn (3 nrtfn
  *     overflowed an int), and the root functions set before stay in force.
+ * (c) Fixed steps honour a stop time: LGN_NORMAL and LGN_ONE_STEP land on
+ *     it exactly (the step before it shortened) with LGN_TSTOP_RETURN, bit
+ *     for bit the run to tout = tstop; BDF lands on it too; a stop time
+ *     left behind t by LGNReInit is refused by LGNSolve, state unchanged.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -188,6 +192,31 @@ static int SameBits(N_Vector x, N_Vector y)
                 (size_t)N_VGetLength(x) * sizeof(sunrealtype)) == 0;
 }
 
+static double MaxDiff(N_Vector x, N_Vector y)
+{
+  double d = 0.0;
+  sunindextype i;
+  for (i = 0; i < N_VGetLength(x); i++)
+    d = fmax(d, fabs(N_VGetArrayPointer(x)[i] - N_VGetArrayPointer(y)[i]));
+  return d;
+}
+
+/* The reference at t: the top with fixed steps of 1e-5 (second order: its
+ * error is about 1e-8, far below the tolerances compared against). */
+static void Reference(SUNContext ctx, double t, N_Vector q, N_Vector v)
+{
+  Top R;
+  double tret = 0.0;
+  int flag = TopCreate(&R, ctx, 9, 0, 1e-12);
+  if (!flag) flag = LGNSetStepSize(R.mem, 1e-5);
+  if (!flag) flag = LGNSolve(R.mem, t, &tret, R.q, R.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && tret == t, "reference run to %g: %s", t,
+        LGNGetReturnFlagName(flag));
+  N_VScale(1.0, R.q, q);
+  N_VScale(1.0, R.v, v);
+  TopFree(&R);
+}
+
 /* (a) The multipliers after a failed LGNSolve. */
 static void GettersAfterFailure(SUNContext ctx)
 {
@@ -269,12 +298,84 @@ static void RootInitOverflow(SUNContext ctx)
   TopFree(&T);
 }
 
+/* (c) Stop times with fixed steps. */
+static void FixedStepStopTime(SUNContext ctx)
+{
+  const double tstop = 0.0105;
+  Top T, R;
+  N_Vector qref = N_VNew_Serial(7, ctx), vref = N_VNew_Serial(6, ctx);
+  double t = 0.0, tr = 0.0, hlast = 0.0;
+  int flag, k;
+
+  /* LGN_NORMAL: land on tstop exactly, as the run to tout = tstop does */
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetStopTime(T.mem, tstop);
+  if (!flag) flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_TSTOP_RETURN && t == tstop,
+        "(c) fixed steps, tstop = %g, tout = 0.05: %s at t = %.17g (LGN_TSTOP_RETURN at "
+        "tstop expected)", tstop, LGNGetReturnFlagName(flag), t);
+  flag = TopCreate(&R, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSolve(R.mem, tstop, &tr, R.q, R.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && SameBits(T.q, R.q) && SameBits(T.v, R.v),
+        "(c) the state at tstop is the run to tout = tstop (|dq| = %g)", MaxDiff(T.q, R.q));
+  /* the stop time is cleared: on to tout */
+  flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == 0.05, "(c) on from tstop: %s at %.17g",
+        LGNGetReturnFlagName(flag), t);
+  TopFree(&T);
+  TopFree(&R);
+
+  /* LGN_ONE_STEP: steps of h, the last one shortened to tstop */
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetStopTime(T.mem, 0.0025);
+  for (k = 0; k < 3 && flag == LGN_SUCCESS; k++)
+    flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_ONE_STEP);
+  LGNGetLastStep(T.mem, &hlast);
+  CHECK(k == 3 && flag == LGN_TSTOP_RETURN && t == 0.0025 && fabs(hlast - 5e-4) < 1e-15,
+        "(c) LGN_ONE_STEP to tstop = 0.0025: step %d %s at t = %.17g, last h = %g", k,
+        LGNGetReturnFlagName(flag), t, hlast);
+  TopFree(&T);
+
+  /* BDF with fixed steps lands on tstop too (the step before it shortened),
+   * close to the reference there */
+  Reference(ctx, tstop, qref, vref);
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetBDF(T.mem, 2);
+  if (!flag) flag = LGNSetStopTime(T.mem, tstop);
+  if (!flag) flag = LGNSolve(T.mem, 0.05, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_TSTOP_RETURN && t == tstop && MaxDiff(T.q, qref) < 1e-4 &&
+            MaxDiff(T.v, vref) < 1e-3,
+        "(c) BDF2, fixed steps, tstop = %g: %s at t = %.17g, |q - qref| = %g, |v - vref| = %g",
+        tstop, LGNGetReturnFlagName(flag), t, MaxDiff(T.q, qref), MaxDiff(T.v, vref));
+  TopFree(&T);
+
+  /* a stop time left behind t by LGNReInit: refused by LGNSolve, state kept */
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetStopTime(T.mem, 0.03);
+  if (!flag) flag = LGNReInit(T.mem, 0.5, T.q, T.v);
+  if (!flag) flag = LGNGetConsistentIC(T.mem, qref, vref); /* the state at t */
+  last_msg[0] = '\0';
+  if (!flag) flag = LGNSolve(T.mem, 0.6, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "stop time") != NULL && t == 0.5 &&
+            SameBits(T.q, qref) && SameBits(T.v, vref),
+        "(c) tstop = 0.03 behind t = 0.5 after LGNReInit: %s at t = %g, \"%s\"",
+        LGNGetReturnFlagName(flag), t, last_msg);
+  flag = LGNClearStopTime(T.mem);
+  if (!flag) flag = LGNSolve(T.mem, 0.51, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == 0.51, "(c) on after LGNClearStopTime: %s",
+        LGNGetReturnFlagName(flag));
+  TopFree(&T);
+  N_VDestroy(qref);
+  N_VDestroy(vref);
+}
+
 int main(void)
 {
   SUNContext ctx;
   if (SUNContext_Create(NULL, &ctx) != 0) return 1;
   GettersAfterFailure(ctx);
   RootInitOverflow(ctx);
+  FixedStepStopTime(ctx);
   SUNContext_Free(&ctx);
   return test_summary("test_reliability");
 }
