@@ -50,12 +50,14 @@ int LGNSetGroup(void *lgn_mem, LGNGroup G)
     return LGN_ILL_INPUT;
   }
   if (mem->malloc_done && (G->nq != mem->nq || G->nv != mem->nv)) {
-    /* another size: the state given to LGNInit no longer fits; it is
-     * dropped and LGNInit (with vectors of the new sizes) comes next */
-    mem->G = G;
-    lgnInvalidate(mem, LGN_CHANGE_GROUP | LGN_CHANGE_SIZES);
-    lgnFreeState(mem);
-    return LGN_SUCCESS;
+    /* another size: the state given to LGNInit would not fit it (refused,
+     * the state kept; a new problem starts with a new LGNCreate) */
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "G has nq = %lld, nv = %lld, but the state given to LGNInit has nq = "
+              "%lld, nv = %lld: a group of another size after LGNInit is refused "
+              "(create a new integrator with LGNCreate for it).",
+              (long long)G->nq, (long long)G->nv, (long long)mem->nq, (long long)mem->nv);
+    return LGN_ILL_INPUT;
   }
   if (G != mem->G) {
     /* the block table, T's storage, the patterns and the matrices follow

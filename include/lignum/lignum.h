@@ -275,7 +275,10 @@ LGN_EXPORT void LGNFree(void **lgn_mem);
  * ===========================================================================*/
 
 /** Set the Lie group (configuration space). Required before LGNInit.
- *  The group is referenced, not copied; it must outlive the memory block. */
+ *  The group is referenced, not copied; it must outlive the memory block.
+ *  After LGNInit only a group of the same sizes nq, nv is accepted.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (G NULL, empty, or
+ *          after LGNInit of other sizes than the state's; nothing changed). */
 LGN_EXPORT int LGNSetGroup(void *lgn_mem, LGNGroup G);
 
 /** Set the pointer passed to every callback. */
@@ -713,7 +716,8 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
  *          did not converge or the saddle-point matrix is singular; the
  *          message gives |Phi|), a callback's failure flag. On failure q0
- *          and v0 are left as they were. */
+ *          and v0 are left as they were. Only before the first step after
+ *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
 LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
 
 /** The initial state as LGNCalcIC corrected it (or as given, without

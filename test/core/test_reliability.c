@@ -13,6 +13,9 @@
  *     it exactly (the step before it shortened) with LGN_TSTOP_RETURN, bit
  *     for bit the run to tout = tstop; BDF lands on it too; a stop time
  *     left behind t by LGNReInit is refused by LGNSolve, state unchanged.
+ * (e) Refused with a message, state unchanged: LGNSetGroup with a group of
+ *     another size after LGNInit; LGNCalcIC after steps; principal moments
+ *     of inertia violating the triangle inequality (equality accepted).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -369,6 +372,80 @@ static void FixedStepStopTime(SUNContext ctx)
   N_VDestroy(vref);
 }
 
+/* (e) Settings refused after LGNInit or after steps, the state kept. */
+static void RefusedSettings(SUNContext ctx)
+{
+  Top T;
+  LGNGroup G2 = LGNGroup_SO3();
+  LGNBodies B;
+  N_Vector q0 = N_VNew_Serial(7, ctx), v0 = N_VNew_Serial(6, ctx);
+  const double bad[3] = {1.0, 1.0, 5.0}, rod[3] = {1.0, 2.0, 3.0};
+  double plate[3] = {0.1, 0.2, 0.0}, t = 0.0;
+  int flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+
+  /* LGNSetGroup with a group of another size after LGNInit */
+  last_msg[0] = '\0';
+  flag = LGNSetGroup(T.mem, G2);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "LGNInit") != NULL,
+        "(e) LGNSetGroup(SO(3)) after LGNInit on R^3 x SO(3): %s, \"%s\"",
+        LGNGetReturnFlagName(flag), last_msg);
+  flag = LGNSolve(T.mem, 0.01, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == 0.01, "(e) a solve after the refused LGNSetGroup: %s",
+        LGNGetReturnFlagName(flag));
+
+  /* LGNCalcIC after steps */
+  N_VScale(1.0, T.q, q0);
+  N_VScale(1.0, T.v, v0);
+  last_msg[0] = '\0';
+  flag = LGNCalcIC(T.mem, LGN_IC_PROJECT_QV);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "LGNReInit") != NULL,
+        "(e) LGNCalcIC after steps: %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  flag = LGNSolve(T.mem, 0.01, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == 0.01 && SameBits(T.q, q0) && SameBits(T.v, v0),
+        "(e) the state after the refused LGNCalcIC: %s, |dv| = %g", LGNGetReturnFlagName(flag),
+        MaxDiff(T.v, v0));
+  TopFree(&T);
+
+  /* principal moments: the triangle inequality J_i <= J_j + J_k */
+  TopCreate(&T, ctx, 9, 0, 1e-10); /* for its group: one rigid body */
+  B = LGNBodies_Create(T.G);
+  LGNBodies_SetErrHandlerFn(B, Handler, NULL);
+  last_msg[0] = '\0';
+  flag = LGNBodies_SetPrincipalInertia(B, 0, 2.0, bad);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "J") != NULL &&
+            strstr(last_msg, "triangle") != NULL,
+        "(e) J = (1, 1, 5): %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  flag = LGNBodies_SetPrincipalInertia(B, 0, 2.0, rod);
+  CHECK(flag == LGN_SUCCESS, "(e) J = (1, 2, 3) (a plate: equality): %s",
+        LGNGetReturnFlagName(flag));
+  plate[2] = plate[0] + plate[1]; /* 0.30000000000000004 */
+  flag = LGNBodies_SetPrincipalInertia(B, 0, 2.0, plate);
+  CHECK(flag == LGN_SUCCESS, "(e) J = (0.1, 0.2, 0.1 + 0.2): %s", LGNGetReturnFlagName(flag));
+  plate[2] = 0.3 * (1.0 + 1e-6);
+  flag = LGNBodies_SetPrincipalInertia(B, 0, 2.0, plate);
+  CHECK(flag == LGN_ILL_INPUT, "(e) J = (0.1, 0.2, 0.3 (1 + 1e-6)): %s",
+        LGNGetReturnFlagName(flag));
+  /* ... and of a full tensor: diag(1, 1, 5) refused; a plate (1, 2, 3)
+   * rotated by 30 degrees about x accepted */
+  {
+    const double c = 0.5 * sqrt(3.0), s = 0.5; /* 30 degrees */
+    const double D[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 5.0};
+    const double P[9] = {1.0, 0.0, 0.0, 0.0, 2.0 * c * c + 3.0 * s * s, (3.0 - 2.0) * c * s,
+                         0.0, (3.0 - 2.0) * c * s, 2.0 * s * s + 3.0 * c * c};
+    last_msg[0] = '\0';
+    flag = LGNBodies_SetMass(B, 0, 2.0, D);
+    CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "triangle") != NULL,
+          "(e) inertia diag(1, 1, 5): %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+    flag = LGNBodies_SetMass(B, 0, 2.0, P);
+    CHECK(flag == LGN_SUCCESS, "(e) a rotated plate's inertia: %s", LGNGetReturnFlagName(flag));
+  }
+  LGNBodies_Destroy(&B);
+  TopFree(&T);
+  LGNGroup_Destroy(G2);
+  N_VDestroy(q0);
+  N_VDestroy(v0);
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -376,6 +453,7 @@ int main(void)
   GettersAfterFailure(ctx);
   RootInitOverflow(ctx);
   FixedStepStopTime(ctx);
+  RefusedSettings(ctx);
   SUNContext_Free(&ctx);
   return test_summary("test_reliability");
 }

@@ -498,6 +498,22 @@ int main(int argc, char **argv)
       CHECK(h != NULL, "(e) a halo without ghosts was refused");
     LGNHalo_Destroy(&h);
   }
+  /* (e) one body per rank, no ghosts: global number 0 owned by every rank is
+   * refused (each number has exactly one owner), its own rank's number not */
+  {
+    LGNGroup G1 = LGNGroup_R3xSO3();
+    const long int zero = 0, mine = rank;
+    LGNHalo h = LGNHalo_Create(MPI_COMM_WORLD, G1, 1, &zero, NULL);
+    if (nranks > 1)
+      CHECK(h == NULL, "(e) global number 0 owned by all %d ranks was accepted", nranks);
+    else
+      CHECK(h != NULL, "(e) one rank owning global number 0 was refused");
+    LGNHalo_Destroy(&h);
+    h = LGNHalo_Create(MPI_COMM_WORLD, G1, 1, &mine, NULL);
+    CHECK(h != NULL, "(e) a body of global number %ld per rank was refused", mine);
+    LGNHalo_Destroy(&h);
+    LGNGroup_Destroy(G1);
+  }
 
 #if defined(LGN_HAVE_PETSC)
   /* (g) MUMPS on the sum of the ranks' subdomain matrices */
