@@ -383,18 +383,33 @@ int LGNSetPredictor(void *lgn_mem, int predictor)
   return LGN_SUCCESS;
 }
 
+/* A tolerance: 0 (the default) or a finite normal number; below the
+ * smallest normal number (e.g. 4.9e-324) the error weights 1/tol overflow,
+ * and the error norms become inf or NaN. */
+static int CheckTolerance(LGNMem mem, sunrealtype tol, const char *name, const char *func)
+{
+  if (!(tol >= SUN_RCONST(0.0)) || !isfinite(tol)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %g illegal: must be >= 0.", name, (double)tol);
+    return LGN_ILL_INPUT;
+  }
+  if (tol > SUN_RCONST(0.0) && tol < SUN_SMALL_REAL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %g illegal: below the smallest normal number %g, its error "
+                    "weights 1/%s would overflow (0 selects the default).",
+                    name, (double)tol, (double)SUN_SMALL_REAL, name);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
 int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
+  if (CheckTolerance(mem, rtol, "rtol", __func__) != LGN_SUCCESS ||
+      CheckTolerance(mem, atol, "atol", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (!(atol >= SUN_RCONST(0.0)) || !isfinite(atol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "atol = %g illegal: must be >= 0.", (double)atol);
-    return LGN_ILL_INPUT;
-  }
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
   mem->atol     = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
   mem->tols_set = SUNTRUE;
@@ -451,18 +466,16 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   /* a local call across ranks too: the entries are copied into an array of
    * this rank's length, and the multipliers' atol (their mean over all
    * ranks) is formed by LGNSolve */
-  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
-    return LGN_ILL_INPUT;
-  }
+  if (CheckTolerance(mem, rtol, "rtol", __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
   flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
   if (flag != LGN_SUCCESS) return flag;
   a = N_VGetArrayPointer(atol);
   for (i = 0; i < nv_own; i++) {
-    if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
+    if (!(a[i] >= SUN_SMALL_REAL) || !isfinite(a[i])) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
-                "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
-                (long long)i, (double)a[i]);
+                "atol[%lld] = %g illegal: every entry must be finite and at least the "
+                "smallest normal number %g (the error weights 1/atol must be finite).",
+                (long long)i, (double)a[i], (double)SUN_SMALL_REAL);
       return LGN_ILL_INPUT;
     }
     sum += a[i];

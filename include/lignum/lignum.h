@@ -430,7 +430,10 @@ LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
 LGN_EXPORT int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment
- *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores. */
+ *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (either negative, not
+ *          finite, or below the smallest normal number, about 2.2e-308:
+ *          its weights would overflow). */
 LGN_EXPORT int LGNSStolerances(void *lgn_mem, sunrealtype rtol,
                                sunrealtype atol);
 
@@ -571,8 +574,9 @@ LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
  *  bodies (LGNSetHalo, set before this call) only the owned bodies'
  *  entries are read and checked.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
- *          LGN_ILL_INPUT (rtol < 0, atol NULL, of the wrong length, or an
- *          entry <= 0 or not finite), LGN_MEM_FAIL. */
+ *          LGN_ILL_INPUT (rtol < 0 or below the smallest normal number,
+ *          atol NULL, of the wrong length, or an entry not finite or
+ *          below the smallest normal number), LGN_MEM_FAIL. */
 LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
 
 /** The first step size of error control (0: estimated from the initial

@@ -16,6 +16,9 @@
  * (e) Refused with a message, state unchanged: LGNSetGroup with a group of
  *     another size after LGNInit; LGNCalcIC after steps; principal moments
  *     of inertia violating the triangle inequality (equality accepted).
+ * (f) Tolerances so small that the error weights overflow (4.9e-324) are
+ *     refused by LGNSStolerances / LGNSVtolerances naming them; SPGMR made
+ *     for a left preconditioner without one fails with a message saying so.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -446,6 +449,50 @@ static void RefusedSettings(SUNContext ctx)
   N_VDestroy(v0);
 }
 
+/* (f) Messages that point at the cause. */
+static void HelpfulMessages(SUNContext ctx)
+{
+  Top T;
+  N_Vector atol = N_VNew_Serial(6, ctx), y = N_VNew_Serial(9, ctx);
+  SUNLinearSolver spgmr = SUNLinSol_SPGMR(y, SUN_PREC_LEFT, 20, ctx);
+  double t = 0.0;
+  int flag = TopCreate(&T, ctx, 9, 1, 1e-6);
+
+  last_msg[0] = '\0';
+  flag = LGNSStolerances(T.mem, 1e-6, 4.9e-324);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "atol") != NULL,
+        "(f) atol = 4.9e-324: %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  last_msg[0] = '\0';
+  flag = LGNSStolerances(T.mem, 4.9e-324, 1e-6);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "rtol") != NULL,
+        "(f) rtol = 4.9e-324: %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  N_VConst(1e-6, atol);
+  NV_Ith_S(atol, 4) = 4.9e-324;
+  last_msg[0] = '\0';
+  flag = LGNSVtolerances(T.mem, 1e-6, atol);
+  CHECK(flag == LGN_ILL_INPUT && strstr(last_msg, "atol[4]") != NULL,
+        "(f) atol[4] = 4.9e-324: %s, \"%s\"", LGNGetReturnFlagName(flag), last_msg);
+  /* the tolerances set before are kept */
+  flag = LGNSolve(T.mem, 0.01, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS, "(f) a solve after the refused tolerances: %s",
+        LGNGetReturnFlagName(flag));
+  TopFree(&T);
+
+  /* SPGMR for a left preconditioner, none attached */
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetLinearSolver(T.mem, spgmr, NULL);
+  last_msg[0] = '\0';
+  if (!flag) flag = LGNSolve(T.mem, 0.01, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag != LGN_SUCCESS && strstr(last_msg, "PREC_LEFT") != NULL &&
+            strstr(last_msg, "preconditioner") != NULL,
+        "(f) SPGMR(PREC_LEFT) without a preconditioner: %s, \"%s\"",
+        LGNGetReturnFlagName(flag), last_msg);
+  TopFree(&T);
+  SUNLinSolFree(spgmr);
+  N_VDestroy(y);
+  N_VDestroy(atol);
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -454,6 +501,7 @@ int main(void)
   RootInitOverflow(ctx);
   FixedStepStopTime(ctx);
   RefusedSettings(ctx);
+  HelpfulMessages(ctx);
   SUNContext_Free(&ctx);
   return test_summary("test_reliability");
 }
