@@ -19,6 +19,10 @@
  * (f) Tolerances so small that the error weights overflow (4.9e-324) are
  *     refused by LGNSStolerances / LGNSVtolerances naming them; SPGMR made
  *     for a left preconditioner without one fails with a message saying so.
+ * (g) An adaptive first step of 1e6 is cut and retried (the singular
+ *     iteration matrix at that step is recoverable under error control in
+ *     the Newmark family, as under BDF) and gives the right answer; with
+ *     fixed steps the singular matrix still fails cleanly.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -493,6 +497,40 @@ static void HelpfulMessages(SUNContext ctx)
   N_VDestroy(atol);
 }
 
+/* (g) A first step of 1e6 under error control. */
+static void HugeFirstStep(SUNContext ctx)
+{
+  const double tend = 0.05;
+  Top T;
+  N_Vector qref = N_VNew_Serial(7, ctx), vref = N_VNew_Serial(6, ctx);
+  double t = 0.0, h0 = 0.0;
+  int flag;
+
+  Reference(ctx, tend, qref, vref);
+  flag = TopCreate(&T, ctx, 9, 1, 1e-6);
+  if (!flag) flag = LGNSetInitStep(T.mem, 1e6);
+  if (!flag) flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_NORMAL);
+  LGNGetActualInitStep(T.mem, &h0);
+  CHECK(flag == LGN_SUCCESS && t == tend && MaxDiff(T.q, qref) < 1e-4 &&
+            MaxDiff(T.v, vref) < 1e-3,
+        "(g) LGNSetInitStep(1e6) with error control: %s at t = %g, |q - qref| = %g, "
+        "|v - vref| = %g", LGNGetReturnFlagName(flag), t, MaxDiff(T.q, qref),
+        MaxDiff(T.v, vref));
+  CHECK(h0 == 1e6, "(g) the first step tried: %g", h0);
+  TopFree(&T);
+
+  /* fixed steps of 1e6: a clean failure, the state kept */
+  flag = TopCreate(&T, ctx, 9, 0, 1e-10);
+  if (!flag) flag = LGNSetStepSize(T.mem, 1e6);
+  if (!flag) flag = LGNGetConsistentIC(T.mem, qref, NULL); /* the state at t */
+  if (!flag) flag = LGNSolve(T.mem, 1e6, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag < 0 && t == 0.0 && SameBits(T.q, qref),
+        "(g) a fixed step of 1e6: %s at t = %g", LGNGetReturnFlagName(flag), t);
+  TopFree(&T);
+  N_VDestroy(qref);
+  N_VDestroy(vref);
+}
+
 int main(void)
 {
   SUNContext ctx;
@@ -502,6 +540,7 @@ int main(void)
   FixedStepStopTime(ctx);
   RefusedSettings(ctx);
   HelpfulMessages(ctx);
+  HugeFirstStep(ctx);
   SUNContext_Free(&ctx);
   return test_summary("test_reliability");
 }
