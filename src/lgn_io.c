@@ -513,6 +513,9 @@ int LGNSetInitStep(void *lgn_mem, sunrealtype h0)
   flag = CheckStepArg(mem, h0, "h0", __func__);
   if (flag != LGN_SUCCESS) return flag;
   mem->h0_user = h0;
+  /* after steps (error control): the size of the next step, e.g. to go on
+   * after a failure that left h tiny (0: estimated anew) */
+  if (mem->malloc_done && mem->nst > 0) mem->hnext = h0;
   return LGN_SUCCESS;
 }
 

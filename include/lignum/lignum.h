@@ -580,7 +580,9 @@ LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
 LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
 
 /** The first step size of error control (0: estimated from the initial
- *  acceleration, the default). @return LGN_ILL_INPUT if h0 < 0 or not finite. */
+ *  acceleration, the default). Called after steps, it also sets the size of
+ *  the next step (0: estimated anew), e.g. to go on after a failure.
+ *  @return LGN_ILL_INPUT if h0 < 0 or not finite. */
 LGN_EXPORT int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
 
 /** The smallest step size error control may take (default 0).

@@ -13,6 +13,12 @@
  *     it exactly (the step before it shortened) with LGN_TSTOP_RETURN, bit
  *     for bit the run to tout = tstop; BDF lands on it too; a stop time
  *     left behind t by LGNReInit is refused by LGNSolve, state unchanged.
+ * (d) After h collapsed (a force callback failing recoverably past t* with
+ *     error control, ending in LGN_STEP_TOO_SMALL), the next LGNSolve
+ *     recovers once the callback works again, to the reference; and
+ *     LGNSetInitStep after steps sets the size of the next step. At index
+ *     2: at index 3 the steps of 1e-17 before the collapse leave v wrong
+ *     by O(eps |q| / h), whatever comes after.
  * (e) Refused with a message, state unchanged: LGNSetGroup with a group of
  *     another size after LGNInit; LGNCalcIC after steps; principal moments
  *     of inertia violating the triangle inequality (equality accepted).
@@ -379,6 +385,57 @@ static void FixedStepStopTime(SUNContext ctx)
   N_VDestroy(vref);
 }
 
+/* (d) Recovery after a collapsed step under error control. */
+static void RecoveryAfterCollapse(SUNContext ctx)
+{
+  const double tol = 1e-6, tend = 0.05;
+  Top T;
+  N_Vector qref = N_VNew_Serial(7, ctx), vref = N_VNew_Serial(6, ctx);
+  double t = 0.0, h = 0.0;
+  int flag, pass;
+
+  Reference(ctx, tend, qref, vref);
+  for (pass = 0; pass < 2; pass++) {
+    flag = TopCreate(&T, ctx, 9, 1, tol);
+    if (!flag) flag = LGNSetConstraintIndex(T.mem, LGN_CONSTR_INDEX2);
+    if (!flag) flag = LGNSetMaxConvFails(T.mem, 200); /* h collapses in one call */
+    force_broken = 1;
+    if (!flag) flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_NORMAL);
+    force_broken = 0;
+    CHECK(flag == LGN_STEP_TOO_SMALL && t <= t_fail,
+          "(d) the force failing past t* = %g: %s at t = %.17g (LGN_STEP_TOO_SMALL expected)",
+          t_fail, LGNGetReturnFlagName(flag), t);
+    if (pass == 0) {
+      /* the callback works again: the next call goes on */
+      flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_NORMAL);
+      CHECK(flag == LGN_SUCCESS && t == tend && MaxDiff(T.q, qref) < 1e-4 &&
+                MaxDiff(T.v, vref) < 1e-3,
+            "(d) after the collapse, the callback healthy: %s at t = %g, |q - qref| = %g, "
+            "|v - vref| = %g", LGNGetReturnFlagName(flag), t, MaxDiff(T.q, qref),
+            MaxDiff(T.v, vref));
+    } else {
+      /* LGNSetInitStep after steps: the size of the next step (smaller
+       * than the estimate, 4e-8 here, so that it is taken as it is) */
+      flag = LGNSetInitStep(T.mem, 1e-9);
+      if (!flag) flag = LGNGetCurrentStep(T.mem, &h);
+      CHECK(flag == LGN_SUCCESS && h == 1e-9, "(d) LGNSetInitStep(1e-9) after steps: the "
+            "next step is %g", h);
+      if (!flag) flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_ONE_STEP);
+      if (!flag) flag = LGNGetLastStep(T.mem, &h);
+      CHECK(flag == LGN_SUCCESS && h == 1e-9, "(d) the step after LGNSetInitStep(1e-9): "
+            "%s, h = %g", LGNGetReturnFlagName(flag), h);
+      if (!flag) flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_NORMAL);
+      CHECK(flag == LGN_SUCCESS && t == tend && MaxDiff(T.q, qref) < 1e-4 &&
+                MaxDiff(T.v, vref) < 1e-3,
+            "(d) on to %g: %s, |q - qref| = %g, |v - vref| = %g", tend,
+            LGNGetReturnFlagName(flag), MaxDiff(T.q, qref), MaxDiff(T.v, vref));
+    }
+    TopFree(&T);
+  }
+  N_VDestroy(qref);
+  N_VDestroy(vref);
+}
+
 /* (e) Settings refused after LGNInit or after steps, the state kept. */
 static void RefusedSettings(SUNContext ctx)
 {
@@ -538,6 +595,7 @@ int main(void)
   GettersAfterFailure(ctx);
   RootInitOverflow(ctx);
   FixedStepStopTime(ctx);
+  RecoveryAfterCollapse(ctx);
   RefusedSettings(ctx);
   HelpfulMessages(ctx);
   HugeFirstStep(ctx);
