@@ -25,10 +25,10 @@
  * (f) Tolerances so small that the error weights overflow (4.9e-324) are
  *     refused by LGNSStolerances / LGNSVtolerances naming them; SPGMR made
  *     for a left preconditioner without one fails with a message saying so.
- * (g) An adaptive first step of 1e6 is cut and retried (the singular
- *     iteration matrix at that step is recoverable under error control in
- *     the Newmark family, as under BDF) and gives the right answer; with
- *     fixed steps the singular matrix still fails cleanly.
+ * (g) An adaptive first step of 1e6 is cut and retried (at index 3 the
+ *     Newton iteration fails, at index 2 the iteration matrix is singular:
+ *     recoverable under error control in the Newmark family now, as under
+ *     BDF) and gives the right answer; a fixed step of 1e6 fails cleanly.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -574,6 +574,20 @@ static void HugeFirstStep(SUNContext ctx)
         "|v - vref| = %g", LGNGetReturnFlagName(flag), t, MaxDiff(T.q, qref),
         MaxDiff(T.v, vref));
   CHECK(h0 == 1e6, "(g) the first step tried: %g", h0);
+  TopFree(&T);
+
+  /* at index 2 the iteration matrix is singular at h = 1e6 (a recoverable
+   * failure now: cut and retried) */
+  flag = TopCreate(&T, ctx, 9, 1, 1e-6);
+  if (!flag) flag = LGNSetConstraintIndex(T.mem, LGN_CONSTR_INDEX2);
+  if (!flag) flag = LGNSetInitStep(T.mem, 1e6);
+  last_msg[0] = '\0';
+  if (!flag) flag = LGNSolve(T.mem, tend, &t, T.q, T.v, LGN_NORMAL);
+  CHECK(flag == LGN_SUCCESS && t == tend && MaxDiff(T.q, qref) < 1e-4 &&
+            MaxDiff(T.v, vref) < 1e-3,
+        "(g) index 2, LGNSetInitStep(1e6): %s at t = %g, |q - qref| = %g, |v - vref| = %g "
+        "\"%s\"", LGNGetReturnFlagName(flag), t, MaxDiff(T.q, qref), MaxDiff(T.v, vref),
+        last_msg);
   TopFree(&T);
 
   /* fixed steps of 1e6: a clean failure, the state kept */
