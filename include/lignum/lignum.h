@@ -498,7 +498,11 @@ LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
 
 /** Acceleration vdot at the current time (length nv). */
 LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
-/** Multipliers lambda at the current time (length m). */
+/** Multipliers lambda at the current time (length m): the last ones
+ *  computed (or given with LGNSetInitialAcceleration), also after a failed
+ *  LGNSolve. @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, or
+ *  LGN_ILL_INPUT (lambda NULL or of the wrong length, or none computed yet
+ *  for the current m). */
 LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
 /** Algorithmic acceleration a at the current time (length nv). */
 LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
