@@ -497,6 +497,8 @@ static void WarnStalls(LGNMem mem, long int nst0, long int nstall0)
 
 static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
                  N_Vector v, int itask);
+static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                      N_Vector v, int itask);
 
 int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
              N_Vector v, int itask)
@@ -556,8 +558,6 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
                  N_Vector v, int itask)
 {
   LGNMem mem;
-  sunrealtype troundoff, remaining, hstep;
-  long int nstloc = 0;
   int local, flag = lgnAccessMem(lgn_mem, "LGNSolve", &mem);
   if (flag != LGN_SUCCESS) return flag;
   if (!mem->malloc_done) {
@@ -587,21 +587,70 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   if (mem->step_control == LGN_STEP_ADAPTIVE)
     return SolveAdaptive(mem, tout, tret, q, v, itask);
 
+  return SolveFixed(mem, tout, tret, q, v, itask);
+}
+
+/* The stop time reached (within roundoff tr): t = tstop exactly, the stop
+ * time forgotten (as IDA does), LGN_TSTOP_RETURN. */
+static int StopTimeReturn(LGNMem mem, sunrealtype tr, sunrealtype *tret, N_Vector q,
+                          N_Vector v)
+{
+  if (!mem->tstop_set || fabs(mem->tn - mem->tstop) > tr) return LGN_SUCCESS;
+  mem->tn        = mem->tstop;
+  mem->tstop_set = SUNFALSE;
+  CopyOut(mem, tret, q, v);
+  return LGN_TSTOP_RETURN;
+}
+
+/* LGNSolve with fixed steps of h. LGN_NORMAL: the last step lands exactly
+ * on tout (BDF: steps past it and interpolates); LGN_ONE_STEP: one step.
+ * A stop time is never stepped past: the step that would cross it is
+ * shortened to end on it (BDF too: its variable coefficients take the
+ * short step), and LGNSolve returns LGN_TSTOP_RETURN there, as with error
+ * control. */
+static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
+                      N_Vector v, int itask)
+{
+  sunrealtype troundoff, remaining, hstep, tend;
+  sunbooleantype stop;
+  long int nstloc = 0;
+  int flag = LGN_SUCCESS;
+
+  troundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
+              SUNMAX(SUNMAX(fabs(mem->tn), fabs(tout)),
+                     mem->tstop_set ? fabs(mem->tstop) : SUN_RCONST(0.0));
+  if (mem->tstop_set && mem->tstop < mem->tn - troundoff) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "The stop time %.17g is behind the current time t = %.17g (set "
+              "before LGNReInit?): set another one or call LGNClearStopTime.",
+              (double)mem->tstop, (double)mem->tn);
+    CopyOut(mem, tret, q, v);
+    return LGN_ILL_INPUT;
+  }
+
   if (itask == LGN_ONE_STEP) {
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, mem->h) : lgnStep(mem, mem->h);
+    flag = StopTimeReturn(mem, troundoff, tret, q, v);
+    if (flag != LGN_SUCCESS) return flag;
+    hstep = mem->h;
+    /* the step that would cross the stop time (or end within 1e-6 h of
+     * it) ends on it */
+    stop = mem->tstop_set &&
+           mem->tn + mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)) >= mem->tstop;
+    if (stop) hstep = mem->tstop - mem->tn;
+    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    if (flag == LGN_SUCCESS && stop) mem->tn = mem->tstop; /* exact arrival */
     if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
     }
+    if (flag == LGN_SUCCESS && stop) return StopTimeReturn(mem, troundoff, tret, q, v);
     CopyOut(mem, tret, q, v);
     return flag;
   }
 
-  /* LGN_NORMAL: fixed steps; the last one lands exactly on tout. A remainder
-   * up to 1e-6 h longer than h is taken as one step, so that roundoff in t
-   * never produces a tiny extra step. */
-  troundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
-              SUNMAX(fabs(mem->tn), fabs(tout));
+  /* LGN_NORMAL: fixed steps; the last one lands exactly on tout (or on a
+   * stop time before it). A remainder up to 1e-6 h longer than h is taken
+   * as one step, so that roundoff in t never produces a tiny extra step. */
   if (tout < mem->tn - troundoff && mem->dense_valid && tout >= mem->tprev)
     return OutputAt(mem, tout, tret, q, v); /* inside the last step (after a root) */
   if (tout < mem->tn - troundoff) {
@@ -611,7 +660,9 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     CopyOut(mem, tret, q, v);
     return LGN_BAD_TOUT;
   }
-  while (tout - mem->tn > troundoff) {
+  stop = mem->tstop_set && mem->tstop < tout - troundoff;
+  tend = stop ? mem->tstop : tout;
+  while (tend - mem->tn > troundoff) {
     if (mem->mxstep > 0 && nstloc >= mem->mxstep) {
       LGN_ERROR(mem, LGN_TOO_MUCH_WORK,
                 MSG_TIME "mxstep = %ld steps taken before reaching tout.",
@@ -619,18 +670,19 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
       flag = LGN_TOO_MUCH_WORK;
       break;
     }
-    remaining = tout - mem->tn;
+    remaining = tend - mem->tn;
     hstep     = (remaining <= mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)))
                     ? remaining
                     : mem->h;
     /* BDF keeps its grid (a shortened step would enter its history with
-     * an arbitrary step ratio): it steps past tout and interpolates there */
-    if (mem->family == LGN_FAMILY_BDF &&
+     * an arbitrary step ratio): it steps past tout and interpolates there,
+     * but never past a stop time */
+    if (mem->family == LGN_FAMILY_BDF && !stop &&
         remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
       hstep = mem->h;
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
     if (flag != LGN_SUCCESS) break;
-    if (hstep == remaining) mem->tn = tout; /* exact arrival */
+    if (hstep == remaining) mem->tn = tend; /* exact arrival */
     nstloc++;
     if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
@@ -638,6 +690,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
       if (flag != LGN_SUCCESS) break;
     }
   }
+  if (flag == LGN_SUCCESS && stop) return StopTimeReturn(mem, troundoff, tret, q, v);
   if (flag == LGN_SUCCESS && mem->tn > tout + troundoff)
     return OutputAt(mem, tout, tret, q, v); /* BDF: past tout */
   CopyOut(mem, tret, q, v);

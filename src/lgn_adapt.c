@@ -7,16 +7,17 @@
  * next h. A rejected attempt writes only the iterate, so the state at t_n
  * stays as it was, bit for bit.
  *
- *   accept when |e| <= 1, then h_new = h min(fmax, max(fmin, 0.9 e^(-1/3)))
+ *   accept when |e| <= 1, then h_new = h min(fmax, max(fmin, 0.9 e^(-1/2)))
  *   with e = max(|e_n|, |e_{n-1}|) (the larger of this step's error and the
  *   last accepted one's: an estimate that drops for one step does not
  *   propose a step that then fails; it cut the rejections on the heavy top
  *   at tol 1e-5 from 47 to 0), fmax = 2 (1 right after a rejection),
  *   fmin = 0.2, and h kept when the factor lies in [1, 1.2) (no rescaling,
  *   no new matrix for little);
- *   error-test failure: h *= max(fmin, min(0.9, 0.9 |e|^(-1/3))), from the
- *   second failure on h *= 0.25;
- *   Newton failure or a recoverable callback error: h *= 0.25;
+ *   error-test failure: h *= max(fmin, min(0.9, 0.9 |e|^(-1/2))), from the
+ *   second failure on h *= max(0.01, min(0.25, 0.9 |e|^(-1/2)));
+ *   Newton failure, a singular iteration matrix or a recoverable callback
+ *   error: h *= 0.25;
  *   each retried up to maxnef / maxncf times, and not below hmin.
  *
  * A stop time is landed on without a short step: within 1.1 h it is
@@ -40,6 +41,7 @@
 #define SAFETY      SUN_RCONST(0.9)
 #define KEEP_BELOW  SUN_RCONST(1.2) /* 1 <= factor < 1.2: keep h           */
 #define CUT_FAIL    SUN_RCONST(0.25)
+#define CUT_MIN     SUN_RCONST(0.01) /* the largest cut after an error-test failure */
 #define LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 %   */
 
 /* The controller's factor for an error norm err: error per unit step, the
@@ -133,7 +135,11 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     RescaleAux(mem, h);
     c    = lgnStepCoeffs(mem, h);
     lgnNewtonTolerances(mem, &c);
+    /* a singular iteration matrix at this h: retried with a smaller one
+     * (LGN_RECOVERABLE from lgnLsSetup), as IDA's IDAHandleNFlag does */
+    mem->lsetup_recoverable = SUNTRUE;
     flag = lgnStepAttempt(mem, &c);
+    mem->lsetup_recoverable = SUNFALSE;
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
     if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
       sunrealtype err_l;
@@ -163,26 +169,41 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       lgnStepRejected(mem);
       mem->netf++;
       nef++;
-      if (nef >= mem->maxnef || h <= mem->hmin) {
+      if (nef >= mem->maxnef || h <= mem->hmin || !isfinite(err)) {
         LGN_ERROR(mem, LGN_ERR_FAILURE,
                   MSG_TIME "the error test failed %d times, the last with "
-                  "h = %g and |e| = %g%s (the state at t is kept).",
+                  "h = %g and |e| = %g%s (the state at t is kept).%s",
                   (double)mem->tn, nef, (double)h, (double)err,
-                  h <= mem->hmin ? " at the minimum step size" : "");
+                  h <= mem->hmin ? " at the minimum step size" : "",
+                  isfinite(err) ? ""
+                                : " The error norm is not finite: the tolerances (rtol, "
+                                  "atol) are too small for finite error weights.");
         return LGN_ERR_FAILURE;
       }
-      factor = nef == 1 ? SUNMAX(FMIN, SUNMIN(SAFETY, ErrorFactor(err))) : CUT_FAIL;
+      /* from the second failure on at most CUT_FAIL, less when the error
+       * says so (a first step far too large: h0 = 1e6 on the heavy top
+       * needs 1e-9 of it), but not below CUT_MIN */
+      factor = nef == 1 ? SUNMAX(FMIN, SUNMIN(SAFETY, ErrorFactor(err)))
+                        : SUNMAX(CUT_MIN, SUNMIN(CUT_FAIL, ErrorFactor(err)));
     } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
+      /* singular on any rank: the same flag on all */
+      const sunbooleantype singular =
+          lgnMaxAll(mem, flag == LGN_RECOVERABLE && mem->last_lin_flag != 0 ? SUN_RCONST(1.0)
+                                                                             : SUN_RCONST(0.0)) >
+          SUN_RCONST(0.0);
       ncf++;
       if (ncf >= mem->maxncf || h <= mem->hmin) {
-        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE : LGN_REPTD_CALLBACK_ERR;
+        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE
+                      : singular                 ? LGN_LSETUP_FAIL
+                                                 : LGN_REPTD_CALLBACK_ERR;
         LGN_ERROR(mem, out,
                   MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
-                  "is kept).", (double)mem->tn,
-                  flag == LGN_CONV_FAILURE
-                      ? "the Newton iteration failed to converge"
-                      : "a callback failed recoverably",
-                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "");
+                  "is kept).%s", (double)mem->tn,
+                  flag == LGN_CONV_FAILURE ? "the Newton iteration failed to converge"
+                  : singular ? "the iteration matrix was singular"
+                             : "a callback failed recoverably",
+                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "",
+                  singular ? mem->diag_text : "");
         return out;
       }
       factor = CUT_FAIL;

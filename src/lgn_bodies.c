@@ -265,6 +265,29 @@ static int CheckMassValue(const struct LGNBodiesRec *B, sunrealtype m, const cha
   return LGN_SUCCESS;
 }
 
+/* The principal moments of a symmetric inertia tensor J satisfy the
+ * triangle inequality J_i <= J_j + J_k iff S = (tr J / 2) 1 - J (the second
+ * moment of the mass, int x x^T dm) is positive semidefinite: all its
+ * principal minors >= 0, to 1e-12 relative (a plate: equality). */
+static int TriangleInequality(const sunrealtype *J)
+{
+  const sunrealtype tr = J[0] + J[4] + J[8], tol = SUN_RCONST(1e-12);
+  sunrealtype S[9], det;
+  int i, j;
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 3; j++)
+      S[3 * i + j] = (i == j ? SUN_RCONST(0.5) * tr : SUN_RCONST(0.0)) -
+                     SUN_RCONST(0.5) * (J[3 * i + j] + J[3 * j + i]);
+  for (i = 0; i < 3; i++) {
+    const int a = (i + 1) % 3, b = (i + 2) % 3;
+    if (S[4 * i] < -tol * tr) return 0;
+    if (S[4 * a] * S[4 * b] - S[3 * a + b] * S[3 * b + a] < -tol * tr * tr) return 0;
+  }
+  det = S[0] * (S[4] * S[8] - S[5] * S[7]) - S[1] * (S[3] * S[8] - S[5] * S[6]) +
+        S[2] * (S[3] * S[7] - S[4] * S[6]);
+  return det >= -tol * tr * tr * tr;
+}
+
 int LGNBodies_SetMass(LGNBodies B, int k, sunrealtype m, const sunrealtype inertia[9])
 {
   int i, j;
@@ -301,6 +324,12 @@ int LGNBodies_SetMass(LGNBodies B, int k, sunrealtype m, const sunrealtype inert
     BErr(B, LGN_ILL_INPUT, __func__, "inertia illegal: not positive definite.");
     return LGN_ILL_INPUT;
   }
+  if (!TriangleInequality(J)) {
+    BErr(B, LGN_ILL_INPUT, __func__,
+         "inertia illegal: its largest principal moment exceeds the sum of the other "
+         "two, which no rigid body's do (the triangle inequality).");
+    return LGN_ILL_INPUT;
+  }
   B->mass[k] = m;
   for (i = 0; i < 3; i++)
     for (j = 0; j < 3; j++) /* symmetrised */
@@ -319,6 +348,20 @@ int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m, const sunre
     BErr(B, LGN_ILL_INPUT, __func__, "J = (%g, %g, %g) illegal: must be positive.",
          (double)J[0], (double)J[1], (double)J[2]);
     return LGN_ILL_INPUT;
+  }
+  {
+    /* the principal moments of a rigid body satisfy J_i <= J_j + J_k
+     * (J_i = int (r^2 - x_i^2) dm); equality (a plate) within round-off */
+    const sunrealtype slack = SUN_RCONST(1.0) + SUN_RCONST(16.0) * SUN_UNIT_ROUNDOFF;
+    int i;
+    for (i = 0; i < 3; i++)
+      if (J[i] > (J[(i + 1) % 3] + J[(i + 2) % 3]) * slack) {
+        BErr(B, LGN_ILL_INPUT, __func__,
+             "J = (%g, %g, %g) illegal: J[%d] exceeds the sum of the other two, which "
+             "no rigid body's principal moments do (the triangle inequality).",
+             (double)J[0], (double)J[1], (double)J[2], i);
+        return LGN_ILL_INPUT;
+      }
   }
   In[0] = J[0];
   In[4] = J[1];

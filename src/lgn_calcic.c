@@ -71,6 +71,15 @@ int LGNCalcIC(void *lgn_mem, int icopt)
               "LGN_IC_PROJECT_QV.", icopt);
     return LGN_ILL_INPUT;
   }
+  if (mem->nst > 0) {
+    /* it corrects initial values only (a restart would change the state
+     * the steps reached) */
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "LGNCalcIC corrects initial values: %ld steps were taken since "
+              "LGNInit / LGNReInit. Call LGNReInit with the state to start from, "
+              "then LGNCalcIC.", mem->nst);
+    return LGN_ILL_INPUT;
+  }
   flag = PrepareModel(mem, __func__);
   if (flag != LGN_SUCCESS) return flag;
 

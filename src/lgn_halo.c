@@ -190,6 +190,64 @@ static int AnyFailed(MPI_Comm comm, int fail)
   return any;
 }
 
+/* Each global number is owned by exactly one rank (collective, after the
+ * local checks passed on every rank): the owned numbers of all ranks,
+ * gathered and sorted, hold no number twice. Every rank finds the same;
+ * rank 0 reports it. Returns nonzero on every rank if not. */
+static int CheckOneOwner(MPI_Comm comm, int rank, int size, int nowned,
+                         const long int *global_id)
+{
+  int *counts = (int *)malloc(2 * (size_t)size * sizeof(int)), *displs;
+  long int *all = NULL;
+  GlobalBody *owned = NULL;
+  int i, r, total = 0, fail = counts == NULL;
+  if (AnyFailed(comm, fail)) {
+    free(counts);
+    if (rank == 0) Report(rank, "A memory request failed.");
+    return -1;
+  }
+  displs = counts + size;
+  MPI_Allgather(&nowned, 1, MPI_INT, counts, 1, MPI_INT, comm);
+  for (r = 0; r < size; r++) {
+    displs[r] = total;
+    total += counts[r];
+  }
+  all   = (long int *)malloc((size_t)total * sizeof(long int));
+  owned = (GlobalBody *)malloc((size_t)total * sizeof(GlobalBody));
+  fail  = all == NULL || owned == NULL;
+  if (AnyFailed(comm, fail)) {
+    if (rank == 0) Report(rank, "A memory request failed.");
+    fail = 1;
+  } else {
+    MPI_Allgatherv(global_id, nowned, MPI_LONG, all, counts, displs, MPI_LONG, comm);
+    for (r = 0; r < size; r++) /* (gid, owning rank) */
+      for (i = 0; i < counts[r]; i++) {
+        owned[displs[r] + i].gid  = all[displs[r] + i];
+        owned[displs[r] + i].body = r;
+      }
+    qsort(owned, (size_t)total, sizeof *owned, CompareGlobal);
+    for (i = 1; i < total && !fail; i++)
+      if (owned[i].gid == owned[i - 1].gid) {
+        const int r1 = SUNMIN(owned[i].body, owned[i - 1].body);
+        const int r2 = SUNMAX(owned[i].body, owned[i - 1].body);
+        char who[64];
+        if (r1 == r2)
+          snprintf(who, sizeof who, "rank %d twice", r1);
+        else
+          snprintf(who, sizeof who, "ranks %d and %d", r1, r2);
+        fail = 1;
+        if (rank == 0)
+          Report(rank, "global_id: the global number %ld is owned by %s: each global "
+                       "number is owned by exactly one rank (among its first nowned "
+                       "bodies); the others list it as a ghost.", owned[i].gid, who);
+      }
+  }
+  free(all);
+  free(owned);
+  free(counts);
+  return fail ? -1 : 0;
+}
+
 /* The ghosts' requests to their owners and the owners' answers: the send
  * side (bodies each neighbour needs) on the owners, and the check of the
  * answers on the requesters. */
@@ -337,7 +395,7 @@ LGNHalo LGNHalo_Create(MPI_Comm comm, LGNGroup G, int nowned, const long int *gl
       fail = 1;
     }
   }
-  if (AnyFailed(comm, fail)) {
+  if (AnyFailed(comm, fail) || CheckOneOwner(comm, rank, size, nowned, global_id) != 0) {
     FreeHalo(H);
     free(se3);
     return NULL;

@@ -171,6 +171,7 @@ int lgnComputeIC(LGNMem mem)
   }
   if (!mem->user_a0) N_VScale(SUN_RCONST(1.0), mem->vdot, mem->a);
   mem->ic_done     = SUNTRUE;
+  mem->lambda_valid = SUNTRUE;
   mem->pstart_done = SUNFALSE; /* the perturbed start (if on) at the first step */
   return LGN_SUCCESS;
 }

@@ -9,6 +9,7 @@
 #ifndef LGN_IMPL_H
 #define LGN_IMPL_H
 
+#include <limits.h>
 #include <stdarg.h>
 #include <lignum/lignum.h>
 #include <sundials/sundials_math.h>
@@ -28,6 +29,7 @@
 #define LGN_MSBP_DEFAULT      10L  /* modified Newton: steps between setups */
 #define LGN_MXSTEP_DEFAULT    1000000L
 #define LGN_MAX_CONSTRAINTS   ((sunindextype)1 << 31) /* sizes stay far from overflow */
+#define LGN_MAX_ROOTS         (INT_MAX / 3) /* 3 nrtfn reals (lgnAllocRoots) */
 #define LGN_EPCON_DEFAULT     SUN_RCONST(0.33) /* Newton / error-test tolerance */
 #define LGN_MAXNEF_DEFAULT    10  /* error-test failures per step         */
 #define LGN_MAXNCF_DEFAULT    10  /* Newton or callback failures per step */
@@ -167,6 +169,12 @@ typedef struct LGNMemRec {
   sunrealtype tn;
   N_Vector q, v, vdot, a;   /* configuration, velocity, acceleration, aux  */
   N_Vector lambda;          /* multipliers (NULL when m = 0)               */
+  sunbooleantype lambda_valid; /* lambda holds multipliers computed (or
+                                  given) at t_n, not the work space's zeros */
+  sunrealtype *lambda_keep; /* the last valid multipliers while the work
+                               space is dropped (a setter changed sizes):
+                               restored when it is made again with this m */
+  sunindextype lambda_keep_len;
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */

@@ -50,12 +50,14 @@ int LGNSetGroup(void *lgn_mem, LGNGroup G)
     return LGN_ILL_INPUT;
   }
   if (mem->malloc_done && (G->nq != mem->nq || G->nv != mem->nv)) {
-    /* another size: the state given to LGNInit no longer fits; it is
-     * dropped and LGNInit (with vectors of the new sizes) comes next */
-    mem->G = G;
-    lgnInvalidate(mem, LGN_CHANGE_GROUP | LGN_CHANGE_SIZES);
-    lgnFreeState(mem);
-    return LGN_SUCCESS;
+    /* another size: the state given to LGNInit would not fit it (refused,
+     * the state kept; a new problem starts with a new LGNCreate) */
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "G has nq = %lld, nv = %lld, but the state given to LGNInit has nq = "
+              "%lld, nv = %lld: a group of another size after LGNInit is refused "
+              "(create a new integrator with LGNCreate for it).",
+              (long long)G->nq, (long long)G->nv, (long long)mem->nq, (long long)mem->nv);
+    return LGN_ILL_INPUT;
   }
   if (G != mem->G) {
     /* the block table, T's storage, the patterns and the matrices follow
@@ -381,18 +383,33 @@ int LGNSetPredictor(void *lgn_mem, int predictor)
   return LGN_SUCCESS;
 }
 
+/* A tolerance: 0 (the default) or a finite normal number; below the
+ * smallest normal number (e.g. 4.9e-324) the error weights 1/tol overflow,
+ * and the error norms become inf or NaN. */
+static int CheckTolerance(LGNMem mem, sunrealtype tol, const char *name, const char *func)
+{
+  if (!(tol >= SUN_RCONST(0.0)) || !isfinite(tol)) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %g illegal: must be >= 0.", name, (double)tol);
+    return LGN_ILL_INPUT;
+  }
+  if (tol > SUN_RCONST(0.0) && tol < SUN_SMALL_REAL) {
+    lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
+                    "%s = %g illegal: below the smallest normal number %g, its error "
+                    "weights 1/%s would overflow (0 selects the default).",
+                    name, (double)tol, (double)SUN_SMALL_REAL, name);
+    return LGN_ILL_INPUT;
+  }
+  return LGN_SUCCESS;
+}
+
 int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
+  if (CheckTolerance(mem, rtol, "rtol", __func__) != LGN_SUCCESS ||
+      CheckTolerance(mem, atol, "atol", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (!(atol >= SUN_RCONST(0.0)) || !isfinite(atol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "atol = %g illegal: must be >= 0.", (double)atol);
-    return LGN_ILL_INPUT;
-  }
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
   mem->atol     = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
   mem->tols_set = SUNTRUE;
@@ -449,18 +466,16 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
   /* a local call across ranks too: the entries are copied into an array of
    * this rank's length, and the multipliers' atol (their mean over all
    * ranks) is formed by LGNSolve */
-  if (!(rtol >= SUN_RCONST(0.0)) || !isfinite(rtol)) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "rtol = %g illegal: must be >= 0.", (double)rtol);
-    return LGN_ILL_INPUT;
-  }
+  if (CheckTolerance(mem, rtol, "rtol", __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
   flag = lgnCheckVector(mem, atol, mem->nv, "atol", __func__);
   if (flag != LGN_SUCCESS) return flag;
   a = N_VGetArrayPointer(atol);
   for (i = 0; i < nv_own; i++) {
-    if (!(a[i] > SUN_RCONST(0.0)) || !isfinite(a[i])) {
+    if (!(a[i] >= SUN_SMALL_REAL) || !isfinite(a[i])) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
-                "atol[%lld] = %g illegal: every entry must be > 0 and finite.",
-                (long long)i, (double)a[i]);
+                "atol[%lld] = %g illegal: every entry must be finite and at least the "
+                "smallest normal number %g (the error weights 1/atol must be finite).",
+                (long long)i, (double)a[i], (double)SUN_SMALL_REAL);
       return LGN_ILL_INPUT;
     }
     sum += a[i];
@@ -498,6 +513,9 @@ int LGNSetInitStep(void *lgn_mem, sunrealtype h0)
   flag = CheckStepArg(mem, h0, "h0", __func__);
   if (flag != LGN_SUCCESS) return flag;
   mem->h0_user = h0;
+  /* after steps (error control): the size of the next step, e.g. to go on
+   * after a failure that left h tiny (0: estimated anew) */
+  if (mem->malloc_done && mem->nst > 0) mem->hnext = h0;
   return LGN_SUCCESS;
 }
 
@@ -749,6 +767,7 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
   if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  mem->lambda_valid = SUNTRUE;
   lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */
   mem->user_vdot0 = SUNTRUE;
   return LGN_SUCCESS;
@@ -820,15 +839,23 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
   flag = lgnCheckVector(mem, lambda, mem->m, "lambda", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (mem->m > 0) {
-    if (mem->lambda == NULL) {
+    /* the last output's consistent value (lgn_output.c); else the last
+     * valid multipliers: in the work space, or kept while a setter
+     * dropped it (never the zeros of a new work space) */
+    if (mem->out_valid && mem->out_lambda != NULL) {
+      memcpy(N_VGetArrayPointer(lambda), mem->out_lambda, (size_t)mem->m * sizeof(sunrealtype));
+    } else if (mem->lambda != NULL && mem->lambda_valid) {
+      N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
+    } else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
+      memcpy(N_VGetArrayPointer(lambda), mem->lambda_keep,
+             (size_t)mem->m * sizeof(sunrealtype));
+    } else {
       LGN_ERROR(mem, LGN_ILL_INPUT,
-                "No multipliers yet: they are computed at the first LGNSolve.");
+                "No multipliers yet for the %lld constraints: they are computed "
+                "at the start of the next LGNSolve that gets that far.",
+                (long long)mem->m);
       return LGN_ILL_INPUT;
     }
-    if (mem->out_valid) /* the last output's consistent value (lgn_output.c) */
-      memcpy(N_VGetArrayPointer(lambda), mem->out_lambda, (size_t)mem->m * sizeof(sunrealtype));
-    else
-      N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
   }
   return LGN_SUCCESS;
 }

@@ -187,6 +187,18 @@ int lgnKrylovCheck(LGNMem mem)
   if (flag != LGN_SUCCESS) return flag;
   flag = lgnAllocKrylov(mem);
   if (flag != LGN_SUCCESS) return flag;
+  if (!prec && (mem->kry_pretype == SUN_PREC_LEFT || mem->kry_pretype == SUN_PREC_RIGHT ||
+                mem->kry_pretype == SUN_PREC_BOTH)) {
+    /* SUNLinSolInitialize would fail with SUNLS_PSOLVE_NULL (-807) */
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The Krylov solver was created with %s but no preconditioner is "
+              "attached: call LGNSetPreconditioner or LGNSetBlockPreconditioner, "
+              "or create it with SUN_PREC_NONE.",
+              mem->kry_pretype == SUN_PREC_LEFT    ? "SUN_PREC_LEFT (PREC_LEFT)"
+              : mem->kry_pretype == SUN_PREC_RIGHT ? "SUN_PREC_RIGHT (PREC_RIGHT)"
+                                                   : "SUN_PREC_BOTH (PREC_BOTH)");
+    return LGN_LS_MISMATCH;
+  }
   if (prec && (mem->kry_pretype == SUN_PREC_NONE ||
                (mem->kry_pretype == SUN_PREC_RIGHT &&
                 SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_SPFGMR))) {

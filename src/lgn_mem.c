@@ -400,9 +400,37 @@ void lgnFreeMatrices(LGNMem mem)
   mem->ls_restart = SUNTRUE;
 }
 
+/* The last valid multipliers outlive the work space that holds them (a
+ * setter of the sizes drops it; LGNGetMultipliers then still reports them,
+ * never the zeros of a new work space): kept here, restored by
+ * lgnAllocWork when m is the same. */
+static void KeepMultipliers(LGNMem mem)
+{
+  const sunindextype m = mem->lambda != NULL ? lgnLocalLength(mem->lambda) : 0;
+  if (!mem->lambda_valid || m == 0) return;
+  free(mem->lambda_keep);
+  mem->lambda_keep     = (sunrealtype *)malloc((size_t)m * sizeof(sunrealtype));
+  mem->lambda_keep_len = mem->lambda_keep != NULL ? m : 0;
+  if (mem->lambda_keep != NULL)
+    memcpy(mem->lambda_keep, lgnData(mem->lambda), (size_t)m * sizeof(sunrealtype));
+  mem->lambda_valid = SUNFALSE;
+}
+
+static void RestoreMultipliers(LGNMem mem)
+{
+  if (mem->lambda != NULL && mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
+    memcpy(lgnData(mem->lambda), mem->lambda_keep, (size_t)mem->m * sizeof(sunrealtype));
+    mem->lambda_valid = SUNTRUE;
+  }
+  free(mem->lambda_keep);
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
+}
+
 void lgnFreeWork(LGNMem mem)
 {
   lgnFreeMatrices(mem);
+  KeepMultipliers(mem);
   DestroyVector(&mem->lambda);
   DestroyVector(&mem->lambda1);
   DestroyVector(&mem->g);
@@ -461,6 +489,9 @@ void lgnFreeAll(LGNMem mem)
   mem->atol_vec = NULL;
   lgnFreeRoots(mem);
   lgnParallelFree(&mem->par);
+  free(mem->lambda_keep); /* (kept by lgnFreeWork above) */
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
 }
 
 /* =============================================================================
@@ -571,15 +602,23 @@ int lgnAllocRootVectors(LGNMem mem)
  * LGNRootInit is not. */
 int lgnAllocRoots(LGNMem mem, int nrtfn)
 {
+  /* sizes in size_t (3 nrtfn overflows an int; LGNRootInit refuses
+   * nrtfn > LGN_MAX_ROOTS); the old arrays stay until the new ones exist */
+  const size_t n = (size_t)nrtfn;
+  sunrealtype *glo  = (sunrealtype *)calloc(3 * n, sizeof(sunrealtype));
+  int *iroots       = (int *)calloc(2 * n, sizeof(int));
+  sunbooleantype *gactive = (sunbooleantype *)calloc(n, sizeof(sunbooleantype));
   int i;
-  lgnFreeRoots(mem);
-  mem->glo     = (sunrealtype *)calloc((size_t)(3 * nrtfn), sizeof(sunrealtype));
-  mem->iroots  = (int *)calloc((size_t)(2 * nrtfn), sizeof(int));
-  mem->gactive = (sunbooleantype *)calloc((size_t)nrtfn, sizeof(sunbooleantype));
-  if (mem->glo == NULL || mem->iroots == NULL || mem->gactive == NULL) {
-    lgnFreeRoots(mem);
+  if (glo == NULL || iroots == NULL || gactive == NULL) {
+    free(glo);
+    free(iroots);
+    free(gactive);
     return LGN_MEM_FAIL;
   }
+  lgnFreeRoots(mem);
+  mem->glo     = glo;
+  mem->iroots  = iroots;
+  mem->gactive = gactive;
   mem->ghi     = mem->glo + nrtfn;
   mem->grout   = mem->glo + 2 * nrtfn;
   mem->rootdir = mem->iroots + nrtfn;
@@ -593,6 +632,9 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
 {
   lgnFreeWork(mem);
   lgnFreeState(mem);
+  free(mem->lambda_keep); /* a new problem: the old multipliers are not its */
+  mem->lambda_keep     = NULL;
+  mem->lambda_keep_len = 0;
   mem->nq    = mem->G->nq;
   mem->nv    = mem->G->nv;
   mem->nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
@@ -751,6 +793,8 @@ int lgnAllocWork(LGNMem mem)
   mem->out_lwork   = m > 0 ? mem->out_save + mem->nq + 3 * nv + m : NULL;
   mem->out_valid   = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
+  mem->lambda_valid = SUNFALSE;
+  RestoreMultipliers(mem); /* the last valid ones, if m is the same */
   mem->work_done = SUNTRUE;
   return LGN_SUCCESS;
 }

@@ -346,8 +346,9 @@ int LGNRootInit(void *lgn_mem, int nrtfn, LGNRootFn g)
     LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
     return LGN_NO_MALLOC;
   }
-  if (nrtfn < 0) {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "nrtfn = %d illegal: must be >= 0.", nrtfn);
+  if (nrtfn < 0 || nrtfn > LGN_MAX_ROOTS) {
+    LGN_ERROR(mem, LGN_ILL_INPUT, "nrtfn = %d illegal: must lie in 0 ... %d (3 nrtfn "
+              "reals are allocated).", nrtfn, LGN_MAX_ROOTS);
     return LGN_ILL_INPUT;
   }
   if (nrtfn > 0 && g == NULL) {

@@ -205,6 +205,9 @@ int lgnCheckProgress(LGNMem mem, sunrealtype h)
     return LGN_STEP_TOO_SMALL;
   }
   if (mem->tn + h != mem->tn) return LGN_SUCCESS;
+  /* h collapsed (a callback failing recoverably from some t on): the next
+   * LGNSolve starts error control anew (LGNSetInitStep, or the estimate) */
+  mem->hnext = SUN_RCONST(0.0);
   LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
             MSG_TIME "the step size h = %g cannot advance t in floating point "
             "(t + h == t).", (double)mem->tn, (double)h);

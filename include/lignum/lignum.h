@@ -280,7 +280,10 @@ LGN_EXPORT void LGNFree(void **lgn_mem);
  * ===========================================================================*/
 
 /** Set the Lie group (configuration space). Required before LGNInit.
- *  The group is referenced, not copied; it must outlive the memory block. */
+ *  The group is referenced, not copied; it must outlive the memory block.
+ *  After LGNInit only a group of the same sizes nq, nv is accepted.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (G NULL, empty, or
+ *          after LGNInit of other sizes than the state's; nothing changed). */
 LGN_EXPORT int LGNSetGroup(void *lgn_mem, LGNGroup G);
 
 /** Set the pointer passed to every callback. */
@@ -432,7 +435,10 @@ LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
 LGN_EXPORT int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment
- *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores. */
+ *  (weights 1/(atol + rtol |xi|)) is <= 1. Defaults 1e-8, 1e-8; 0 restores.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT (either negative, not
+ *          finite, or below the smallest normal number, about 2.2e-308:
+ *          its weights would overflow). */
 LGN_EXPORT int LGNSStolerances(void *lgn_mem, sunrealtype rtol,
                                sunrealtype atol);
 
@@ -512,9 +518,12 @@ LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
  *  is the joint forces and motor torques. Without them (or before the first
  *  LGNSolve, or after one that failed after taking steps) the step's own
  *  multipliers at the current time, which no error test measures
- *  (generalized-alpha's carry O(h) errors after a change of step size).
+ *  (generalized-alpha's carry O(h) errors after a change of step size):
+ *  the last ones computed (or given with LGNSetInitialAcceleration), also
+ *  after a failed LGNSolve.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (lambda
- *          NULL or of the wrong length, or no multipliers yet). */
+ *          NULL or of the wrong length, or none computed yet for the
+ *          current m). */
 LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
 /** Algorithmic acceleration a at the current time (length nv). */
 LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
@@ -590,12 +599,15 @@ LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
  *  bodies (LGNSetHalo, set before this call) only the owned bodies'
  *  entries are read and checked.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
- *          LGN_ILL_INPUT (rtol < 0, atol NULL, of the wrong length, or an
- *          entry <= 0 or not finite), LGN_MEM_FAIL. */
+ *          LGN_ILL_INPUT (rtol < 0 or below the smallest normal number,
+ *          atol NULL, of the wrong length, or an entry not finite or
+ *          below the smallest normal number), LGN_MEM_FAIL. */
 LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
 
 /** The first step size of error control (0: estimated from the initial
- *  acceleration, the default). @return LGN_ILL_INPUT if h0 < 0 or not finite. */
+ *  acceleration, the default). Called after steps, it also sets the size of
+ *  the next step (0: estimated anew), e.g. to go on after a failure.
+ *  @return LGN_ILL_INPUT if h0 < 0 or not finite. */
 LGN_EXPORT int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
 
 /** The smallest step size error control may take (default 0).
@@ -620,8 +632,11 @@ LGN_EXPORT int LGNSetMaxConvFails(void *lgn_mem, int maxncf);
  *  @return LGN_ILL_INPUT unless 0 <= epcon <= 1 (0: default). */
 LGN_EXPORT int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon);
 
-/** A time error control must not step past: LGNSolve lands on it exactly
- *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared.
+/** A time LGNSolve must not step past (with error control or fixed steps:
+ *  the step that would cross it is shortened): LGNSolve lands on it exactly
+ *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared. A stop
+ *  time behind t (after LGNReInit to a later t0) makes LGNSolve return
+ *  LGN_ILL_INPUT, the state unchanged.
  *  @return LGN_ILL_INPUT if tstop is not finite or behind the current time. */
 LGN_EXPORT int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
 
@@ -805,7 +820,8 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
  *          did not converge or the saddle-point matrix is singular; the
  *          message gives |Phi|), a callback's failure flag. On failure q0
- *          and v0 are left as they were. */
+ *          and v0 are left as they were. Only before the first step after
+ *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
 LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
 
 /** The initial state as LGNCalcIC corrected it (or as given, without

@@ -118,15 +118,19 @@ LGN_EXPORT int LGNBodies_NumOwnedBodies(LGNBodies B);
  * @param k      the body (0-based leaf of the group)
  * @param m      mass, > 0
  * @param inertia 3x3 inertia about the centre of mass in body axes
- *               (row-major), symmetric (to 1e-12 relative) and positive
- *               definite
+ *               (row-major), symmetric (to 1e-12 relative), positive
+ *               definite, and its principal moments satisfy the triangle
+ *               inequality J_i <= J_j + J_k (to 1e-12 relative), as a rigid
+ *               body's do
  * @return LGN_SUCCESS or LGN_ILL_INPUT.
  */
 LGN_EXPORT int LGNBodies_SetMass(LGNBodies B, int k, sunrealtype m,
                                  const sunrealtype inertia[9]);
 
 /** Mass m > 0 and principal moments J[3] > 0 of body k (body axes along
- *  the principal axes): inertia diag(J). */
+ *  the principal axes): inertia diag(J). The moments must satisfy the
+ *  triangle inequality J_i <= J_j + J_k (equality, a plate, within
+ *  round-off), as a rigid body's do. @return LGN_SUCCESS or LGN_ILL_INPUT. */
 LGN_EXPORT int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m,
                                              const sunrealtype J[3]);
 

@@ -10,9 +10,8 @@
  *    one whose normalisation overflows: refused without touching the state)
  *    or has a NaN, and a NaN velocity;
  *  - initial accelerations set after the first step (as LGNSetInitialAux);
- *  - and an object may be resized: LGNSetGroup with another size after
- *    LGNInit drops the state, LGNSolve asks for LGNInit, and LGNInit with
- *    vectors of the new size works.
+ *  - and LGNSetGroup with another size after LGNInit is refused with the
+ *    state kept (the solve goes on); a new integrator takes the new size.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 
@@ -208,17 +207,31 @@ int main(void)
   flag = LGNSolve(mem, -1.0, &t, q, v, LGN_ONE_STEP);
   CHECK(Refused(flag, LGN_BAD_TOUT, "behind"), "LGN_ONE_STEP, tout behind t: %s", last_msg);
 
-  /* resizing: SO(3) -> R^5 */
-  CHECK(LGNSetGroup(mem, r5) == LGN_SUCCESS, "LGNSetGroup with another size: %s", last_msg);
-  flag = LGNSolve(mem, 0.02, &t, q5, v5, LGN_NORMAL);
-  CHECK(Refused(flag, LGN_NO_MALLOC, "LGNInit"), "then LGNSolve asks for LGNInit: %s", last_msg);
-  CHECK(LGNInit(mem, 0.0, q5, v5) == LGN_SUCCESS, "LGNInit with the new sizes: %s", last_msg);
-  CHECK(LGNSetLinearSolver(mem, LS5, A5) == LGN_SUCCESS, "a solver of the new size");
-  flag = LGNSolve(mem, 0.5, &t, q5, v5, LGN_NORMAL);
-  CHECK(flag == LGN_SUCCESS && fabs(N_VGetArrayPointer(q5)[0] - 0.5) < 1e-12,
-        "the resized object integrates (free motion, x = t): %s, x = %.17g",
-        LGNGetReturnFlagName(flag), N_VGetArrayPointer(q5)[0]);
-
+  /* a group of another size after LGNInit (SO(3) -> R^5): refused, the
+   * state kept (issue 31; it used to drop the state, and the next solve
+   * said "before LGNInit"); a new problem takes a new integrator */
+  CHECK(Refused(LGNSetGroup(mem, r5), LGN_ILL_INPUT, "LGNCreate"),
+        "LGNSetGroup with another size: %s", last_msg);
+  {
+    const double t0 = t;
+    flag = LGNSolve(mem, t0 + 0.02, &t, q, v, LGN_NORMAL);
+    CHECK(flag == LGN_SUCCESS && t == t0 + 0.02, "the state kept: %s at t = %g",
+          LGNGetReturnFlagName(flag), t);
+  }
+  {
+    void *mem5 = LGNCreate(ctx);
+    flag = LGNSetGroup(mem5, r5);
+    if (!flag) flag = LGNSetMassFn(mem5, Mass);
+    if (!flag) flag = LGNSetForceFn(mem5, Force);
+    if (!flag) flag = LGNSetStepSize(mem5, 1e-3);
+    if (!flag) flag = LGNInit(mem5, 0.0, q5, v5);
+    if (!flag) flag = LGNSetLinearSolver(mem5, LS5, A5);
+    if (!flag) flag = LGNSolve(mem5, 0.5, &t, q5, v5, LGN_NORMAL);
+    CHECK(flag == LGN_SUCCESS && fabs(N_VGetArrayPointer(q5)[0] - 0.5) < 1e-12,
+          "a new integrator on R^5 (free motion, x = t): %s, x = %.17g",
+          LGNGetReturnFlagName(flag), N_VGetArrayPointer(q5)[0]);
+    LGNFree(&mem5);
+  }
   LGNFree(&mem);
   SUNLinSolFree(LS1);
   SUNLinSolFree(LS3);

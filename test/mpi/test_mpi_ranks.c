@@ -20,6 +20,9 @@
  *   (d) a recoverable failure on the last rank: every rank retries the same
  *       step with a smaller one and goes on; the result is as accurate as
  *       the one-process run's (errors against a run at tolerance 1e-10);
+ *       and one that lasts until h collapses (LGN_STEP_TOO_SMALL on every
+ *       rank at the same t): once the callback works again the next
+ *       LGNSolve goes on, as accurate (generalized-alpha at index 2);
  *   (e) faults and misuse of one rank end alike on every rank: a NaN in its
  *       q0 (LGN_ILL_INPUT from every LGNInit), another rtol, another tout,
  *       no LGNRootInit or vector tolerances on one rank only (LGN_ILL_INPUT
@@ -73,7 +76,9 @@ enum {
   FAIL_TOUT,      /* another tout on this rank                             */
   FAIL_NOROOT,    /* no LGNRootInit on this rank                           */
   FAIL_SVTOL,     /* LGNSVtolerances on this rank only                     */
-  FAIL_BADTOUT    /* a tout behind the current time on this rank           */
+  FAIL_BADTOUT,   /* a tout behind the current time on this rank           */
+  FAIL_COLLAPSE   /* recoverable from t = 0.15 on until h collapses (index 2),
+                     then healthy: the next LGNSolve goes on                 */
 };
 
 typedef struct {
@@ -88,12 +93,15 @@ typedef struct {
   int flag;
   long int nst, nfails, nni;
   sunrealtype hlast, troot, tret;
+  sunrealtype tcollapse; /* FAIL_COLLAPSE: where LGN_STEP_TOO_SMALL came (-1: none) */
   int nmsg;           /* messages the error handler received         */
   sunrealtype *q;     /* the tops' q at each output (NOUT x nq)       */
   sunrealtype *v;
 } Run;
 
 static int nfail_checks = 0;
+static int collapse_run = 0; /* FAIL_COLLAPSE on some rank: the settings of
+                                every rank's run (they must agree) */
 
 static void Check(int ok, int rank, const char *what)
 {
@@ -116,6 +124,7 @@ static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
     md->injected = 1;
     return 1;
   }
+  if (md->inject == FAIL_COLLAPSE && t > 0.15 && !md->injected) return 1; /* until healed */
   return LGNBodies_ForceFn(t, q, v, g, md->bodies);
 }
 
@@ -233,6 +242,12 @@ static int MakeIntegrator(int method, int kind, MPI_Comm comm, int inject, sunre
   } else {
     if (!flag) flag = LGNSetBDF(mem, 5);
     if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
+  }
+  if (!flag && collapse_run) {
+    /* every rank: h collapses within one call; index 2: at index 3 the steps of 1e-17
+     * on the way would spoil v (user guide, 8.2) */
+    flag = LGNSetMaxConvFails(mem, 200);
+    if (!flag) flag = LGNSetConstraintIndex(mem, LGN_CONSTR_INDEX2);
   }
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   if (!flag && inject == FREE_Q0) {
@@ -357,7 +372,8 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     }
     mem = solver.mem;
   }
-  run->troot = -1.0;
+  run->troot     = -1.0;
+  run->tcollapse = -1.0;
   for (k = 1; k <= NOUT && !flag;) {
     flag = LGNSolve(mem,
                     inject == FAIL_BADTOUT ? -1.0
@@ -366,6 +382,13 @@ static void Integrate(int method, int kind, MPI_Comm comm, int u0, int K, int in
     if (flag == LGN_ROOT_RETURN) {
       if (!rootsfound++) run->troot = t;
       flag = 0;
+      continue;
+    }
+    if (flag == LGN_STEP_TOO_SMALL && run->tcollapse < 0.0) {
+      /* (every rank: the failure is agreed) the callback works again: on */
+      run->tcollapse = t;
+      md.injected    = 1;
+      flag           = 0;
       continue;
     }
     if (flag) break;
@@ -548,6 +571,34 @@ int main(int argc, char **argv)
       Check(emax[0] <= 3.0 * emax[1], rank, what);
     }
     FreeRun(&par);
+
+    /* (d) h collapsed by a recoverable failure on the last rank from t = 0.15
+     * on (LGN_STEP_TOO_SMALL on every rank); once the callback works again
+     * the next LGNSolve goes on, to the accuracy of the tolerances */
+    if (method == 0) {
+      sunrealtype e[2], emax[2];
+      par          = NewRun(K);
+      collapse_run = 1;
+      Integrate(method, VEC_MPIPLUSX, comm, u0, K,
+                rank == size - 1 ? FAIL_COLLAPSE : FAIL_NONE, 1e-7, ctx_par, &par);
+      collapse_run = 0;
+      e[0] = MaxDiff(&par, &exact, u0, K, N);
+      e[1] = MaxDiff(&one, &exact, 0, N, N);
+      MPI_Allreduce(e, emax, 2, MPI_DOUBLE, MPI_MAX, comm);
+      if (rank == 0)
+        printf("  %-27s collapse on rank %d at t = %.17g, then healthy: flag %s, error "
+               "%.1e (one process %.1e)\n", mname[method], size - 1, (double)par.tcollapse,
+               LGNGetReturnFlagName(par.flag), (double)emax[0], (double)emax[1]);
+      snprintf(what, sizeof what, "(d) %s: LGN_STEP_TOO_SMALL near t = 0.15 on every rank, "
+               "then on to the end", mname[method]);
+      Check(par.flag == 0 && par.tcollapse > 0.1499 && par.tcollapse <= 0.15 &&
+                SameOnAllRanks(par.tcollapse, comm) && SameOnAllRanks((double)par.nst, comm),
+            rank, what);
+      snprintf(what, sizeof what, "(d) %s: after the collapse as accurate as the tolerance "
+               "(%.1e against %.1e)", mname[method], (double)emax[0], (double)emax[1]);
+      Check(emax[0] <= 10.0 * emax[1], rank, what);
+      FreeRun(&par);
+    }
     FreeRun(&one);
   }
 
