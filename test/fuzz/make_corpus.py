@@ -6,7 +6,9 @@ import os
 
 (CREATE, SETGROUP, SETFNS, CONSTRAINTS, TANGENTS, LINSOL, STEPSIZE, METHOD, INDEX,
  KINEMATICS, TOLERANCES, COUNTS, INITIAL, CONTROL, STEPBOUNDS, STOPTIME, INIT, REINIT,
- SOLVE, SOLVE2, SOLVE3, DKY, GETTERS, FAULT, HEAL, FREE, CALCIC, MISC, JOINTS) = range(29)
+ SOLVE, SOLVE2, SOLVE3, DKY, GETTERS, FAULT, HEAL, FREE, CALCIC, MISC, JOINTS, BDF, ROOTS,
+ KRYLOV, BODIES, GETTERS2) = range(34)
+BODY0, BODY3, OSC, JOINTS_MODEL, BODIES_MODEL = range(5)
 
 SANE_DT = 160     # Param(): about 2e-3
 ONE, NORMAL = 1, 0
@@ -63,6 +65,110 @@ seeds["initial_acceleration"] = create(0, 1) + [INITIAL, 0, 3, 150, 10, 5, INITI
 seeds["joints_bad_input"] = create(0, 3, revolute=1) + [JOINTS, 0, 0x27, 20, 1, 3, 0] + solve(0) + [JOINTS, 0, 0x11, 11, 2, 5, 0]
 seeds["misc"] = create(0, 1, solver=1) + [MISC, 0, 7, 128, LINSOL, 0, 0x81] + solve(0) + [MISC, 0, 1] + solve(0)
 seeds["control_switch"] = create(0, 0) + solve(0) + [CONTROL, 0, 1] + solve(0) + [CONTROL, 0, 0] + solve(0, NORMAL)
+
+# ---- BDF, GGL, events, Krylov, the body helpers, LGNCalcIC (issue 31) ----
+DT_LONG, DT_MID = 250, 220   # Param(): about 0.16 and 0.04
+
+
+def dky_all(obj):
+    """LGNGetDky at the step's end, inside and before the last step, k = -1 ... 6."""
+    p = []
+    for k in range(-1, 7):
+        p += [DKY, obj, ((k + 1) << 3) | (k % 5 if k >= 0 else 0), 4]
+    return p
+
+
+def bdf(obj, maxord, form):
+    return [BDF, obj, (maxord + 1) | form << 3 | 0x40]
+
+
+GETALL = [GETTERS, 0, 0, 4, 4, 4, 4, 4, 4, 4, 4, GETTERS2, 0, 0]
+models = [OSC, BODY3, JOINTS_MODEL, BODIES_MODEL, BODY0]
+for maxord in range(1, 6):
+    for form in range(2):
+        for adaptive in range(2):
+            model = models[(maxord + form + adaptive) % 5]
+            p = create(0, model, adaptive=adaptive, solver=(maxord + adaptive) % 3,
+                       n=1 + maxord % 4, tangents=form, modified=adaptive and maxord % 2)
+            p += bdf(0, maxord, form) + solve(0, NORMAL, DT_MID) + solve(0) + solve(0)
+            p += dky_all(0) + GETALL
+            seeds[f"bdf{maxord}_{'fixed_leading' if form else 'variable'}_{'adaptive' if adaptive else 'fixed'}_m{model}"] = p
+# GGL with both families (the dense solver of nv + 2m rows), index 2, the kinematics
+for model in (BODY3, JOINTS_MODEL, BODIES_MODEL):
+    for fam in range(4):
+        adaptive = fam % 2
+        p = create(0, model, adaptive=adaptive, revolute=fam == 2)
+        p += [INDEX, 0, 8]     # GGL with a dense solver of nv + 2m rows
+        if fam >= 2:
+            p += bdf(0, 2 + fam, fam - 2)
+        else:
+            p += [KINEMATICS, 0, fam]    # simplified / exact
+        p += solve(0, NORMAL, DT_MID) + solve(0) + dky_all(0)[:16] + GETALL
+        seeds[f"ggl_m{model}_{['newmark', 'newmark_exact', 'bdf_var', 'bdf_fixed'][fam]}"] = p
+    for kin in range(3):
+        p = create(0, model, adaptive=kin == 1) + [INDEX, 0, 1, KINEMATICS, 0, kin | (kin << 2) | 0x40]
+        p += solve(0, NORMAL, DT_MID) + solve(0) + [CALCIC, 0, 3] + solve(0)
+        seeds[f"index2_m{model}_kin{kin}"] = p
+# events: a time event, a coordinate and a velocity level, directions,
+# LGN_ROOT_RETURN, LGNReInit after an event, g failing
+for model in (OSC, BODY3, JOINTS_MODEL, BODIES_MODEL):
+    for variant in range(4):
+        adaptive = variant != 1
+        p = create(0, model, adaptive=adaptive, solver=variant % 3)
+        if variant == 2:
+            p += bdf(0, 3, 1)
+        dirs = [16, 1, 2, 0] if variant == 3 else []
+        p += [ROOTS, 0, 4 | (16 if dirs else 0) | 64, 130, variant, 10, model, 3] + dirs[1:]
+        p += solve(0, NORMAL, DT_LONG) + [GETTERS2, 0, 0] + solve(0, NORMAL, DT_LONG)
+        p += solve(0) + [DKY, 0, 8 | 2, 4, REINIT, 0, 32] + solve(0, NORMAL, DT_LONG) + solve(0)
+        seeds[f"roots_m{model}_v{variant}"] = p
+    p = create(0, model, adaptive=1) + [ROOTS, 0, 2 | 32, 130, 0, 10, 0, 3, 2, 3]
+    p += solve(0, NORMAL, DT_LONG) + solve(0) + [ROOTS, 0, 0x88, 160, 0, 3, 0, 3] + [ROOTS, 0, 1, 160, 0, 3, 0, 3] + solve(0)
+    seeds[f"roots_fault_m{model}"] = p
+seeds["roots_bad"] = create(0, BODY3) + [ROOTS, 0, 0, 0, 0, 0, 0, 0, ROOTS, 0, 0x90, 0, 0, 0, 0, 0, 1, 1, 1,
+                                          ROOTS, 0, 0x13, 160, 0, 3, 0, 3, 5, 5, 3,
+                                          ROOTS, 0, 0x13, 160, 0, 3, 0, 3, 0, 1, 2] + solve(0, NORMAL, DT_MID)
+# Krylov: SPGMR with the block preconditioner (1 and 2 blocks), SPFGMR with a
+# user preconditioner, SPBCGS, SPGMR without a preconditioner
+for model in (BODY3, JOINTS_MODEL, BODIES_MODEL):
+    for variant in range(6):
+        adaptive = variant % 2
+        p = create(0, model, adaptive=adaptive)
+        s, pp = [(0x10, 2), (0x10, 3 | 64), (0x22, 0), (0x13, 2), (0x01, 0), (0x20 | 0x40 | 0x80, 1)][variant]
+        p += [KRYLOV, 0, s, pp] + ([160] if s & 64 else [])
+        if variant == 3:
+            p += bdf(0, 2, 0)
+        p += solve(0, NORMAL, DT_MID) + solve(0) + [GETTERS2, 0, 0]
+        seeds[f"krylov_m{model}_v{variant}"] = p
+seeds["krylov_bad"] = create(0, JOINTS_MODEL) + [KRYLOV, 0, 0x18, 0, KRYLOV, 0, 0x14, 0x43] + solve(0) + [KRYLOV, 0, 0x10, 7] + solve(0)
+# the body and joint helpers: every linear solver, fixed and adaptive, with the driver
+for solver in range(3):
+    for driver in range(2):
+        p = create(0, BODIES_MODEL, adaptive=driver, revolute=driver, solver=solver, modified=solver == 1)
+        p += solve(0, NORMAL, DT_MID) + solve(0) + dky_all(0)[:12] + GETALL
+        seeds[f"bodies_{solvers[solver]}_{'driver' if driver else 'plain'}"] = p
+for cb in range(8):
+    p = create(0, BODIES_MODEL, revolute=cb % 2, adaptive=cb % 2) + solve(0)
+    p += [FAULT, 0, cb | (cb % 6) << 3, 1] + solve(0) + solve(0) + [HEAL, 0, 0] + solve(0)
+    seeds[f"bodies_fault_cb{cb}"] = p
+for s in range(5):
+    p = create(0, BODIES_MODEL) + [BODIES, 0, s | 16 * s, 10, 2, 3, 0] + [BODIES, 0, 1 | 2 | 8, 0, 3, 2, 1]
+    p += create(1, BODY3) + [BODIES, 1, 4, 12, 200, 2, 3, 1] + solve(0)
+    seeds[f"bodies_helpers_{s}"] = p
+# LGNCalcIC: each option, after a perturbed LGNReInit, and after steps
+for model in (BODY3, JOINTS_MODEL, BODIES_MODEL):
+    for opt in (1, 2, 3):
+        p = create(0, model, revolute=opt == 2) + [INIT, 0, 2 | 4, 0, 10, 1, 10, CALCIC, 0, opt]
+        p += solve(0) + [CALCIC, 0, opt, INDEX, 0, 1, CALCIC, 0, opt] + solve(0)
+        seeds[f"calcic_m{model}_opt{opt}"] = p
+# stop times under error control (Newmark and BDF) and with fixed steps
+for fam in range(3):
+    p = create(0, [BODY3, JOINTS_MODEL, BODIES_MODEL][fam], adaptive=fam != 2)
+    if fam == 1:
+        p += bdf(0, 4, 0)
+    p += [STOPTIME, 0, 1, 150] + solve(0, NORMAL, DT_LONG) + solve(0) + [STOPTIME, 0, 1, 100]
+    p += solve(0) + solve(0) + solve(0) + [STOPTIME, 0, 0] + solve(0, NORMAL, DT_MID)
+    seeds[f"stop_time_{fam}"] = p
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 os.makedirs(out, exist_ok=True)
