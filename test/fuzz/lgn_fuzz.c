@@ -169,6 +169,11 @@ typedef struct {
   double tstop;
   int tstop_check;
   int root_returned; /* the last LGNSolve returned LGN_ROOT_RETURN */
+  int index_set;     /* LGNSetConstraintIndex accepted, no step since (issue 31, item 1) */
+  /* a fault of the user preconditioner: 0 none, 1 (2) its setup returns +1
+   * (-1), 3 (4) its solve, at call pc_fault_at of that function */
+  int pc_fault;
+  long pc_setups, pc_solves, pc_fault_at;
 } Obj;
 
 static const double MASS = 2.0, JB[3] = {0.3, 0.5, 0.7}, XP[3] = {0.0, 0.0, 0.4};
@@ -870,7 +875,7 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     return flag;
   }
   Snap(o, &after);
-  if (after.nst > before.nst) o->vdot0_set = 0;
+  if (after.nst > before.nst) o->vdot0_set = o->index_set = 0;
   if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
     /* under error control no step goes past an accepted stop time */
     if (o->stop_set && o->tstop_check)
@@ -952,10 +957,12 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
      * test/fuzz/README.md, reproducer crashes/bad_tout_changes_vdot.c), so
      * they are compared only once a step has been taken. */
     if (o->vdot0_set) memcpy(after.aux, before.aux, sizeof after.aux); /* finding 5 */
-    if (flag == LGN_LS_MISMATCH) {
-      /* after a switch to GGL with a smaller solver attached, the failed
-       * LGNSolve makes LGNGetMultipliers return zeros with success: issue
-       * 31, item 1 (being fixed on another branch; remove this then) */
+    if (o->index_set) {
+      /* LGNSetConstraintIndex drops the multipliers (LGNGetMultipliers:
+       * "no multipliers yet"); an LGNSolve refused then (e.g. GGL with a
+       * smaller or a Krylov solver attached: LGN_LS_MISMATCH,
+       * LGN_ILL_INPUT) makes LGNGetMultipliers return zeros with success:
+       * issue 31, item 1 (being fixed on another branch; remove this then) */
       memcpy(after.lambda, before.lambda, sizeof after.lambda);
       after.fl = before.fl;
     }
@@ -999,22 +1006,27 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
   return flag;
 }
 
-/* A user preconditioner: the identity. */
+/* A user preconditioner: the identity, with the fault chosen by OP_KRYLOV. */
 static int PrecSetup(sunrealtype t, N_Vector q, N_Vector v, sunrealtype cM, sunrealtype cC,
                      sunrealtype cK, void *ud)
 {
   Obj *o = ud;
   (void)t; (void)cM; (void)cC; (void)cK;
   if (!LenOk(q, o->nq) || !LenOk(v, o->nv)) return -1;
+  if ((o->pc_fault == 1 || o->pc_fault == 2) && ++o->pc_setups == o->pc_fault_at)
+    return o->pc_fault == 1 ? 1 : -1;
   return 0;
 }
 
 static int PrecSolve(sunrealtype t, N_Vector q, N_Vector v, N_Vector r, N_Vector z,
                      sunrealtype cM, sunrealtype cC, sunrealtype cK, sunrealtype delta, void *ud)
 {
-  (void)t; (void)q; (void)v; (void)cM; (void)cC; (void)cK; (void)delta; (void)ud;
+  Obj *o = ud;
+  (void)t; (void)q; (void)v; (void)cM; (void)cC; (void)cK; (void)delta;
   if (r == NULL || z == NULL || N_VGetLength(r) != N_VGetLength(z)) return -1;
   N_VScale(1.0, r, z);
+  if ((o->pc_fault == 3 || o->pc_fault == 4) && ++o->pc_solves == o->pc_fault_at)
+    return o->pc_fault == 3 ? 1 : -1;
   return 0;
 }
 
@@ -1154,6 +1166,7 @@ static void Run(In *in)
                                  LGN_CONSTR_GGL, 0, LGN_CONSTR_GGL + 1};
       const unsigned s = U8(in);
       flag = CheckFlag(o, LGNSetConstraintIndex(mem, idx[s % 6]), "LGNSetConstraintIndex");
+      if (flag == 0) o->index_set = 1;
       if (trace) fprintf(stderr, "  constraint index %d -> %d\n", idx[s % 6], flag);
       if (flag == 0 && idx[s % 6] == LGN_CONSTR_GGL && (s & 8)) {
         MakeSolver(o, 0, o->nv + 2 * o->m);
@@ -1443,10 +1456,28 @@ static void Run(In *in)
       if (s & 1) CheckFlag(o, LGNResetSparsityPattern(mem), "LGNResetSparsityPattern");
       if (s & 2) CheckFlag(o, LGNSetErrFile(mem, NULL), "LGNSetErrFile");
       if (s & 4) {
-        /* (no memory block: a message would go to stderr) */
-        flag = LGNGenAlphaFromRhoInf((double)U8(in) / 255.0, &am, &af, &b, &g);
-        REQUIRE(flag <= 0 && (flag == 0 || strcmp(LGNGetReturnFlagName(flag), "NONE") != 0),
-                "LGNGenAlphaFromRhoInf returned %d", flag);
+        /* rho_inf -0.08 ... 1.2, an output NULL with bit 3; without a memory
+         * block its messages go to stderr, pointed at /dev/null here */
+        const double rho = ((double)U8(in) - 16.0) / 200.0;
+        int fd = -1;
+        if (null_fd >= 0 && saved_fd < 0) {
+          fflush(stderr);
+          fd = dup(2);
+          if (fd >= 0) dup2(null_fd, 2);
+        }
+        flag = LGNGenAlphaFromRhoInf(rho, &am, &af, &b, (s & 8) ? NULL : &g);
+        if (fd >= 0) {
+          fflush(stderr);
+          dup2(fd, 2);
+          close(fd);
+        }
+        REQUIRE(flag == ((rho >= 0.0 && rho <= 1.0 && !(s & 8)) ? 0 : LGN_ILL_INPUT),
+                "LGNGenAlphaFromRhoInf(%g) returned %d", rho, flag);
+        if (flag == 0)
+          REQUIRE(am < 1.0 && af < 1.0 && b > 0.0 && g > 0.0 &&
+                      fabs(g - (0.5 + af - am)) <= 1e-14,
+                  "LGNGenAlphaFromRhoInf(%g): alpha_m %g alpha_f %g beta %g gamma %g", rho,
+                  am, af, b, g);
       }
       break;
     }
@@ -1529,7 +1560,7 @@ static void Run(In *in)
       const sunindextype n = o->nv + o->m - ((s & 4) ? 1 : 0);
       const int nb = (int)(p % 4) - 1;
       const long nbodies = o->model == MOD_JOINTS || o->model == MOD_BODIES ? 2 : 1;
-      long part[3] = {0, (long)(p >> 2) % 3, nbodies};
+      long part[3] = {(p & 128) ? 1 : 0, (long)(p >> 2) % 3, nbodies};
       if (nb == 1) part[1] = nbodies;
       MakeSolver(o, 3 + (int)(s % 4), n);
       if (trace) fprintf(stderr, "  Krylov %u, n %ld, flags 0x%02x 0x%02x\n", s % 4, (long)n, s, p);
@@ -1540,7 +1571,13 @@ static void Run(In *in)
         CheckFlag(o, LGNSetBlockPreconditioner(mem, nb, (p & 64) ? part : NULL),
                   "LGNSetBlockPreconditioner");
         break;
-      case 2: CheckFlag(o, LGNSetPreconditioner(mem, PrecSetup, PrecSolve), "LGNSetPreconditioner"); break;
+      case 2:
+        CheckFlag(o, LGNSetPreconditioner(mem, PrecSetup, PrecSolve), "LGNSetPreconditioner");
+        /* bit 5 of p: a fault of the setup or the solve at call 1 ... 4 */
+        o->pc_fault = (p & 32) ? 1 + (int)((p >> 2) % 4) : 0;
+        o->pc_setups = o->pc_solves = 0;
+        o->pc_fault_at = 1 + (long)(p % 4);
+        break;
       case 3:
         CheckFlag(o, LGNSetPreconditioner(mem, (p & 128) ? PrecSetup : NULL, NULL),
                   "LGNSetPreconditioner");

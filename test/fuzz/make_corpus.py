@@ -169,6 +169,74 @@ for fam in range(3):
     p += [STOPTIME, 0, 1, 150] + solve(0, NORMAL, DT_LONG) + solve(0) + [STOPTIME, 0, 1, 100]
     p += solve(0) + solve(0) + solve(0) + [STOPTIME, 0, 0] + solve(0, NORMAL, DT_MID)
     seeds[f"stop_time_{fam}"] = p
+# the Newmark family's settings: kinematics (simplified, exact, sigma), the
+# predictor, the Newton mode and the perturbed start
+for i in range(12):
+    kin, pred, newton, pstart = i % 3, (i // 3) % 2, (i // 6) % 2, (i // 2) % 2
+    model = [BODY3, JOINTS_MODEL, BODIES_MODEL, OSC][i % 4]
+    p = create(0, model, adaptive=(i // 4) % 2, solver=i % 3)
+    p += [KINEMATICS, 0, kin | pred << 2 | newton << 4 | pstart << 6]
+    p += solve(0, NORMAL, DT_MID) + solve(0) + [CALCIC, 0, 3] + solve(0) + solve(0)
+    seeds[f"settings_{i}"] = p
+# BDF over longer spans (order and step changes), tight tolerances, the
+# perturbed start, faults in every callback
+for form in range(2):
+    for model in (BODY3, JOINTS_MODEL, BODIES_MODEL):
+        p = create(0, model, adaptive=1, solver=form) + bdf(0, 5, form)
+        p += [TOLERANCES, 0, 1, 120, 120, KINEMATICS, 0, 0x40] + solve(0, NORMAL, DT_LONG) + solve(0)
+        p += [STOPTIME, 0, 1, 100] + solve(0, NORMAL, DT_LONG) + dky_all(0)
+        seeds[f"bdf_long_{'fixed_leading' if form else 'variable'}_m{model}"] = p
+for cb in range(8):
+    p = create(0, BODIES_MODEL if cb % 2 else BODY3, adaptive=cb < 6, solver=cb % 3) + bdf(0, 1 + cb % 5, cb % 2)
+    p += solve(0) + solve(0) + [FAULT, 0, cb | (cb % 6) << 3, 0] + solve(0) + solve(0, NORMAL)
+    p += [HEAL, 0, 0] + solve(0) + solve(0)
+    seeds[f"bdf_fault_cb{cb}"] = p
+# error control's limits: the error test failing at the first step (a large
+# initial step, tight tolerances, maxnef 1), repeated convergence failures
+# (maxncf 1 and a failing force), hmin, hmax
+seeds["adaptive_maxnef"] = create(0, BODY3, adaptive=1) + [STEPBOUNDS, 0, 0, 250, 3, STEPBOUNDS, 0, 3, 100, 3,
+                                                           TOLERANCES, 0, 1, 70, 70] + solve(0) + solve(0, NORMAL, DT_LONG)
+seeds["adaptive_maxncf"] = create(0, JOINTS_MODEL, adaptive=1) + [STEPBOUNDS, 0, 4, 100, 3, FAULT, 0, 1, 0] + solve(0) + solve(0) + [HEAL, 0, 0] + solve(0)
+seeds["adaptive_hmin_hmax"] = create(0, BODIES_MODEL, adaptive=1) + [STEPBOUNDS, 0, 1, 250, 3, STEPBOUNDS, 0, 2, 70, 3,
+                                                                  STEPBOUNDS, 0, 5, 100, 3] + solve(0, NORMAL, DT_LONG)
+seeds["bdf_maxnef"] = create(0, BODY3, adaptive=1) + bdf(0, 3, 1) + [STEPBOUNDS, 0, 0, 250, 3, STEPBOUNDS, 0, 3, 100, 3,
+                                                                     TOLERANCES, 0, 1, 70, 70] + solve(0) + solve(0, NORMAL, DT_LONG)
+# the user preconditioner failing in its setup or its solve (+1, -1)
+for f in range(4):
+    for model in (BODY3, BODIES_MODEL):
+        p = create(0, model, adaptive=f % 2) + [KRYLOV, 0, 0x22, 32 | f << 2 | (f % 2)] + solve(0) + solve(0)
+        p += solve(0, NORMAL, DT_MID)
+        seeds[f"krylov_pfail{f}_m{model}"] = p
+# calls out of order and bad arguments to the new functions
+seeds["raw_new_calls"] = create(0, BODY3, raw=1) + [CALCIC, 0, 3, ROOTS, 0, 0x13, 160, 0, 3, 0, 3, 1, 1, 1,
+                                                    BDF, 0, 3, KRYLOV, 0, 0x10, 2, GETTERS2, 0, 0, DKY, 0, 8, 4]
+seeds["krylov_bad_partitions"] = (create(0, BODY3) + [KRYLOV, 0, 0x10, 3] + solve(0) + [KRYLOV, 0, 0x11, 2] + solve(0)
+                                  + create(1, JOINTS_MODEL) + [KRYLOV, 1, 0x10, 3 | 64 | 128] + solve(1)
+                                  + [KRYLOV, 1, 0x10, 3 | 64 | 4] + solve(1) + [KRYLOV, 1, 0x50, 2, 0, 7] + solve(1))
+seeds["krylov_ggl_refused"] = create(0, JOINTS_MODEL) + [KRYLOV, 0, 0x10, 2, INDEX, 0, 2] + solve(0) + [CALCIC, 0, 3]
+seeds["ggl_sigma_refused"] = create(0, BODY3) + [INDEX, 0, 8, KINEMATICS, 0, 2] + solve(0) + [LINSOL, 0, 0x01, INDEX, 0, 8] + solve(0)
+seeds["roots_before_init"] = create(0, OSC, raw=1) + [ROOTS, 0, 0x14, 160, 0, 3, 0, 3, 1, 1, 1, GETTERS2, 0, 0x20]
+seeds["dky_outside"] = create(0, BODY3, adaptive=1) + solve(0) + solve(0) + [DKY, 0, 0x84, 4, 10, DKY, 0, 0x8c, 4, 9,
+                                                                            DKY, 0, 0x0c, 4, DKY, 0, 0x3c, 4] + bdf(0, 2, 0) + solve(0) + dky_all(0)
+seeds["calcic_bad"] = create(0, JOINTS_MODEL) + [CALCIC, 0, 0, CALCIC, 0, 4, SETFNS, 0, 0, CALCIC, 0, 3,
+                                                 SETFNS, 0, 3, CONSTRAINTS, 0, 4, CALCIC, 0, 1]
+# the life cycle out of order: no group, non-finite t0, NULL q0, missing
+# callbacks, no linear solver, tout behind t, an illegal itask, a stop time
+# left behind by LGNReInit, LGNGetConsistentIC(NULL, NULL)
+seeds["lifecycle_bad"] = (create(0, BODY3, raw=1) + solve(0) + [CALCIC, 0, 3, INIT, 0, 0, SETGROUP, 0, 0,
+                          INIT, 0, 1, 0, INIT, 0, 8, 0, INIT, 0, 0, CALCIC, 0, 3] + solve(0)
+                          + [SETFNS, 0, 1] + solve(0) + [SETFNS, 0, 3, CONSTRAINTS, 0, 4, CALCIC, 0, 3] + solve(0)
+                          + [CONSTRAINTS, 0, 4 | 8 | 16, CALCIC, 0, 3] + solve(0) + [LINSOL, 0, 0] + solve(0)
+                          + [SOLVE, 0, 0x80, 7, SOLVE, 0, 0x0f, 160, STOPTIME, 0, 1, 150, REINIT, 0, 1, 10]
+                          + solve(0) + [GETTERS, 0, 0, 4, 4, 4, 4, 4, 0, 0])
+seeds["adaptive_bad_tout"] = create(0, OSC, adaptive=1) + solve(0) + [SOLVE, 0, 0x80, 7, STOPTIME, 0, 1, 150,
+                                                                     REINIT, 0, 1, 10] + solve(0)
+# illegal method parameters (non-finite, alpha_m >= 1, alpha_f >= 1, beta,
+# gamma <= 0), rho_inf outside [0, 1], a NULL output
+seeds["method_bad"] = (create(0, BODY3) + [METHOD, 0, 2, 0, 3, 160, 160, METHOD, 0, 2, 10, 3, 160, 160,
+                       METHOD, 0, 2, 3, 10, 160, 160, METHOD, 0, 2, 3, 3, 7, 7, METHOD, 0, 2, 3, 3, 160, 7, 7,
+                       METHOD, 0, 1, 160, 160, METHOD, 0, 0, 7, 7, MISC, 0, 4, 0, MISC, 0, 4, 255,
+                       MISC, 0, 12, 100, MISC, 0, 4, 100] + solve(0))
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 os.makedirs(out, exist_ok=True)
