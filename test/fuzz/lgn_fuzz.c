@@ -47,9 +47,11 @@
 #include <lignum/lignum_joints.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_pcg.h>
 #include <sunlinsol/sunlinsol_spbcgs.h>
 #include <sunlinsol/sunlinsol_spfgmr.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
+#include <sunlinsol/sunlinsol_sptfqmr.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 #if defined(LGN_HAVE_KLU)
@@ -634,8 +636,8 @@ static void ObjDestroy(Obj *o)
 
 /* (Re)make the linear solver: kind 0 dense, 1 KLU CSC, 2 KLU CSR; the
  * matrix-free Krylov solvers (A = NULL) 3 SPGMR left-preconditioned, 4 SPGMR
- * without a preconditioner, 5 SPFGMR right-preconditioned, 6 SPBCGS left;
- * size n. */
+ * without a preconditioner, 5 SPFGMR right-preconditioned, 6 SPBCGS left,
+ * 7 SPTFQMR left, 8 PCG (refused: A is indefinite); size n. */
 static void MakeSolver(Obj *o, int kind, sunindextype n)
 {
   N_Vector t;
@@ -653,7 +655,9 @@ static void MakeSolver(Obj *o, int kind, sunindextype n)
     if (kind == 3) o->LS = SUNLinSol_SPGMR(t, SUN_PREC_LEFT, 20, ctx);
     else if (kind == 4) o->LS = SUNLinSol_SPGMR(t, SUN_PREC_NONE, 20, ctx);
     else if (kind == 5) o->LS = SUNLinSol_SPFGMR(t, SUN_PREC_RIGHT, 20, ctx);
-    else o->LS = SUNLinSol_SPBCGS(t, SUN_PREC_LEFT, 20, ctx);
+    else if (kind == 6) o->LS = SUNLinSol_SPBCGS(t, SUN_PREC_LEFT, 20, ctx);
+    else if (kind == 7) o->LS = SUNLinSol_SPTFQMR(t, SUN_PREC_LEFT, 20, ctx);
+    else o->LS = SUNLinSol_PCG(t, SUN_PREC_LEFT, 20, ctx);
     o->solver = kind;
     N_VDestroy(t);
     return;
@@ -865,17 +869,17 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     }
   }
   o->nsolves++;
-  {
-    const int after_root = o->root_returned;
-    o->root_returned     = flag == LGN_ROOT_RETURN;
-    root_pending         = after_root;
-  }
+  root_pending = o->root_returned;
   if (o->mem == NULL) {
     REQUIRE(flag == LGN_MEM_NULL, "LGNSolve(NULL) returned %d", flag);
     return flag;
   }
   Snap(o, &after);
   if (after.nst > before.nst) o->vdot0_set = o->index_set = 0;
+  /* the rest of the step after a root is pending until a call succeeds or
+   * steps (a refused call leaves it pending) */
+  o->root_returned = flag == LGN_ROOT_RETURN ||
+                     (root_pending && flag < 0 && after.nst == before.nst);
   if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
     /* under error control no step goes past an accepted stop time */
     if (o->stop_set && o->tstop_check)
@@ -1552,8 +1556,9 @@ static void Run(In *in)
       break;
     }
     case OP_KRYLOV: {
-      /* a matrix-free Krylov solver (n = nv + m, or one less), given with a
-       * matrix (refused) or without; a preconditioner: none, the block
+      /* a matrix-free Krylov solver (n = nv + m, or one less; SPTFQMR or PCG
+       * with bit 4 of p), given with a matrix (refused) or without; a
+       * preconditioner: none, the block
        * preconditioner with nblocks -1 ... 2 (a partition or NULL), the
        * identity as a user preconditioner, or switched off */
       const unsigned s = U8(in), p = U8(in);
@@ -1562,7 +1567,7 @@ static void Run(In *in)
       const long nbodies = o->model == MOD_JOINTS || o->model == MOD_BODIES ? 2 : 1;
       long part[3] = {(p & 128) ? 1 : 0, (long)(p >> 2) % 3, nbodies};
       if (nb == 1) part[1] = nbodies;
-      MakeSolver(o, 3 + (int)(s % 4), n);
+      MakeSolver(o, (p & 16) ? 7 + (int)(s & 1) : 3 + (int)(s % 4), n);
       if (trace) fprintf(stderr, "  Krylov %u, n %ld, flags 0x%02x 0x%02x\n", s % 4, (long)n, s, p);
       if (s & 8) CheckFlag(o, LGNSetLinearSolver(mem, o->LS, o->oldA[0]), "LGNSetLinearSolver");
       CheckFlag(o, LGNSetLinearSolver(mem, o->LS, NULL), "LGNSetLinearSolver");
@@ -1573,10 +1578,11 @@ static void Run(In *in)
         break;
       case 2:
         CheckFlag(o, LGNSetPreconditioner(mem, PrecSetup, PrecSolve), "LGNSetPreconditioner");
-        /* bit 5 of p: a fault of the setup or the solve at call 1 ... 4 */
+        /* bit 5 of p: a fault of the setup or the solve at call 1, 6, 11
+         * or 16 (the first ones are the initial values') */
         o->pc_fault = (p & 32) ? 1 + (int)((p >> 2) % 4) : 0;
         o->pc_setups = o->pc_solves = 0;
-        o->pc_fault_at = 1 + (long)(p % 4);
+        o->pc_fault_at = 1 + 5 * (long)(p % 4);
         break;
       case 3:
         CheckFlag(o, LGNSetPreconditioner(mem, (p & 128) ? PrecSetup : NULL, NULL),

@@ -204,7 +204,7 @@ seeds["bdf_maxnef"] = create(0, BODY3, adaptive=1) + bdf(0, 3, 1) + [STEPBOUNDS,
 # the user preconditioner failing in its setup or its solve (+1, -1)
 for f in range(4):
     for model in (BODY3, BODIES_MODEL):
-        p = create(0, model, adaptive=f % 2) + [KRYLOV, 0, 0x22, 32 | f << 2 | (f % 2)] + solve(0) + solve(0)
+        p = create(0, model, adaptive=f % 2) + [KRYLOV, 0, 0x22, 32 | f << 2 | (2 + f % 2)] + solve(0) + solve(0)
         p += solve(0, NORMAL, DT_MID)
         seeds[f"krylov_pfail{f}_m{model}"] = p
 # calls out of order and bad arguments to the new functions
@@ -213,6 +213,8 @@ seeds["raw_new_calls"] = create(0, BODY3, raw=1) + [CALCIC, 0, 3, ROOTS, 0, 0x13
 seeds["krylov_bad_partitions"] = (create(0, BODY3) + [KRYLOV, 0, 0x10, 3] + solve(0) + [KRYLOV, 0, 0x11, 2] + solve(0)
                                   + create(1, JOINTS_MODEL) + [KRYLOV, 1, 0x10, 3 | 64 | 128] + solve(1)
                                   + [KRYLOV, 1, 0x10, 3 | 64 | 4] + solve(1) + [KRYLOV, 1, 0x50, 2, 0, 7] + solve(1))
+seeds["krylov_sptfqmr_pcg"] = (create(0, BODY3) + [KRYLOV, 0, 0x00, 16 | 2] + solve(0) + solve(0)
+                               + [KRYLOV, 0, 0x01, 16] + solve(0) + [KRYLOV, 0, 0x31, 0x80] + solve(0))
 seeds["krylov_ggl_refused"] = create(0, JOINTS_MODEL) + [KRYLOV, 0, 0x10, 2, INDEX, 0, 2] + solve(0) + [CALCIC, 0, 3]
 seeds["ggl_sigma_refused"] = create(0, BODY3) + [INDEX, 0, 8, KINEMATICS, 0, 2] + solve(0) + [LINSOL, 0, 0x01, INDEX, 0, 8] + solve(0)
 seeds["roots_before_init"] = create(0, OSC, raw=1) + [ROOTS, 0, 0x14, 160, 0, 3, 0, 3, 1, 1, 1, GETTERS2, 0, 0x20]
