@@ -1188,7 +1188,7 @@ static void Run(In *in)
                 "LGNSetPredictor");
       CheckFlag(o, LGNSetNewtonMode(mem, LGN_NEWTON_FULL + (int)((s >> 4) % 3)),
                 "LGNSetNewtonMode");
-      CheckFlag(o, LGNSetPerturbedStart(mem, (s & 64) ? SUNTRUE : SUNFALSE),
+      CheckFlag(o, LGNSetPerturbedStart(mem, (s & 128) ? 5 : (s & 64) ? SUNTRUE : SUNFALSE),
                 "LGNSetPerturbedStart");
       o->sane = 0;
       break;
@@ -1506,14 +1506,14 @@ static void Run(In *in)
       break;
     }
     case OP_BDF: {
-      /* maxord -1 ... 6 (-1, 0 and 6 illegal); with bit 6 the form: the two
-       * forms and an illegal one */
-      static const int form[3] = {LGN_BDF_VARIABLE_COEFF, LGN_BDF_FIXED_LEADING, 7};
+      /* maxord -1 ... 6 (-1, 0 and 6 illegal); with bit 6 the form (bits
+       * 3-4): the two forms and two illegal values */
+      static const int form[4] = {LGN_BDF_VARIABLE_COEFF, LGN_BDF_FIXED_LEADING, 7, -1};
       const unsigned s = U8(in);
       flag = CheckFlag(o, LGNSetBDF(mem, (int)(s & 7) - 1), "LGNSetBDF");
       if (trace) fprintf(stderr, "  LGNSetBDF(%d) -> %d, form %d\n", (int)(s & 7) - 1, flag,
-                         form[(s >> 3) % 3]);
-      if (s & 0x40) CheckFlag(o, LGNSetBDFForm(mem, form[(s >> 3) % 3]), "LGNSetBDFForm");
+                         form[(s >> 3) & 3]);
+      if (s & 0x40) CheckFlag(o, LGNSetBDFForm(mem, form[(s >> 3) & 3]), "LGNSetBDFForm");
       o->sane = 0;
       break;
     }

@@ -159,7 +159,7 @@ for s in range(5):
 for model in (BODY3, JOINTS_MODEL, BODIES_MODEL):
     for opt in (1, 2, 3):
         p = create(0, model, revolute=opt == 2) + [INIT, 0, 2 | 4, 0, 10, 1, 10, CALCIC, 0, opt]
-        p += solve(0) + [CALCIC, 0, opt, INDEX, 0, 1, CALCIC, 0, opt] + solve(0)
+        p += [GETTERS, 0, 0, 4, 4, 4, 4, 4, 4, 4] + solve(0) + [CALCIC, 0, opt, INDEX, 0, 1, CALCIC, 0, opt] + solve(0)
         seeds[f"calcic_m{model}_opt{opt}"] = p
 # stop times under error control (Newmark and BDF) and with fixed steps
 for fam in range(3):
@@ -220,7 +220,7 @@ seeds["ggl_sigma_refused"] = create(0, BODY3) + [INDEX, 0, 8, KINEMATICS, 0, 2] 
 seeds["roots_before_init"] = create(0, OSC, raw=1) + [ROOTS, 0, 0x14, 160, 0, 3, 0, 3, 1, 1, 1, GETTERS2, 0, 0x20]
 seeds["dky_outside"] = create(0, BODY3, adaptive=1) + solve(0) + solve(0) + [DKY, 0, 0x84, 4, 10, DKY, 0, 0x8c, 4, 9,
                                                                             DKY, 0, 0x0c, 4, DKY, 0, 0x3c, 4] + bdf(0, 2, 0) + solve(0) + dky_all(0)
-seeds["calcic_bad"] = create(0, JOINTS_MODEL) + [CALCIC, 0, 0, CALCIC, 0, 4, SETFNS, 0, 0, CALCIC, 0, 3,
+seeds["calcic_bad"] = create(0, JOINTS_MODEL) + [KINEMATICS, 0, 0x80, CALCIC, 0, 0, CALCIC, 0, 4, SETFNS, 0, 0, CALCIC, 0, 3,
                                                  SETFNS, 0, 3, CONSTRAINTS, 0, 4, CALCIC, 0, 1]
 # the life cycle out of order: no group, non-finite t0, NULL q0, missing
 # callbacks, no linear solver, tout behind t, an illegal itask, a stop time
