@@ -10,17 +10,32 @@
  *   - an oscillator on R^n (n = 1..4) with analytic stiffness and damping,
  *   - two bodies on (R^3 x SO(3))^2 held by the joint helpers (a spherical
  *     joint to the ground, a spherical or revolute joint between them),
- * with dense or KLU (CSC, CSR) linear solvers, and callbacks whose fault is
- * chosen by the input (return +1 or -1, or write NaN, +-Inf or 1e308 into
- * one entry, at the k-th call from now).
+ *   - two bodies on R^3 x SO(3) x SE(3) built by the body helpers (mass,
+ *     inertia, gravity, a spring-damper to the ground, a rotational one
+ *     between them) and the joint helpers (a revolute joint to the ground,
+ *     optionally driven (rheonomic, Phi_t), a spherical joint between them),
+ * with the Newmark family (every kinematics, predictor, Newton mode) or BDF
+ * (maxord 1-5, both forms), at index 3, 2 or GGL, with fixed steps or error
+ * control, events (root functions, directions, a faulty g), dense or KLU
+ * (CSC, CSR) linear solvers or matrix-free Krylov solvers (SPGMR, SPFGMR,
+ * SPBCGS, SPTFQMR, PCG) with the block or a user preconditioner, and
+ * callbacks whose fault is chosen by the input (return +1 or -1, or write
+ * NaN, +-Inf or 1e308 into one entry, at the k-th call from now; the root
+ * function and the preconditioner have their own).
  *
  * Invariants (abort() on a violation, so that libFuzzer reports it):
  *   - every call that fails returns a negative flag with a name
  *     (LGNGetReturnFlagName is not "NONE"); with a NULL memory block the
  *     flag is LGN_MEM_NULL; setters and getters return no positive flag;
  *   - a successful LGNSolve returns a finite tret, q and v; LGN_ONE_STEP
- *     advanced the current time, LGN_NORMAL returned at tout;
- *     LGN_TSTOP_RETURN only with a stop time set;
+ *     advanced the current time (or, after a root, returned the end of that
+ *     step), LGN_NORMAL returned at tout; LGN_TSTOP_RETURN only with a stop
+ *     time set; under error control no step passes an accepted stop time;
+ *   - LGN_ROOT_RETURN only with root functions, at a finite tret inside the
+ *     last step and not beyond tout, with finite q, v; LGNGetRootInfo
+ *     reports a root, each in a direction that was asked for;
+ *   - a successful LGNGetDky has a vector of the right length and a finite
+ *     result; at the step's end (k = 0) it is the state there;
  *   - a failed LGNSolve that took no step leaves the state as it was, bit
  *     for bit: current time, number of steps, vdot, lambda, the auxiliary
  *     acceleration, and the q, v it returns equal the last state returned;
@@ -28,6 +43,10 @@
  *     (tret = the current time, finite q and v);
  *   - after a fault is removed an object that was set up sanely (the preset
  *     of Create, untouched by setters since) takes the next step.
+ *   - LGNGenAlphaFromRhoInf succeeds exactly for rho_inf in [0, 1] with
+ *     every output given, with gamma = 1/2 + alpha_f - alpha_m; the body
+ *     helpers refuse exactly a non-finite gravity, refuse a q or v of the
+ *     wrong length, and their energies are finite for sane parameters.
  * Sanitizers (ASan, UBSan, LeakSanitizer) come with the build.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
@@ -599,6 +618,11 @@ static LGNGroup spare_group; /* a group of other dimensions, alive all input */
 static FILE *devnull;
 static int null_fd = -1;
 static int trace; /* LGN_FUZZ_TRACE=1: the operations on stderr */
+/* Bounded work per input: at most 24 LGNSolve calls per object and 200
+ * steps in all (a program of long solves on the 12-dof models took 10 s,
+ * libFuzzer's timeout, on a loaded machine). */
+#define MAX_STEPS_PER_INPUT 200
+static long steps_left;
 
 /* Linear solvers replaced by MakeSolver stay alive until the object is
  * destroyed: the integrator may still refer to them (LGNSetLinearSolver
@@ -876,6 +900,8 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
   }
   Snap(o, &after);
   if (after.nst > before.nst) o->vdot0_set = o->index_set = 0;
+  if (after.fs == 0 && before.fs == 0 && after.nst > before.nst)
+    steps_left -= after.nst - before.nst;
   /* the rest of the step after a root is pending until a call succeeds or
    * steps (a refused call leaves it pending) */
   o->root_returned = flag == LGN_ROOT_RETURN ||
@@ -1314,7 +1340,7 @@ static void Run(In *in)
       if ((s & 0x0e) == 0x0e) itask = 3;
       LGNGetCurrentTime(mem, &t);
       dt = (s & 0x80) ? Real(in) : Param(in, 2e-3);
-      if (o->nsolves >= 24) break; /* bounded work per input */
+      if (o->nsolves >= 24 || steps_left <= 0) break; /* bounded work per input */
       /* m = 2^40 makes LGNSolve allocate terabytes, which ASan and
        * libFuzzer report as a crash before malloc can return NULL */
       if (o->huge_m && o->mem) break;
@@ -1427,7 +1453,7 @@ static void Run(In *in)
       /* the fault removed: an object set up sanely goes on */
       const int had = o->fault_cb >= 0;
       o->fault_cb   = -1;
-      if (had && o->sane && o->mem && U8(in) % 2 == 0 && o->nsolves < 24) {
+      if (had && o->sane && o->mem && U8(in) % 2 == 0 && o->nsolves < 24 && steps_left > 0) {
         double t = 0.0;
         LGNGetCurrentTime(mem, &t);
         flag = Solve(o, t + 1.0, LGN_ONE_STEP, 0);
@@ -1706,6 +1732,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   }
   if (SUNContext_Create(NULL, &ctx) != 0) abort();
   spare_group = LGNGroup_Rn(5);
+  steps_left = MAX_STEPS_PER_INPUT;
   Run(&in);
   LGNGroup_Destroy(spare_group);
   SUNContext_Free(&ctx);
