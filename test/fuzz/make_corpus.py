@@ -239,6 +239,17 @@ seeds["method_bad"] = (create(0, BODY3) + [METHOD, 0, 2, 0, 3, 160, 160, METHOD,
                        METHOD, 0, 2, 3, 10, 160, 160, METHOD, 0, 2, 3, 3, 7, 7, METHOD, 0, 2, 3, 3, 160, 7, 7,
                        METHOD, 0, 1, 160, 160, METHOD, 0, 0, 7, 7, MISC, 0, 4, 0, MISC, 0, 4, 255,
                        MISC, 0, 12, 100, MISC, 0, 4, 100] + solve(0))
+# more of the life cycle: a zero quaternion in q0, a group of other
+# dimensions before LGNReInit, no linear solver, vector tolerances, tout
+# inside the last step (error control, and BDF's fixed steps past tout)
+BEHIND = [SOLVE, 0, 0x80, 11, 0x00, 0x80, 4]   # tout = t - 5e-6
+seeds["zero_quaternion"] = create(0, BODIES_MODEL) + [INIT, 0, 2, 3, 3] + solve(0) + [REINIT, 0, 2, 3, 3] + solve(0)
+seeds["group_changed"] = create(0, OSC) + solve(0) + [SETGROUP, 0, 2, REINIT, 0, 0] + solve(0) + [SETGROUP, 0, 0, REINIT, 0, 0] + solve(0)
+seeds["no_linear_solver"] = create(0, OSC, raw=1) + [SETGROUP, 0, 0, SETFNS, 0, 3, INIT, 0, 0, STEPSIZE, 0, 160] + solve(0) + [CALCIC, 0, 1, LINSOL, 0, 0] + solve(0)
+seeds["vector_tolerances"] = create(0, JOINTS_MODEL, adaptive=1) + [TOLERANCES, 0, 0, 120, 120, 0, 4] + solve(0, NORMAL, DT_MID) + solve(0)
+seeds["tout_inside_last_step"] = (create(0, BODY3, adaptive=1) + solve(0, NORMAL, DT_MID) + BEHIND + solve(0)
+                                  + create(1, BODY3) + bdf(1, 2, 0) + solve(1, NORMAL) + solve(1, NORMAL)
+                                  + [SOLVE, 1, 0x80, 11, 0x00, 0x80, 4])
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 os.makedirs(out, exist_ok=True)
