@@ -328,6 +328,20 @@ static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
  * Setup and solve (lgnLsSetup, lgnLsSolve)
  * ===========================================================================*/
 
+/* A recoverable failure of the preconditioner or of the Krylov solve:
+ * error control retries the step smaller (LGN_RECOVERABLE, internal); a
+ * fixed step size cannot be reduced, so it is the named failure `fatal`
+ * (as lgnCallbackFlag does for the callbacks), never LGN_RECOVERABLE. */
+static int RecoverableFailure(LGNMem mem, int fatal, const char *what, int ret,
+                              const char *detail)
+{
+  if (mem->step_control == LGN_STEP_ADAPTIVE) return LGN_RECOVERABLE;
+  LGN_ERROR(mem, fatal,
+            MSG_TIME "%s failed recoverably (%d) and the fixed step size cannot be "
+            "reduced.%s", (double)mem->tn, what, ret, detail);
+  return fatal;
+}
+
 /* The preconditioner's setup with the matrix just assembled. */
 int lgnKrylovSetup(LGNMem mem)
 {
@@ -347,7 +361,9 @@ int lgnKrylovSetup(LGNMem mem)
                                : "cut the partition elsewhere",
              mem->halo != NULL ? " on one rank, MUMPS across ranks" : ", MUMPS");
   }
-  if (ret > 0) return LGN_RECOVERABLE; /* a smaller step may help */
+  if (ret > 0) /* a smaller step may help */
+    return RecoverableFailure(mem, LGN_LSETUP_FAIL, "the preconditioner setup", ret,
+                              mem->diag_text);
   LGN_ERROR(mem, LGN_LSETUP_FAIL,
             MSG_TIME "the preconditioner setup failed (%d)%s.", (double)mem->tn,
             ret,
@@ -424,7 +440,8 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
     if (left && b != mem->kry_tmp) {
       ret = PSolve(mem, b, mem->kry_tmp, SUN_RCONST(0.0), 1);
       if (ret != 0) {
-        if (ret > 0) return LGN_RECOVERABLE;
+        if (ret > 0)
+          return RecoverableFailure(mem, LGN_LSOLVE_FAIL, "the preconditioner solve", ret, "");
         LGN_ERROR(mem, LGN_LSOLVE_FAIL,
                   MSG_TIME "the preconditioner solve failed (%d).",
                   (double)mem->tn, ret);
@@ -445,7 +462,9 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
     if (mem->kry_pfail < 0)
       LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the preconditioner solve failed (%d).",
                 (double)mem->tn, mem->kry_pfail);
-    flag = lgnAgree(mem, mem->kry_pfail > 0   ? LGN_RECOVERABLE
+    flag = lgnAgree(mem, mem->kry_pfail > 0
+                             ? RecoverableFailure(mem, LGN_LSOLVE_FAIL,
+                                                  "the preconditioner solve", mem->kry_pfail, "")
                          : mem->kry_pfail < 0 ? LGN_LSOLVE_FAIL
                                               : LGN_SUCCESS);
     if (flag != LGN_SUCCESS) return flag;
@@ -455,7 +474,7 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
   /* an inexact Newton correction: Newton's own test judges it */
   if (ret == SUNLS_RES_REDUCED && newton) return LGN_SUCCESS;
   if (ret == SUNLS_PSOLVE_FAIL_REC || ret == SUNLS_ATIMES_FAIL_REC)
-    return LGN_RECOVERABLE;
+    return RecoverableFailure(mem, LGN_LSOLVE_FAIL, "the Krylov solve", ret, "");
   if (ret > 0 && newton) return LGN_CONV_FAILURE; /* no reduction at all */
   LGN_ERROR(mem, LGN_LSOLVE_FAIL,
             MSG_TIME "the Krylov solve failed (%d) after %ld iterations%s.",
