@@ -33,6 +33,7 @@ void *LGNCreate(SUNContext sunctx)
   (void)LGNGenAlphaFromRhoInf(LGN_RHO_INF_DEFAULT, &mem->alpha_m,
                               &mem->alpha_f, &mem->beta, &mem->gamma);
   mem->constr_index = LGN_CONSTR_INDEX3;
+  mem->red_mode     = LGN_REDUNDANT_ELIMINATE;
   mem->kinematics   = LGN_KINEMATICS_SIMPLIFIED;
   mem->kin          = lgnKinematicsOps(LGN_KINEMATICS_SIMPLIFIED);
   mem->rtol         = LGN_RTOL_DEFAULT;
@@ -339,7 +340,10 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
   mem->any_constr_time =
       lgnMaxAll(mem, mem->constr_time != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
       SUN_RCONST(0.0);
-  flag = lgnEnsureWork(mem);
+  /* a new start: the independent constraint rows at q0 (lgn_redundancy.c;
+   * one process only, so no agreement is needed) */
+  if (!mem->ic_done) flag = lgnRedundancyAnalyse(mem, "LGNSolve");
+  if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag == LGN_SUCCESS && mem->nrtfn > 0)
     flag = lgnAgree(mem, lgnAllocRootVectors(mem));
   if (flag == LGN_SUCCESS && mem->atol_vec != NULL) {
@@ -368,6 +372,7 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
                 "initial values were computed.", (double)mem->tn);
       flag = LGN_REPTD_CALLBACK_ERR;
     }
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) return flag;
   }
   return LGN_SUCCESS;
@@ -447,6 +452,7 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
     }
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFAdaptiveStep(mem, tout)
                                          : lgnAdaptiveStep(mem, tout);
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     nstloc++;
     if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
@@ -565,6 +571,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
 
   if (itask == LGN_ONE_STEP) {
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, mem->h) : lgnStep(mem, mem->h);
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
@@ -605,6 +612,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
         remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
       hstep = mem->h;
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tout; /* exact arrival */
     nstloc++;

@@ -95,6 +95,7 @@ int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS)
               "(SUNLinSolSetATimes): Lignum cannot apply its matrix.");
     return LGN_LS_MISMATCH;
   }
+  lgnFreeRedundancySolver(mem); /* a stand-in for the old direct solver */
   if (!mem->krylov) {
     mem->A = NULL; /* the user's matrix of a direct solver: not ours */
     mem->own_A = SUNFALSE;

@@ -678,6 +678,47 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *  LGNCalcIC to project the start explicitly. */
 #define LGN_INCONSISTENT_IC    -14
 
+/* =============================================================================
+ * Redundant constraints
+ * ===========================================================================*/
+
+/** Return flag (solver failure): a constraint left out as redundant
+ *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
+ *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
+ *  the redundancy was not consistent (the mechanism cannot satisfy all its
+ *  constraints), or B(q) gained rank since the rows were selected. The
+ *  message names the constraint and the violation. */
+#define LGN_REDUNDANT_INCONSISTENT -16
+
+/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
+ *  has dependent rows on a maximal independent set of them (default). */
+#define LGN_REDUNDANT_ELIMINATE 170
+/** LGNSetRedundantConstraints: refuse a model with dependent constraint
+ *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
+#define LGN_REDUNDANT_REFUSE    171
+
+/** What to do with redundant constraints: rows of B(q) that depend on the
+ *  others, as in Bricard's mechanism or a planar four-bar built in space
+ *  from revolute joints.
+ *  - LGN_REDUNDANT_ELIMINATE (default): at the start (the first LGNSolve or
+ *    LGNCalcIC after LGNInit / LGNReInit or a change of the model) a
+ *    rank-revealing QR factorisation (column pivoting) of B(q0)^T selects a
+ *    maximal independent set of rows; the integrator uses those only. A
+ *    warning (LGN_WARNING, once per selection) names the rows left out, and
+ *    LGNGetRedundantConstraints lists them. After every step (and at the
+ *    start) the rows left out are checked: if one is violated,
+ *    LGNSolve returns LGN_REDUNDANT_INCONSISTENT. The multipliers of the
+ *    rows left out are 0 (LGNGetMultipliers): the kept rows carry the whole
+ *    constraint force B^T lambda, which the dynamics determines; its split
+ *    among dependent rows does not follow from rigid-body mechanics.
+ *    Not across MPI ranks (every row is kept there), nor when B has more
+ *    than 4e6 entries as a dense matrix.
+ *  - LGN_REDUNDANT_REFUSE: every row is used; dependent rows make the
+ *    matrix singular, and the start fails with LGN_IC_FAIL, naming them.
+ *  Takes effect at the next start (LGNInit / LGNReInit, LGNCalcIC).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another mode). */
+LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
+
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
 #define LGN_IC_PROJECT_Q  141
 /** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
