@@ -55,6 +55,7 @@ module flignum_mod
   integer(c_int), parameter :: LGN_ERR_FAILURE = -12
   integer(c_int), parameter :: LGN_STEP_TOO_SMALL = -15
   integer(c_int), parameter :: LGN_INCONSISTENT_IC = -14
+  integer(c_int), parameter :: LGN_REDUNDANT_INCONSISTENT = -16
 
   ! usage errors -20 .. -29
   integer(c_int), parameter :: LGN_MEM_NULL = -20
@@ -88,6 +89,9 @@ module flignum_mod
   integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 133
   integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 132
   integer(c_int), parameter :: LGN_CONSTR_GGL = 134
+  ! redundant constraints (LGNSetRedundantConstraints)
+  integer(c_int), parameter :: LGN_REDUNDANT_ELIMINATE = 170
+  integer(c_int), parameter :: LGN_REDUNDANT_REFUSE = 171
   ! kinematics
   integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 100
   integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 101
@@ -539,6 +543,16 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: index
     end function LGNSetConstraintIndex
+
+    !> LGN_REDUNDANT_ELIMINATE (default: dependent constraint rows are left
+    !> out, with a warning, and checked after every step) or
+    !> LGN_REDUNDANT_REFUSE (a singular matrix naming them).
+    integer(c_int) function LGNSetRedundantConstraints(lgn_mem, mode) &
+        bind(c, name="LGNSetRedundantConstraints")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: mode
+    end function LGNSetRedundantConstraints
 
     !> LGN_KINEMATICS_SIMPLIFIED (default), _EXACT or _SIGMA.
     integer(c_int) function LGNSetKinematics(lgn_mem, kinematics) &
