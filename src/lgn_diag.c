@@ -42,7 +42,7 @@ static int RedundantConstraints(LGNMem mem, sunindextype *rank)
   if (m == 0 || mem->Bmat == NULL) return -1;
   rows = (sunindextype *)malloc((size_t)m * sizeof(sunindextype));
   if (rows == NULL) return -1;
-  if (lgnRankRevealingRows(mem->Bmat, m, mem->nv, rank, rows) == 0) {
+  if (lgnRankRevealingRows(mem->Bmat, m, mem->nv, SUN_RCONST(0.0), rank, rows) == 0) {
     /* the rows beyond the rank, ascending; the kept rows are ascending in
      * the user's numbering, so the map keeps the order */
     for (i = *rank; i < m; i++) mem->diag_red[nred++] = lgnUserRow(mem, rows[i]);

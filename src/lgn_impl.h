@@ -575,8 +575,8 @@ int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
 
 /* ---- lgn_redundancy.c: redundant constraints ---------------------------- */
 
-int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunindextype *rank,
-                         sunindextype *rows);
+int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealtype rank_floor,
+                         sunindextype *rank, sunindextype *rows);
 int lgnRedundancyAnalyse(LGNMem mem, const char *func);
 int lgnRedundancyCheck(LGNMem mem, sunrealtype t, N_Vector q, const char *func);
 void lgnRedundancyExpand(const LGNMem mem, const sunrealtype *lambda, sunrealtype *full);

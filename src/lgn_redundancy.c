@@ -11,8 +11,10 @@
  *
  *     B^T P = Q R,   |R_11| >= |R_22| >= ...,
  *
- * gives the numerical rank r (|R_kk| > 1e-10 |R_11|) and, in the first r
- * pivoted columns, a maximal independent set of rows. The integrator then
+ * gives the numerical rank r (|R_kk| > max(1e-10 |R_11|, 100 |Phi(q0)|_inf):
+ * a q0 off the constraints by delta, as LGNCalcIC may get it, moves the
+ * R_kk of dependent rows off 0 by about |Phi|) and, in the first r pivoted
+ * columns, a maximal independent set of rows. The integrator then
  * works on those r rows only: mem->m = r, and the user's callbacks of
  * constraint type are called here, through the selection (the output of
  * Phi, B, Phi_t and the curvature gathered to the kept rows; the
@@ -41,6 +43,7 @@
 
 #define LGN_RED_RANK_TOL   SUN_RCONST(1.0e-10) /* |R_kk| > tol |R_11|: independent */
 #define LGN_RED_CHECK_FAC  SUN_RCONST(100.0)   /* rows left out: 100 x the kept rows' */
+#define LGN_RED_FLOOR_FAC  SUN_RCONST(100.0)   /* |R_kk| <= 100 |Phi(q0)|: dependent */
 #define LGN_RED_MAX_ENTRIES 4000000L           /* dense B^T for the QR: 32 MB */
 
 /* LAPACK: QR with column pivoting (reference LAPACK, 32-bit integers). */
@@ -85,8 +88,8 @@ static void SortAscending(sunindextype *x, sunindextype n)
   }
 }
 
-int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunindextype *rank,
-                         sunindextype *rows)
+int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealtype rank_floor,
+                         sunindextype *rank, sunindextype *rows)
 {
   double *Bt = NULL, *tau = NULL, *work = NULL, wq = 0.0, r11;
   int *jpvt = NULL, im = (int)nv, in = (int)m, lwork = -1, info = 0, k;
@@ -108,7 +111,7 @@ int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunindext
   if (info != 0) goto done;
   r11 = fabs(Bt[0]);
   for (k = 0; k < (int)SUNMIN(m, nv); k++)
-    if (fabs(Bt[k + k * nv]) > LGN_RED_RANK_TOL * r11) r = k + 1;
+    if (fabs(Bt[k + k * nv]) > SUNMAX(LGN_RED_RANK_TOL * r11, rank_floor)) r = k + 1;
   /* the independent rows, then the dependent ones (jpvt is 1-based) */
   for (k = 0; k < in; k++) rows[k] = (sunindextype)(jpvt[k] - 1);
   SortAscending(rows, r);
@@ -188,6 +191,7 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
 {
   const sunindextype mu = mem->m_user;
   sunindextype rank, *sel;
+  sunrealtype rank_floor;
   char list[200];
   int ret, flag;
 
@@ -200,12 +204,18 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
   }
   flag = lgnAllocRedundancy(mem);
   if (flag != LGN_SUCCESS) return flag;
+  /* |Phi(q0)|: the rank's floor (file header) */
+  N_VConst(SUN_RCONST(0.0), mem->red_full);
+  ret  = mem->constr(mem->tn, mem->q, mem->red_full, mem->user_data);
+  flag = lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->red_full, func);
+  if (flag != LGN_SUCCESS) return flag;
+  rank_floor = LGN_RED_FLOOR_FAC * N_VMaxNorm(mem->red_full);
   lgnMatClear(mem->red_B);
   ret  = mem->constr_jac(mem->tn, mem->q, mem->red_B, mem->user_data);
   flag = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, ret, mem->red_B, func);
   if (flag != LGN_SUCCESS) return flag;
   sel = mem->red_rows + mu; /* the second half: scratch */
-  if (lgnRankRevealingRows(mem->red_B, mu, mem->nv, &rank, sel) != 0) {
+  if (lgnRankRevealingRows(mem->red_B, mu, mem->nv, rank_floor, &rank, sel) != 0) {
     lgnProcessError(mem, LGN_MEM_FAIL, __LINE__, func, __FILE__, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
@@ -219,14 +229,16 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
   ListRows(sel + rank, mu - rank, list, sizeof list);
   lgnProcessError(mem, LGN_WARNING, __LINE__, func, __FILE__,
                   MSG_TIME "redundant constraints: B(q) has rank %lld of %lld; "
-                  "constraint%s %s depend%s on the others and %s left out (their "
-                  "multipliers are 0; they are checked after every step). "
+                  "constraint%s %s depend%s on the others and %s left out (%s 0; %s "
+                  "checked after every step). "
                   "LGNGetRedundantConstraints lists them, LGNJoints_DescribeConstraint "
                   "names their joints; LGNSetRedundantConstraints(mem, "
                   "LGN_REDUNDANT_REFUSE) refuses such a model.",
                   (double)mem->tn, (long long)rank, (long long)mu,
                   mu - rank > 1 ? "s" : "", list, mu - rank > 1 ? "" : "s",
-                  mu - rank > 1 ? "are" : "is");
+                  mu - rank > 1 ? "are" : "is",
+                  mu - rank > 1 ? "their multipliers are" : "its multiplier is",
+                  mu - rank > 1 ? "they are" : "it is");
   UseSelection(mem, rank, sel);
   return LGN_SUCCESS;
 }

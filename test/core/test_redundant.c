@@ -122,6 +122,7 @@ static void SetPose(double *qd, int k, const double x[3])
 
 typedef struct {
   int sparse, index, bdf;
+  int calcic;            /* LGNCalcIC(LGN_IC_PROJECT_QV) first */
   double tol, tf;
   int nout;              /* outputs at tf k / nout */
   void (*out)(int k, double t, N_Vector q, N_Vector v, void *ctx);
@@ -132,6 +133,7 @@ typedef struct {
   int flag;               /* of the last call */
   double t;               /* where it stopped */
   sunindextype nred, rows[32];
+  double ic_phi, ic_bv;   /* calcic: |Phi|, |B v| of all rows at the projected start */
   double lambda[32];      /* LGNGetMultipliers at the end */
   int nwarn;
 } RunResult;
@@ -187,6 +189,24 @@ static RunResult Run(Model *md, LGNGroup G, N_Vector q0, N_Vector v0, sunindexty
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, o->tol, o->tol);
   if (!flag) flag = LGNSetMaxNumSteps(mem, 200000);
+  if (!flag && o->calcic) {
+    /* the projected start against all of the user's rows */
+    SUNMatrix Bf = SUNDenseMatrix(m, nv, ctx);
+    N_Vector phi = N_VNew_Serial(m, ctx), bv = N_VNew_Serial(m, ctx);
+    flag = LGNCalcIC(mem, LGN_IC_PROJECT_QV);
+    if (!flag) flag = LGNGetConsistentIC(mem, qo, vo);
+    if (!flag) {
+      SUNMatZero(Bf);
+      Phi(0.0, qo, phi, md);
+      Jac(0.0, qo, Bf, md);
+      SUNMatMatvec(Bf, vo, bv);
+      res.ic_phi = N_VMaxNorm(phi);
+      res.ic_bv  = N_VMaxNorm(bv);
+    }
+    SUNMatDestroy(Bf);
+    N_VDestroy(phi);
+    N_VDestroy(bv);
+  }
   for (k = 1; !flag && k <= o->nout; k++) {
     flag = LGNSolve(mem, o->tf * k / o->nout, &t, qo, vo, LGN_NORMAL);
     if (!flag && o->out != NULL) o->out(k, t, qo, vo, o->ctx);
@@ -393,7 +413,7 @@ static void FourBar(void)
   CHECK(m == 20, "20 rows, got %lld", (long long)m);
   for (c = 0; c < (int)(sizeof cases / sizeof cases[0]); c++) {
     FourBarOut out;
-    RunOpts o = {cases[c].sparse, cases[c].index, cases[c].bdf, FB_TOL, FB_TF, FB_NOUT,
+    RunOpts o = {cases[c].sparse, cases[c].index, cases[c].bdf, 0, FB_TOL, FB_TF, FB_NOUT,
                  FourBarOutput, NULL};
     RunResult r;
     double lam_out = 0.0;
@@ -414,6 +434,30 @@ static void FourBar(void)
     CHECK(r.nred == 3 && r.nwarn == 1, "three rows left out (%lld), one warning (%d)",
           (long long)r.nred, r.nwarn);
     CHECK(lam_out == 0.0, "multipliers of the rows left out are 0 (%g)", lam_out);
+  }
+  {
+    /* LGNCalcIC from a start off the constraints (1e-4) with a velocity
+     * off them: the rows are selected at that q0 (the rank's floor) and
+     * again at the projected one, which then satisfies all 20 rows */
+    RunOpts o = {0, LGN_CONSTR_INDEX3, 0, 1, FB_TOL, 0.5, 5, NULL, NULL};
+    RunResult r;
+    N_Vector qp = N_VClone(q), vp = N_VClone(v);
+    N_VScale(1.0, q, qp);
+    N_VConst(0.0, vp);
+    N_VGetArrayPointer(qp)[7] += 1e-4;
+    N_VGetArrayPointer(qp)[8] -= 1e-4;
+    N_VGetArrayPointer(vp)[5] = 2.0; /* the crank turning about z, and more */
+    N_VGetArrayPointer(vp)[6] = 0.3;
+    r = Run(&md, G, qp, vp, m, &o);
+    printf("(a) four-bar, LGNCalcIC from a start 1e-4 off: %s, |Phi| = %.1e, |B v| = %.1e "
+           "(all 20 rows), %lld rows left out\n", LGNGetReturnFlagName(r.flag), r.ic_phi,
+           r.ic_bv, (long long)r.nred);
+    CHECK(r.flag == LGN_SUCCESS, "LGNCalcIC and the run: %s (%s)", LGNGetReturnFlagName(r.flag),
+          last_msg);
+    CHECK(r.ic_phi <= 1e-12 && r.ic_bv <= 1e-12 && r.nred == 3,
+          "the projected start satisfies all 20 rows: %.2e, %.2e", r.ic_phi, r.ic_bv);
+    N_VDestroy(qp);
+    N_VDestroy(vp);
   }
   LGNJoints_Destroy(&md.J);
   LGNBodies_Destroy(&md.B);
@@ -498,7 +542,7 @@ static void Bricard(int sparse)
   N_VConst(0.0, v);
   for (u = 0; u < 2; u++) {
     /* BDF (order up to 5); KLU over the first 2 s only (the same code) */
-    RunOpts o = {sparse, LGN_CONSTR_INDEX3, 1, BR_TOL, sparse ? 2.0 : BR_TF, BR_NOUT,
+    RunOpts o = {sparse, LGN_CONSTR_INDEX3, 1, 0, BR_TOL, sparse ? 2.0 : BR_TF, BR_NOUT,
                  BricardOutput, NULL};
     md[u].J = LGNJoints_Create(G);
     md[u].B = LGNBodies_Create(G);
@@ -556,7 +600,7 @@ static void PinnedTwice(double offset, double speed)
   const double g[3] = {0, -GRAV, 0}, a[3] = {0, 0, 0}, s[3] = {-0.5, 0, 0};
   double a2[3] = {0, 0, 0};
   RunResult r;
-  RunOpts o = {0, LGN_CONSTR_INDEX3, 0, 1e-8, 0.5, 50, NULL, NULL};
+  RunOpts o = {0, LGN_CONSTR_INDEX3, 0, 0, 1e-8, 0.5, 50, NULL, NULL};
   SUNContext_Create(NULL, &ctx);
   md.J = LGNJoints_Create(G);
   md.B = LGNBodies_Create(G);
