@@ -11,6 +11,9 @@
  *
  *     B^T P = Q R,   |R_11| >= |R_22| >= ...,
  *
+ * (a sparse B: SuiteSparseQR's QR of B^T, whose rank detection, Heath's
+ * method, drops the columns whose remaining norm is below the same
+ * tolerance and moves them last)
  * gives the numerical rank r (|R_kk| > max(1e-10 |R_11|, 100 |Phi(q0)|_inf):
  * a q0 off the constraints by delta, as LGNCalcIC may get it, moves the
  * R_kk of dependent rows off 0 by about |Phi|) and, in the first r pivoted
@@ -40,6 +43,9 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "lgn_impl.h"
+#if defined(LGN_HAVE_SPQR)
+#include <SuiteSparseQR_C.h>
+#endif
 
 #define LGN_RED_RANK_TOL   SUN_RCONST(1.0e-10) /* |R_kk| > tol |R_11|: independent */
 #define LGN_RED_CHECK_FAC  SUN_RCONST(100.0)   /* rows left out: 100 x the kept rows' */
@@ -88,6 +94,92 @@ static void SortAscending(sunindextype *x, sunindextype n)
   }
 }
 
+#if defined(LGN_HAVE_SPQR)
+/* The sparse B's independent rows: SuiteSparseQR's B^T E = Q R with rank
+ * detection; the first rank columns of E are the independent rows. B^T in
+ * compressed columns is B in compressed rows: B's arrays for CSR, its
+ * transpose for CSC. */
+static int SparseRankRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealtype rank_floor,
+                          sunindextype *rank, sunindextype *rows)
+{
+  const sunindextype np = SUNSparseMatrix_NP(B);
+  const sunindextype *bp = SUNSparseMatrix_IndexPointers(B);
+  const sunindextype *bi = SUNSparseMatrix_IndexValues(B);
+  const sunrealtype *bx = SUNSparseMatrix_Data(B);
+  const sunindextype nnz = bp[np];
+  sunindextype *tp = NULL, *ti = NULL, *E = NULL, i, j, p;
+  sunrealtype *tx = NULL, colmax = SUN_RCONST(0.0);
+  cholmod_sparse At, *R = NULL;
+  cholmod_common cc;
+  SuiteSparse_long r = -1;
+  int flag = -1;
+
+  *rank = -1;
+  if (SUNSparseMatrix_SparseType(B) == CSR_MAT) {
+    tp = (sunindextype *)bp;
+    ti = (sunindextype *)bi;
+    tx = (sunrealtype *)bx;
+  } else { /* the transpose of compressed columns */
+    tp = (sunindextype *)calloc((size_t)(m + 1), sizeof(sunindextype));
+    ti = (sunindextype *)malloc((size_t)SUNMAX(nnz, 1) * sizeof(sunindextype));
+    tx = (sunrealtype *)malloc((size_t)SUNMAX(nnz, 1) * sizeof(sunrealtype));
+    if (tp == NULL || ti == NULL || tx == NULL) goto done;
+    for (p = 0; p < nnz; p++) tp[bi[p] + 1]++;
+    for (i = 0; i < m; i++) tp[i + 1] += tp[i];
+    for (j = 0; j < np; j++)
+      for (p = bp[j]; p < bp[j + 1]; p++) {
+        const sunindextype k = tp[bi[p]]++;
+        ti[k] = j;
+        tx[k] = bx[p];
+      }
+    for (i = m; i > 0; i--) tp[i] = tp[i - 1];
+    tp[0] = 0;
+  }
+  for (i = 0; i < m; i++) { /* the largest row norm of B: the scale */
+    sunrealtype s = SUN_RCONST(0.0);
+    for (p = tp[i]; p < tp[i + 1]; p++) s += tx[p] * tx[p];
+    colmax = SUNMAX(colmax, sqrt(s));
+  }
+  memset(&At, 0, sizeof At);
+  At.nrow = (size_t)nv;
+  At.ncol = (size_t)m;
+  At.nzmax = (size_t)SUNMAX(nnz, 1);
+  At.p = tp;
+  At.i = ti;
+  At.x = tx;
+  At.stype = 0;
+  At.itype = CHOLMOD_LONG;
+  At.xtype = CHOLMOD_REAL;
+  At.dtype = CHOLMOD_DOUBLE;
+  At.sorted = 0;
+  At.packed = 1;
+  cholmod_l_start(&cc);
+  /* AMD's ordering: on spherical chains of 1e3 and 1e4 bodies (B^T 6000 x
+   * 3000, 60000 x 30000) 5.5 and 46 ms of CPU, against 7 and 351 ms with
+   * SuiteSparseQR's default choice */
+  r = SuiteSparseQR_C(SPQR_ORDERING_AMD, SUNMAX(LGN_RED_RANK_TOL * colmax, rank_floor), 0, 0,
+                      &At, NULL, NULL, NULL, NULL, &R, (SuiteSparse_long **)&E, NULL, NULL,
+                      NULL, &cc);
+  if (r >= 0) {
+    for (i = 0; i < m; i++) rows[i] = E != NULL ? E[i] : i;
+    SortAscending(rows, (sunindextype)r);
+    SortAscending(rows + r, m - (sunindextype)r);
+    *rank = (sunindextype)r;
+    flag  = 0;
+  }
+  cholmod_l_free_sparse(&R, &cc);
+  if (E != NULL) cholmod_l_free((size_t)m, sizeof(SuiteSparse_long), E, &cc);
+  cholmod_l_finish(&cc);
+done:
+  if (SUNSparseMatrix_SparseType(B) != CSR_MAT) {
+    free(tp);
+    free(ti);
+    free(tx);
+  }
+  return flag;
+}
+#endif
+
 int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealtype rank_floor,
                          sunindextype *rank, sunindextype *rows)
 {
@@ -97,6 +189,10 @@ int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealty
   int flag = -1;
 
   *rank = -1;
+#if defined(LGN_HAVE_SPQR)
+  if (m > 0 && nv > 0 && lgnMatIsSparse(B))
+    return SparseRankRows(B, m, nv, rank_floor, rank, rows);
+#endif
   if (m == 0 || nv == 0 || (long int)m * (long int)nv > LGN_RED_MAX_ENTRIES) return -1;
   Bt   = (double *)malloc((size_t)(m * nv) * sizeof(double));
   tau  = (double *)malloc((size_t)m * sizeof(double));
@@ -129,6 +225,17 @@ done:
 /* =============================================================================
  * The selection at the start
  * ===========================================================================*/
+
+/* Is the rank found by the sparse QR (a sparse B, built with SuiteSparseQR)? */
+static sunbooleantype RankSparse(const LGNMem mem)
+{
+#if defined(LGN_HAVE_SPQR)
+  return mem->krylov || (mem->A != NULL && lgnMatIsSparse(mem->A));
+#else
+  (void)mem;
+  return SUNFALSE;
+#endif
+}
 
 /* "3, 17 and 29" into buf: the rows left out. */
 static void ListRows(const sunindextype *rows, sunindextype n, char *buf, size_t len)
@@ -196,7 +303,7 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
   int ret, flag;
 
   if (mu == 0 || mem->red_mode == LGN_REDUNDANT_REFUSE || mem->par != NULL ||
-      (long int)mu * (long int)mem->nv > LGN_RED_MAX_ENTRIES) {
+      (!RankSparse(mem) && (long int)mu * (long int)mem->nv > LGN_RED_MAX_ENTRIES)) {
     /* the integrator sees every row: a redundant one makes its matrix
      * singular, and lgn_diag.c names it */
     UseAllRows(mem);

@@ -702,7 +702,8 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *  from revolute joints.
  *  - LGN_REDUNDANT_ELIMINATE (default): at the start (the first LGNSolve or
  *    LGNCalcIC after LGNInit / LGNReInit or a change of the model) a
- *    rank-revealing QR factorisation (column pivoting) of B(q0)^T selects a
+ *    rank-revealing QR factorisation of B(q0)^T (column pivoting: LAPACK for
+ *    a dense B, SuiteSparseQR for a sparse one with KLU builds) selects a
  *    maximal independent set of rows; the integrator uses those only. A
  *    warning (LGN_WARNING, once per selection) names the rows left out, and
  *    LGNGetRedundantConstraints lists them. After every step (and at the
@@ -711,8 +712,9 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *    rows left out are 0 (LGNGetMultipliers): the kept rows carry the whole
  *    constraint force B^T lambda, which the dynamics determines; its split
  *    among dependent rows does not follow from rigid-body mechanics.
- *    Not across MPI ranks (every row is kept there), nor when B has more
- *    than 4e6 entries as a dense matrix.
+ *    Not across MPI ranks (every row is kept there), nor for a dense B of
+ *    more than 4e6 entries. The user's dense or KLU solver, created for all
+ *    rows, is replaced by one of its kind for the kept rows.
  *  - LGN_REDUNDANT_REFUSE: every row is used; dependent rows make the
  *    matrix singular, and the start fails with LGN_IC_FAIL, naming them.
  *  Takes effect at the next start (LGNInit / LGNReInit, LGNCalcIC).
