@@ -721,6 +721,43 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another mode). */
 LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
 
+/* =============================================================================
+ * Impacts
+ * ===========================================================================*/
+
+/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
+ *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
+ *  needed): row i the derivative of contact i's gap along the group,
+ *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
+ *  of a point against a plane). Returns 0, or nonzero on failure. */
+typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
+                               void *user_data);
+
+/** Apply an impact at the current state (t_n, q_n, v_n = v-), e.g. after
+ *  LGNSolve returned LGN_ROOT_RETURN at a contact: with the contact rows
+ *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
+ *  e in [0, 1] (Newton's law at every contact), the velocity after the
+ *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
+ *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
+ *    G v+ = -e G v-
+ *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
+ *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
+ *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
+ *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
+ *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. P (length nc, or
+ *  NULL) receives the contact impulses, in the multipliers' sign
+ *  convention: a contact that pushes the bodies apart (its gap growing
+ *  along its row) has P < 0; one with P > 0 would have to pull, and a
+ *  unilateral contact should be released (solve again without it).
+ *  Nothing changes on failure.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
+ *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
+ *  P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
+ *  is singular: contacts dependent on each other or on the constraints),
+ *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
+LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
+                              sunrealtype e, N_Vector P);
+
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
 #define LGN_IC_PROJECT_Q  141
 /** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
