@@ -181,6 +181,13 @@ module flignum_mod
       type(c_ptr), value :: q, B, user_data
     end function LGNConstrJacFn
 
+    !> Contact rows G(q), nc x nv, of the model matrices' type (LGNApplyImpact).
+    integer(c_int) function LGNContactJacFn(t, q, G, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, G, user_data
+    end function LGNContactJacFn
+
     !> Tangent stiffness K_t: D_q[M vdot + g + B^T lambda].(q w~) = K_t w.
     integer(c_int) function LGNStiffnessFn(t, q, v, vdot, lambda, K, user_data) bind(c)
       import :: c_int, c_double, c_ptr
@@ -1377,6 +1384,19 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: icopt
     end function LGNCalcIC
+
+    !> An impact at the current state: contact rows G (LGNContactJacFn, nc
+    !> of them), restitution e in [0, 1]; v+ from the impulse saddle-point
+    !> problem, then a restart; P (length nc, or c_null_ptr): the impulses.
+    integer(c_int) function LGNApplyImpact(lgn_mem, nc, G, e, P) &
+        bind(c, name="LGNApplyImpact")
+      import :: c_int, c_int64_t, c_double, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int64_t), value :: nc
+      type(c_funptr), value :: G
+      real(c_double), value :: e
+      type(c_ptr), value :: P
+    end function LGNApplyImpact
 
     !> The corrected q0 (length nq), v0 (length nv); either may be c_null_ptr.
     !> Only before the first step.
