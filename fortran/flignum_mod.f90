@@ -1387,15 +1387,16 @@ module flignum_mod
 
     !> An impact at the current state: contact rows G (LGNContactJacFn, nc
     !> of them), restitution e in [0, 1]; v+ from the impulse saddle-point
-    !> problem, then a restart; P (length nc, or c_null_ptr): the impulses.
-    integer(c_int) function LGNApplyImpact(lgn_mem, nc, G, e, P) &
+    !> problem, then a restart; v (length nv) receives v+, P (length nc) the
+    !> impulses (either may be c_null_ptr).
+    integer(c_int) function LGNApplyImpact(lgn_mem, nc, G, e, v, P) &
         bind(c, name="LGNApplyImpact")
       import :: c_int, c_int64_t, c_double, c_ptr, c_funptr
       type(c_ptr), value :: lgn_mem
       integer(c_int64_t), value :: nc
       type(c_funptr), value :: G
       real(c_double), value :: e
-      type(c_ptr), value :: P
+      type(c_ptr), value :: v, P
     end function LGNApplyImpact
 
     !> The corrected q0 (length nq), v0 (length nv); either may be c_null_ptr.

@@ -179,12 +179,12 @@ static int SolveK(KAssembly *K, sunrealtype *b)
 }
 
 static int CheckImpactArgs(LGNMem mem, sunindextype nc, LGNContactJacFn G, sunrealtype e,
-                           N_Vector P)
+                           N_Vector v, N_Vector P)
 {
-  if (!mem->work_done || !mem->mat_done || !mem->ic_done) {
+  if (!mem->work_done || !mem->mat_done) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
-              "No state to apply the impact at: call LGNApplyImpact after LGNSolve (or "
-              "LGNCalcIC) has set the integrator up, e.g. at a root.");
+              "The integrator is not set up: call LGNApplyImpact after LGNSolve or "
+              "LGNCalcIC (at a root: LGNReInit at the root's state first).");
     return LGN_ILL_INPUT;
   }
   if (mem->par != NULL || mem->halo != NULL) {
@@ -201,12 +201,14 @@ static int CheckImpactArgs(LGNMem mem, sunindextype nc, LGNContactJacFn G, sunre
               (double)e);
     return LGN_ILL_INPUT;
   }
+  if (v != NULL && lgnCheckVector(mem, v, mem->nv, "v", "LGNApplyImpact") != LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   if (P != NULL) return lgnCheckVector(mem, P, nc, "P", "LGNApplyImpact");
   return LGN_SUCCESS;
 }
 
 int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtype e,
-                   N_Vector P)
+                   N_Vector v, N_Vector P)
 {
   LGNMem mem;
   KAssembly K;
@@ -219,7 +221,7 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
     LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
     return LGN_NO_MALLOC;
   }
-  flag = CheckImpactArgs(mem, nc, G, e, P);
+  flag = CheckImpactArgs(mem, nc, G, e, v, P);
   if (flag != LGN_SUCCESS) return flag;
   nv = mem->nv;
   m  = mem->m;
@@ -294,6 +296,7 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
   }
   /* v+ = v- + dv; the impulses; a new start at t_n */
   for (i = 0; i < nv; i++) lgnData(mem->v)[i] += rhs[i];
+  if (v != NULL) N_VScale(SUN_RCONST(1.0), mem->v, v);
   if (P != NULL) memcpy(N_VGetArrayPointer(P), rhs + nv + m, (size_t)nc * sizeof(sunrealtype));
   mem->user_vdot0 = SUNFALSE;
   mem->user_a0    = SUNFALSE;

@@ -733,8 +733,9 @@ LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
 typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
                                void *user_data);
 
-/** Apply an impact at the current state (t_n, q_n, v_n = v-), e.g. after
- *  LGNSolve returned LGN_ROOT_RETURN at a contact: with the contact rows
+/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
+ *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
+ *  contact rows
  *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
  *  e in [0, 1] (Newton's law at every contact), the velocity after the
  *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
@@ -744,19 +745,20 @@ typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
  *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
  *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
  *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
- *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. P (length nc, or
- *  NULL) receives the contact impulses, in the multipliers' sign
+ *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
+ *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
+ *  multipliers' sign
  *  convention: a contact that pushes the bodies apart (its gap growing
  *  along its row) has P < 0; one with P > 0 would have to pull, and a
  *  unilateral contact should be released (solve again without it).
  *  Nothing changes on failure.
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
  *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
- *  P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
+ *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
  *  is singular: contacts dependent on each other or on the constraints),
  *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
 LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
-                              sunrealtype e, N_Vector P);
+                              sunrealtype e, N_Vector v, N_Vector P);
 
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
 #define LGN_IC_PROJECT_Q  141

@@ -261,7 +261,7 @@ static void FreeBody(void)
     }
     flag = RunCreate(&r, &md, q, v, 0);
     if (!flag) flag = RunSetup(&r, &md, G, q, v);
-    if (!flag) flag = LGNApplyImpact(r.mem, 1, Contacts, e, P);
+    if (!flag) flag = LGNApplyImpact(r.mem, 1, Contacts, e, NULL, P);
     if (!flag) flag = LGNGetConsistentIC(r.mem, r.q, r.v);
     for (i = 0; i < 3; i++) {
       err = fmax(err, fabs(N_VGetArrayPointer(r.v)[i] - u[i]));
@@ -319,7 +319,7 @@ static void FlatRod(void)
   }
   flag = RunCreate(&r, &md, q, v, 0);
   if (!flag) flag = RunSetup(&r, &md, G, q, v);
-  if (!flag) flag = LGNApplyImpact(r.mem, 2, Contacts, e, P);
+  if (!flag) flag = LGNApplyImpact(r.mem, 2, Contacts, e, NULL, P);
   if (!flag) flag = LGNGetConsistentIC(r.mem, r.q, r.v);
   for (i = 0; i < 6; i++) err = fmax(err, fabs(N_VGetArrayPointer(r.v)[i] - (i == 1 ? e : 0.0)));
   printf("(b) rod flat on two contacts, e = %.1f: %s, |v+ - (0, e, 0, 0)| = %.1e, P = %.4f, "
@@ -462,7 +462,7 @@ static void Chain(double e)
   Run r;
   const int nb = 4, nc = 2;
   const sunindextype nv = 6 * nb;
-  N_Vector q, v, P;
+  N_Vector q, v, P, vout;
   double vm[24], vp[24], dv[24], gm[2], gp[2], bv = 0.0, Tm, Tp, loss, mom, t;
   SUNMatrix Bm, Gm;
   int i, k, flag;
@@ -472,13 +472,15 @@ static void Chain(double e)
   q = N_VNew_Serial(7 * nb, ctx);
   v = N_VNew_Serial(nv, ctx);
   P = N_VNew_Serial(nc, ctx);
+  vout = N_VNew_Serial(nv, ctx);
   BuildChain(&md, G, nb, q, v, nc);
   flag = RunCreate(&r, &md, q, v, 0);
   if (!flag) flag = RunSetup(&r, &md, G, q, v);
   memcpy(vm, N_VGetArrayPointer(r.v), sizeof vm);
-  if (!flag) flag = LGNApplyImpact(r.mem, nc, Contacts, e, P);
+  if (!flag) flag = LGNApplyImpact(r.mem, nc, Contacts, e, vout, P);
   if (!flag) flag = LGNGetConsistentIC(r.mem, r.q, r.v);
   memcpy(vp, N_VGetArrayPointer(r.v), sizeof vp);
+  CHECK(memcmp(vp, N_VGetArrayPointer(vout), sizeof vp) == 0, "v+ given back in v");
   for (i = 0; i < nv; i++) dv[i] = vp[i] - vm[i];
   Bm = SUNDenseMatrix(r.m, nv, ctx);
   Gm = SUNDenseMatrix(nc, nv, ctx);
@@ -527,6 +529,7 @@ static void Chain(double e)
   N_VDestroy(q);
   N_VDestroy(v);
   N_VDestroy(P);
+  N_VDestroy(vout);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);
@@ -555,7 +558,7 @@ static void ChainSparse(void)
     P[s]    = N_VNew_Serial(nc, ctx);
     flag[s] = RunCreate(&r[s], &md, q, v, s);
     if (!flag[s]) flag[s] = RunSetup(&r[s], &md, G, q, v);
-    if (!flag[s]) flag[s] = LGNApplyImpact(r[s].mem, nc, Contacts, 0.5, P[s]);
+    if (!flag[s]) flag[s] = LGNApplyImpact(r[s].mem, nc, Contacts, 0.5, NULL, P[s]);
     if (!flag[s]) flag[s] = LGNGetConsistentIC(r[s].mem, r[s].q, r[s].v);
   }
   for (k = 0; k < 6 * nb; k++) {
@@ -609,28 +612,28 @@ static void BadInput(void)
   LGNSetMassFn(r.mem, Mass);
   LGNSetForceFn(r.mem, Force);
   LGNSetConstraints(r.mem, r.m, Phi, Jac);
-  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, NULL) == LGN_NO_MALLOC, "before LGNInit");
+  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, NULL, NULL) == LGN_NO_MALLOC, "before LGNInit");
   LGNInit(r.mem, 0.0, q, v);
   LGNSetLinearSolver(r.mem, r.LS, r.A);
   LGNSetStepSize(r.mem, 1e-3);
-  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, NULL) == LGN_ILL_INPUT &&
+  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, NULL, NULL) == LGN_ILL_INPUT &&
             strstr(last_msg, "after LGNSolve") != NULL,
         "before the integrator is set up: %s", last_msg);
   flag = LGNCalcIC(r.mem, LGN_IC_PROJECT_V);
   LGNGetConsistentIC(r.mem, r.q, r.v);
   memcpy(before, N_VGetArrayPointer(r.v), sizeof before);
   CHECK(flag == LGN_SUCCESS, "set up");
-  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 1.5, NULL) == LGN_ILL_INPUT &&
+  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 1.5, NULL, NULL) == LGN_ILL_INPUT &&
             strstr(last_msg, "e = 1.5") != NULL, "e = 1.5 refused: %s", last_msg);
-  CHECK(LGNApplyImpact(r.mem, 1, Contacts, NAN, NULL) == LGN_ILL_INPUT, "e = NaN refused");
-  CHECK(LGNApplyImpact(r.mem, 0, Contacts, 0.5, NULL) == LGN_ILL_INPUT, "nc = 0 refused");
-  CHECK(LGNApplyImpact(r.mem, 1, NULL, 0.5, NULL) == LGN_ILL_INPUT &&
+  CHECK(LGNApplyImpact(r.mem, 1, Contacts, NAN, NULL, NULL) == LGN_ILL_INPUT, "e = NaN refused");
+  CHECK(LGNApplyImpact(r.mem, 0, Contacts, 0.5, NULL, NULL) == LGN_ILL_INPUT, "nc = 0 refused");
+  CHECK(LGNApplyImpact(r.mem, 1, NULL, 0.5, NULL, NULL) == LGN_ILL_INPUT &&
             strstr(last_msg, "G = NULL") != NULL, "G = NULL refused: %s", last_msg);
-  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, P3) == LGN_ILL_INPUT &&
+  CHECK(LGNApplyImpact(r.mem, 1, Contacts, 0.5, NULL, P3) == LGN_ILL_INPUT &&
             strstr(last_msg, "P") != NULL, "P of length 3 for 1 contact refused: %s", last_msg);
-  CHECK(LGNApplyImpact(NULL, 1, Contacts, 0.5, NULL) == LGN_MEM_NULL, "mem NULL");
+  CHECK(LGNApplyImpact(NULL, 1, Contacts, 0.5, NULL, NULL) == LGN_MEM_NULL, "mem NULL");
   md.twice = 1; /* the same row twice: a singular system */
-  CHECK(LGNApplyImpact(r.mem, 2, Contacts, 0.5, NULL) == LGN_LSETUP_FAIL &&
+  CHECK(LGNApplyImpact(r.mem, 2, Contacts, 0.5, NULL, NULL) == LGN_LSETUP_FAIL &&
             strstr(last_msg, "singular") != NULL, "two equal contact rows: %s", last_msg);
   md.twice = 0;
   LGNGetConsistentIC(r.mem, r.q, r.v);
