@@ -1002,6 +1002,12 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   if (mem->bdf_q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
     rw += (long int)BDFBlockLength(mem);
   if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
+  if (mem->red_B != NULL) { /* redundant rows: the user's B, 2 vectors, the maps */
+    MatrixSpace(mem->red_B, &rw, &iw);
+    rw += 2L * (long int)mem->m_user;
+    iw += 3L * (long int)mem->m_user;
+  }
+  if (mem->red_A != NULL) MatrixSpace(mem->red_A, &rw, &iw); /* the stand-in's matrix */
   if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
   lgnBlockPrecSpace(mem->bp, &rw, &iw);
   *lenrw = rw;
