@@ -14,10 +14,10 @@
  * (a sparse B: SuiteSparseQR's QR of B^T, whose rank detection, Heath's
  * method, drops the columns whose remaining norm is below the same
  * tolerance and moves them last)
- * gives the numerical rank r (|R_kk| > max(1e-10 |R_11|, 100 |Phi(q0)|_inf):
- * a q0 off the constraints by delta, as LGNCalcIC may get it, moves the
- * R_kk of dependent rows off 0 by about |Phi|) and, in the first r pivoted
- * columns, a maximal independent set of rows. The integrator then
+ * gives the numerical rank r (|R_kk| > 1e-10 |R_11|) and, in the first r
+ * pivoted columns, a maximal independent set of rows. (LGNCalcIC selects
+ * the rows again at the projected q0: a q0 off the constraints may hide
+ * their dependence.) The integrator then
  * works on those r rows only: mem->m = r, and the user's callbacks of
  * constraint type are called here, through the selection (the output of
  * Phi, B, Phi_t and the curvature gathered to the kept rows; the
@@ -49,7 +49,6 @@
 
 #define LGN_RED_RANK_TOL   SUN_RCONST(1.0e-10) /* |R_kk| > tol |R_11|: independent */
 #define LGN_RED_CHECK_FAC  SUN_RCONST(100.0)   /* rows left out: 100 x the kept rows' */
-#define LGN_RED_FLOOR_FAC  SUN_RCONST(100.0)   /* |R_kk| <= 100 |Phi(q0)|: dependent */
 #define LGN_RED_MAX_ENTRIES 4000000L           /* dense B^T for the QR: 32 MB */
 
 /* LAPACK: QR with column pivoting (reference LAPACK, 32-bit integers). */
@@ -298,7 +297,6 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
 {
   const sunindextype mu = mem->m_user;
   sunindextype rank, *sel;
-  sunrealtype rank_floor;
   char list[200];
   int ret, flag;
 
@@ -311,18 +309,12 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
   }
   flag = lgnAllocRedundancy(mem);
   if (flag != LGN_SUCCESS) return flag;
-  /* |Phi(q0)|: the rank's floor (file header) */
-  N_VConst(SUN_RCONST(0.0), mem->red_full);
-  ret  = mem->constr(mem->tn, mem->q, mem->red_full, mem->user_data);
-  flag = lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->red_full, func);
-  if (flag != LGN_SUCCESS) return flag;
-  rank_floor = LGN_RED_FLOOR_FAC * N_VMaxNorm(mem->red_full);
   lgnMatClear(mem->red_B);
   ret  = mem->constr_jac(mem->tn, mem->q, mem->red_B, mem->user_data);
   flag = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, ret, mem->red_B, func);
   if (flag != LGN_SUCCESS) return flag;
   sel = mem->red_rows + mu; /* the second half: scratch */
-  if (lgnRankRevealingRows(mem->red_B, mu, mem->nv, rank_floor, &rank, sel) != 0) {
+  if (lgnRankRevealingRows(mem->red_B, mu, mem->nv, SUN_RCONST(0.0), &rank, sel) != 0) {
     lgnProcessError(mem, LGN_MEM_FAIL, __LINE__, func, __FILE__, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }

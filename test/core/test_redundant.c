@@ -437,8 +437,9 @@ static void FourBar(void)
   }
   {
     /* LGNCalcIC from a start off the constraints (1e-4) with a velocity
-     * off them: the rows are selected at that q0 (the rank's floor) and
-     * again at the projected one, which then satisfies all 20 rows */
+     * off them: the rows are selected at that q0 (where the offset hides
+     * a dependence: rank 18) and again at the projected one (rank 17),
+     * which then satisfies all 20 rows */
     RunOpts o = {0, LGN_CONSTR_INDEX3, 0, 1, FB_TOL, 0.5, 5, NULL, NULL};
     RunResult r;
     N_Vector qp = N_VClone(q), vp = N_VClone(v);
@@ -450,8 +451,9 @@ static void FourBar(void)
     N_VGetArrayPointer(vp)[6] = 0.3;
     r = Run(&md, G, qp, vp, m, &o);
     printf("(a) four-bar, LGNCalcIC from a start 1e-4 off: %s, |Phi| = %.1e, |B v| = %.1e "
-           "(all 20 rows), %lld rows left out\n", LGNGetReturnFlagName(r.flag), r.ic_phi,
-           r.ic_bv, (long long)r.nred);
+           "(all 20 rows), %lld rows left out, %d warnings (two selections)\n",
+           LGNGetReturnFlagName(r.flag), r.ic_phi, r.ic_bv, (long long)r.nred, r.nwarn);
+    CHECK(r.nwarn == 2, "two selections, each named once: %d warnings", r.nwarn);
     CHECK(r.flag == LGN_SUCCESS, "LGNCalcIC and the run: %s (%s)", LGNGetReturnFlagName(r.flag),
           last_msg);
     CHECK(r.ic_phi <= 1e-12 && r.ic_bv <= 1e-12 && r.nred == 3,
