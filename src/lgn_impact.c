@@ -228,11 +228,15 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
   n  = nv + m + nc;
   memset(&K, 0, sizeof K);
   K.n = n;
-  if (!mem->sparse || n <= 200) { /* small: dense, LAPACK */
+#if defined(LGN_HAVE_KLU)
+  if (!mem->sparse || n <= 200) { /* small or dense: LAPACK; else KLU */
+#else
+  { /* LAPACK (no KLU in this build) */
+#endif
     if (n > LGN_IMPACT_MAX_DENSE) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "The impulse system has %lld unknowns: too many for a dense solve (use "
-                "sparse matrices with KLU).", (long long)n);
+                "sparse matrices with a Lignum built with KLU).", (long long)n);
       return LGN_ILL_INPUT;
     }
     K.dense = (sunrealtype *)calloc((size_t)(n * n), sizeof(sunrealtype));
