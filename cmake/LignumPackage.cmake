@@ -130,7 +130,7 @@ endforeach()
 # With KLU, Lignum calls KLU itself (klu_l_extract, klu_l_solve): a static
 # liblignum needs libklu on the link line (a shared one carries it).
 if(LGN_ENABLE_KLU AND _lgn_type STREQUAL "STATIC_LIBRARY")
-  string(APPEND LGN_PC_SUNDIALS_LIBS " -lklu")
+  string(APPEND LGN_PC_SUNDIALS_LIBS " -lklu -lspqr -lcholmod") # + SuiteSparseQR
 endif()
 # LAPACK (the diagnostics' QR): likewise for a static liblignum.
 if(NOT BUILD_SHARED_LIBS)

@@ -268,6 +268,19 @@ module flignum_joints_mod
       type(c_ptr), value :: q, v, z
     end function LGNJoints_Curvature
 
+    !> A point s of body b against the plane n . p = d: gap = n . (x_b + R_b s) - d
+    !! and row (length nv) its derivative along the group (LGNApplyImpact's G).
+    integer(c_int) function LGNJoints_PointPlaneContact(J, q, b, s, n, d, gap, row) &
+        bind(c, name="LGNJoints_PointPlaneContact")
+      import :: c_int, c_double, c_ptr
+      type(c_ptr), value :: J, q
+      integer(c_int), value :: b
+      real(c_double), intent(in) :: s(3), n(3)
+      real(c_double), value :: d
+      real(c_double), intent(out) :: gap
+      real(c_double), intent(out) :: row(*)
+    end function LGNJoints_PointPlaneContact
+
     !> phit = dPhi/dt(q, t), length m: the drivers' rows (for an LGNConstrTimeFn).
     integer(c_int) function LGNJoints_TimeDerivative(J, t, q, phit) &
         bind(c, name="LGNJoints_TimeDerivative")

@@ -55,6 +55,7 @@ module flignum_mod
   integer(c_int), parameter :: LGN_ERR_FAILURE = -12
   integer(c_int), parameter :: LGN_STEP_TOO_SMALL = -15
   integer(c_int), parameter :: LGN_INCONSISTENT_IC = -14
+  integer(c_int), parameter :: LGN_REDUNDANT_INCONSISTENT = -16
 
   ! usage errors -20 .. -29
   integer(c_int), parameter :: LGN_MEM_NULL = -20
@@ -93,6 +94,9 @@ module flignum_mod
   integer(c_int), parameter :: LGN_CONSTR_INDEX3 = 133
   integer(c_int), parameter :: LGN_CONSTR_INDEX2 = 132
   integer(c_int), parameter :: LGN_CONSTR_GGL = 134
+  ! redundant constraints (LGNSetRedundantConstraints)
+  integer(c_int), parameter :: LGN_REDUNDANT_ELIMINATE = 170
+  integer(c_int), parameter :: LGN_REDUNDANT_REFUSE = 171
   ! kinematics
   integer(c_int), parameter :: LGN_KINEMATICS_SIMPLIFIED = 100
   integer(c_int), parameter :: LGN_KINEMATICS_EXACT = 101
@@ -185,6 +189,13 @@ module flignum_mod
       real(c_double), value :: t
       type(c_ptr), value :: q, B, user_data
     end function LGNConstrJacFn
+
+    !> Contact rows G(q), nc x nv, of the model matrices' type (LGNApplyImpact).
+    integer(c_int) function LGNContactJacFn(t, q, G, user_data) bind(c)
+      import :: c_int, c_double, c_ptr
+      real(c_double), value :: t
+      type(c_ptr), value :: q, G, user_data
+    end function LGNContactJacFn
 
     !> Tangent stiffness K_t: D_q[M vdot + g + B^T lambda].(q w~) = K_t w.
     integer(c_int) function LGNStiffnessFn(t, q, v, vdot, lambda, K, user_data) bind(c)
@@ -548,6 +559,16 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: index
     end function LGNSetConstraintIndex
+
+    !> LGN_REDUNDANT_ELIMINATE (default: dependent constraint rows are left
+    !> out, with a warning, and checked after every step) or
+    !> LGN_REDUNDANT_REFUSE (a singular matrix naming them).
+    integer(c_int) function LGNSetRedundantConstraints(lgn_mem, mode) &
+        bind(c, name="LGNSetRedundantConstraints")
+      import :: c_int, c_ptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int), value :: mode
+    end function LGNSetRedundantConstraints
 
     !> LGN_KINEMATICS_SIMPLIFIED (default), _EXACT or _SIGMA.
     integer(c_int) function LGNSetKinematics(lgn_mem, kinematics) &
@@ -1425,6 +1446,20 @@ module flignum_mod
       type(c_ptr), value :: lgn_mem
       integer(c_int), value :: icopt
     end function LGNCalcIC
+
+    !> An impact at the current state: contact rows G (LGNContactJacFn, nc
+    !> of them), restitution e in [0, 1]; v+ from the impulse saddle-point
+    !> problem, then a restart; v (length nv) receives v+, P (length nc) the
+    !> impulses (either may be c_null_ptr).
+    integer(c_int) function LGNApplyImpact(lgn_mem, nc, G, e, v, P) &
+        bind(c, name="LGNApplyImpact")
+      import :: c_int, c_int64_t, c_double, c_ptr, c_funptr
+      type(c_ptr), value :: lgn_mem
+      integer(c_int64_t), value :: nc
+      type(c_funptr), value :: G
+      real(c_double), value :: e
+      type(c_ptr), value :: v, P
+    end function LGNApplyImpact
 
     !> The corrected q0 (length nq), v0 (length nv); either may be c_null_ptr.
     !> Only before the first step.

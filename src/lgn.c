@@ -33,6 +33,7 @@ void *LGNCreate(SUNContext sunctx)
   (void)LGNGenAlphaFromRhoInf(LGN_RHO_INF_DEFAULT, &mem->alpha_m,
                               &mem->alpha_f, &mem->beta, &mem->gamma);
   mem->constr_index = LGN_CONSTR_INDEX3;
+  mem->red_mode     = LGN_REDUNDANT_ELIMINATE;
   mem->kinematics   = LGN_KINEMATICS_SIMPLIFIED;
   mem->kin          = lgnKinematicsOps(LGN_KINEMATICS_SIMPLIFIED);
   mem->rtol         = LGN_RTOL_DEFAULT;
@@ -355,7 +356,10 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
   mem->any_constr_time =
       lgnMaxAll(mem, mem->constr_time != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
       SUN_RCONST(0.0);
-  flag = lgnEnsureWork(mem);
+  /* a new start: the independent constraint rows at q0 (lgn_redundancy.c;
+   * one process only, so no agreement is needed) */
+  if (!mem->ic_done) flag = lgnRedundancyAnalyse(mem, "LGNSolve");
+  if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag == LGN_SUCCESS && mem->nrtfn > 0)
     flag = lgnAgree(mem, lgnAllocRootVectors(mem));
   if (flag == LGN_SUCCESS && mem->atol_vec != NULL) {
@@ -384,6 +388,7 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
                 "initial values were computed.", (double)mem->tn);
       flag = LGN_REPTD_CALLBACK_ERR;
     }
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) return flag;
   }
   return LGN_SUCCESS;
@@ -463,6 +468,7 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
     }
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFAdaptiveStep(mem, tout)
                                          : lgnAdaptiveStep(mem, tout);
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     nstloc++;
     if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
@@ -639,6 +645,7 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
     if (stop) hstep = mem->tstop - mem->tn;
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
     if (flag == LGN_SUCCESS && stop) mem->tn = mem->tstop; /* exact arrival */
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
@@ -681,6 +688,7 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
         remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
       hstep = mem->h;
     flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tend; /* exact arrival */
     nstloc++;

@@ -47,6 +47,8 @@ static int PrepareModel(LGNMem mem, const char *func)
   if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnGhostsCheck(mem));
   /* (a halo on some ranks only is refused where the work space is made:
    * LGNSetHalo drops it, so lgnEnsureWork makes it anew on every rank) */
+  /* the independent constraint rows at the current q (lgn_redundancy.c) */
+  if (flag == LGN_SUCCESS) flag = lgnRedundancyAnalyse(mem, func);
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag != LGN_SUCCESS) return flag;
   lgnGhostsRefreshState(mem); /* the owners' state (collective) */
@@ -84,9 +86,19 @@ int LGNCalcIC(void *lgn_mem, int icopt)
   if (flag != LGN_SUCCESS) return flag;
 
   flag = lgnProjectIC(mem, icopt);
+  if (flag == LGN_SUCCESS && mem->red_nout > 0 && icopt != LGN_IC_PROJECT_V) {
+    /* the rows were selected at the q0 given; at the projected one the
+     * selection may differ (the q0 given off the constraints can hide
+     * their dependence): selected anew, and projected again if it did */
+    const long int nsel = mem->red_nsel;
+    flag = PrepareModel(mem, __func__);
+    if (flag == LGN_SUCCESS && nsel != mem->red_nsel)
+      flag = lgnProjectIC(mem, icopt);
+  }
   /* the state may have changed: a new start at t_n */
   lgnInvalidate(mem, LGN_CHANGE_STATE);
   if (flag == LGN_SUCCESS) flag = lgnComputeIC(mem);
+  if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, __func__);
   if (flag == LGN_RECOVERABLE) {
     LGN_ERROR(mem, LGN_REPTD_CALLBACK_ERR,
               MSG_TIME "a callback failed recoverably in LGNCalcIC.",

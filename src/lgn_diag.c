@@ -31,81 +31,24 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
-#define LGN_DIAG_MAX_ENTRIES 4000000L /* dense B^T for the rank: 32 MB */
-#define LGN_DIAG_RANK_TOL    SUN_RCONST(1.0e-10)
-
-/* LAPACK: QR with column pivoting (reference LAPACK, 32-bit integers). */
-extern void dgeqp3_(const int *m, const int *n, double *a, const int *lda, int *jpvt,
-                    double *tau, double *work, const int *lwork, int *info);
-
-/* B as a dense column-major m x nv array. */
-static void DenseB(SUNMatrix B, sunindextype m, sunindextype nv, double *D)
-{
-  sunindextype i, j, p;
-  if (lgnMatID(B) == SUNMATRIX_DENSE) {
-    memcpy(D, SM_DATA_D(B), (size_t)(m * nv) * sizeof(double));
-    return;
-  }
-  memset(D, 0, (size_t)(m * nv) * sizeof(double));
-  {
-    const sunindextype np = SUNSparseMatrix_NP(B);
-    const sunindextype *ptr = SUNSparseMatrix_IndexPointers(B);
-    const sunindextype *ind = SUNSparseMatrix_IndexValues(B);
-    const sunrealtype *val = SUNSparseMatrix_Data(B);
-    const sunbooleantype csc = SUNSparseMatrix_SparseType(B) == CSC_MAT;
-    for (j = 0; j < np; j++)
-      for (p = ptr[j]; p < ptr[j + 1]; p++) {
-        i = ind[p];
-        if (csc) D[i + j * m] = val[p];
-        else D[j + i * m] = val[p];
-      }
-  }
-}
-
-/* The redundant constraints into mem->diag_red (ascending), their number
- * into mem->diag_nred, and B's rank into *rank; -1 if not computed. */
+/* The redundant constraints into mem->diag_red (ascending, the user's row
+ * numbers), their number into mem->diag_nred, and B's rank into *rank; -1
+ * if not computed (lgn_redundancy.c's QR with column pivoting of B^T). */
 static int RedundantConstraints(LGNMem mem, sunindextype *rank)
 {
-  const sunindextype m = mem->m, nv = mem->nv;
-  double *D = NULL, *Bt = NULL, *tau = NULL, *work = NULL, wq, r11;
-  int *jpvt = NULL, im = (int)nv, in = (int)m, lwork = -1, info = 0, k, r;
-  sunindextype i, j, nred = 0;
-
+  const sunindextype m = mem->m;
+  sunindextype *rows, i, nred = 0;
   *rank = -1;
-  if (m == 0 || mem->Bmat == NULL || (long int)(m * nv) > LGN_DIAG_MAX_ENTRIES) return -1;
-  D    = (double *)malloc((size_t)(m * nv) * sizeof(double));
-  Bt   = (double *)malloc((size_t)(m * nv) * sizeof(double));
-  tau  = (double *)malloc((size_t)m * sizeof(double));
-  jpvt = (int *)calloc((size_t)m, sizeof(int));
-  if (D == NULL || Bt == NULL || tau == NULL || jpvt == NULL) goto done;
-  DenseB(mem->Bmat, m, nv, D);
-  for (j = 0; j < m; j++) /* B^T: nv x m */
-    for (i = 0; i < nv; i++) Bt[i + j * nv] = D[j + i * m];
-  dgeqp3_(&im, &in, Bt, &im, jpvt, tau, &wq, &lwork, &info);
-  lwork = (int)wq;
-  work  = (double *)malloc((size_t)lwork * sizeof(double));
-  if (info != 0 || work == NULL) goto done;
-  dgeqp3_(&im, &in, Bt, &im, jpvt, tau, work, &lwork, &info);
-  if (info != 0) goto done;
-  r11 = fabs(Bt[0]);
-  r   = 0;
-  for (k = 0; k < (int)SUNMIN(m, nv); k++)
-    if (fabs(Bt[k + k * nv]) > LGN_DIAG_RANK_TOL * r11) r = k + 1;
-  *rank = r;
-  /* the pivoted columns beyond the rank (jpvt is 1-based), ascending */
-  for (k = r; k < in; k++) mem->diag_red[nred++] = jpvt[k] - 1;
-  for (i = 1; i < nred; i++) { /* insertion sort: few entries */
-    sunindextype x = mem->diag_red[i];
-    for (j = i; j > 0 && mem->diag_red[j - 1] > x; j--) mem->diag_red[j] = mem->diag_red[j - 1];
-    mem->diag_red[j] = x;
+  if (m == 0 || mem->Bmat == NULL) return -1;
+  rows = (sunindextype *)malloc((size_t)m * sizeof(sunindextype));
+  if (rows == NULL) return -1;
+  if (lgnRankRevealingRows(mem->Bmat, m, mem->nv, SUN_RCONST(0.0), rank, rows) == 0) {
+    /* the rows beyond the rank, ascending; the kept rows are ascending in
+     * the user's numbering, so the map keeps the order */
+    for (i = *rank; i < m; i++) mem->diag_red[nred++] = lgnUserRow(mem, rows[i]);
+    mem->diag_nred = nred;
   }
-  mem->diag_nred = nred;
-done:
-  free(D);
-  free(Bt);
-  free(tau);
-  free(jpvt);
-  free(work);
+  free(rows);
   return *rank >= 0 ? 0 : -1;
 }
 
@@ -140,9 +83,10 @@ static void NameUnknown(LGNMem mem, sunindextype k, char *buf, size_t len)
                                "rotation about body z"};
   if (k >= mem->nv + mem->m) { /* GGL's mu */
     snprintf(buf, len, "the kinematic multiplier (GGL) of constraint %lld",
-             (long long)(k - mem->nv - mem->m));
+             (long long)lgnUserRow(mem, k - mem->nv - mem->m));
   } else if (k >= mem->nv) {
-    snprintf(buf, len, "the multiplier of constraint %lld", (long long)(k - mem->nv));
+    snprintf(buf, len, "the multiplier of constraint %lld",
+             (long long)lgnUserRow(mem, k - mem->nv));
   } else {
     const int b = (int)mem->blk_of[k];
     const sunindextype d = k - mem->blk_voff[b];
@@ -173,6 +117,7 @@ void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len)
     used += (size_t)snprintf(buf + used, len - used,
                              " Redundant constraints (B has rank %lld of %lld): ",
                              (long long)rank, (long long)mem->m);
+    /* (with rows left out at the start, mem->m counts the kept ones) */
     for (i = 0; i < mem->diag_nred && used < len; i++)
       used += (size_t)snprintf(buf + used, len - used, "%s%lld", i > 0 ? ", " : "",
                                (long long)mem->diag_red[i]);

@@ -354,8 +354,8 @@ int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
   if (cK != SUN_RCONST(0.0)) {
     if (mem->stiffness != NULL) {
       lgnMatClear(mem->Kmat);
-      ret = mem->stiffness(t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
-                           mem->Kmat, mem->user_data);
+      ret = lgnUserStiffness(mem, t, mem->q1, mem->v1, mem->vdot1, mem->lambda1,
+                           mem->Kmat);
       ret = lgnCallbackMatrix(mem, LGN_CB_STIFFNESS, ret, mem->Kmat, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
     } else {

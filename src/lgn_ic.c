@@ -112,7 +112,7 @@ int lgnIndex1Rhs(LGNMem mem, sunrealtype t)
   if (m > 0) {
     if (mem->curvature != NULL) {
       N_VConst(SUN_RCONST(0.0), mem->phi);
-      ret = mem->curvature(t, mem->q1, mem->v1, mem->phi, mem->user_data);
+      ret = lgnUserCurvature(mem, t, mem->q1, mem->v1, mem->phi);
       ret = lgnCallbackVector(mem, LGN_CB_CURVATURE, ret, mem->phi, "LGNSolve");
     } else {
       ret = lgnCurvatureDQ(mem, t, mem->q1, mem->v1, mem->phi);
@@ -195,7 +195,7 @@ static int EvalPhi(LGNMem mem, sunrealtype t, N_Vector q)
 {
   int ret;
   N_VConst(SUN_RCONST(0.0), mem->phi);
-  ret = mem->constr(t, q, mem->phi, mem->user_data);
+  ret = lgnUserConstr(mem, t, q, mem->phi);
   return lgnAgree(mem, lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->phi, __func__));
 }
 
@@ -204,7 +204,7 @@ static int EvalBv(LGNMem mem, N_Vector q, N_Vector v)
 {
   int ret;
   lgnMatClear(mem->Bmat);
-  ret = mem->constr_jac(mem->tn, q, mem->Bmat, mem->user_data);
+  ret = lgnUserConstrJac(mem, mem->tn, q, mem->Bmat);
   if (ret != 0) return lgnAgree(mem, lgnCallbackFlag(mem, LGN_CB_CONSTR_JAC, ret, __func__));
   return lgnAgree(mem, lgnConstraintVelocity(mem, mem->tn, q, mem->Bmat, lgnData(v),
                                              mem->work_m));

@@ -265,6 +265,24 @@ typedef struct LGNMemRec {
   int kry_pfail;            /* across ranks: a preconditioner solve's failure
                                in the current Krylov solve (0: none)      */
 
+  /* ---- redundant constraints (lgn_redundancy.c) ---- */
+  sunindextype m_user;      /* the user's constraint rows (LGNSetConstraints);
+                               m counts those the integrator keeps         */
+  int red_mode;             /* LGN_REDUNDANT_ELIMINATE or _REFUSE          */
+  sunindextype red_nout;    /* rows left out (0: m = m_user, no mapping)   */
+  sunindextype *red_rows;   /* 2 m_user: the kept rows (m of them, ascending),
+                               then those left out; then scratch           */
+  sunindextype *red_keep;   /* m_user: the kept index of a user row, or -1 */
+  N_Vector red_full;        /* m_user: a callback's output, the user's rows */
+  N_Vector red_lam;         /* m_user: lambda expanded (0 on rows left out) */
+  SUNMatrix red_B;          /* m_user x nv: the user's B, of A's kind      */
+  sunrealtype red_viol;     /* the last check: max |Phi| of the rows left out */
+  long int red_nsel;        /* selections made (a change of the kept rows) */
+  SUNMatrix red_A;          /* a direct solver for the kept rows, of the   */
+  SUNLinearSolver red_LS;   /* user's kind (NULL: the user's fits)        */
+  SUNMatrix red_Auser;      /* the user's, sized for m_user, while red_A   */
+  SUNLinearSolver red_LSuser; /* and red_LS stand in for them              */
+
   /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
   sunindextype *diag_red;   /* redundant constraints (m; work space)       */
   sunindextype diag_nred;   /* their number (0: none found)                */
@@ -437,6 +455,10 @@ void lgnFreeWork(LGNMem mem);
 int lgnAllocMatrices(LGNMem mem);
 void lgnFreeMatrices(LGNMem mem);
 void lgnFreeAll(LGNMem mem);
+int lgnAllocRedundancy(LGNMem mem);
+void lgnFreeRedundancy(LGNMem mem);
+int lgnAllocRedundancySolver(LGNMem mem, sunindextype n);
+void lgnFreeRedundancySolver(LGNMem mem);
 int lgnSparseWorkCreate(LGNMem mem);
 void lgnSparseWorkFree(LGNMem mem);
 void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw);
@@ -577,6 +599,22 @@ void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
 int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
                                const LGNMatrixTerms *terms);
+
+/* ---- lgn_redundancy.c: redundant constraints ---------------------------- */
+
+int lgnRankRevealingRows(SUNMatrix B, sunindextype m, sunindextype nv, sunrealtype rank_floor,
+                         sunindextype *rank, sunindextype *rows);
+int lgnRedundancyAnalyse(LGNMem mem, const char *func);
+int lgnRedundancyCheck(LGNMem mem, sunrealtype t, N_Vector q, const char *func);
+void lgnRedundancyExpand(const LGNMem mem, const sunrealtype *lambda, sunrealtype *full);
+sunindextype lgnUserRow(const LGNMem mem, sunindextype k);
+int lgnUserConstr(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phi);
+int lgnUserConstrJac(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B);
+int lgnUserConstrTime(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phit);
+int lgnUserCurvature(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, N_Vector z);
+int lgnUserConstrForce(LGNMem mem, sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f);
+int lgnUserStiffness(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                     N_Vector lambda, SUNMatrix K);
 
 /* ---- lgn_diag.c: diagnostics of a singular matrix ----------------------- */
 

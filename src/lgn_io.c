@@ -120,11 +120,28 @@ int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
               phi == NULL ? "phi" : "B", (long long)m);
     return LGN_ILL_INPUT;
   }
-  /* a new m: the work space is reallocated at the next LGNSolve */
-  lgnInvalidate(mem, m != mem->m ? LGN_CHANGE_SIZES : LGN_CHANGE_MODEL);
+  /* a new m: the work space is reallocated at the next LGNSolve (and the
+   * redundant rows are selected anew there, lgn_redundancy.c) */
+  lgnInvalidate(mem, m != mem->m || mem->red_nout > 0 ? LGN_CHANGE_SIZES : LGN_CHANGE_MODEL);
   mem->m          = m;
+  mem->m_user     = m;
+  mem->red_nout   = 0;
   mem->constr     = phi;
   mem->constr_jac = B;
+  return LGN_SUCCESS;
+}
+
+int LGNSetRedundantConstraints(void *lgn_mem, int mode)
+{
+  LGNMem mem;
+  ACCESS_MEM(lgn_mem, mem);
+  if (mode != LGN_REDUNDANT_ELIMINATE && mode != LGN_REDUNDANT_REFUSE) {
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "mode = %d illegal: use LGN_REDUNDANT_ELIMINATE or LGN_REDUNDANT_REFUSE.",
+              mode);
+    return LGN_ILL_INPUT;
+  }
+  mem->red_mode = mode; /* acts at the next start (lgnRedundancyAnalyse) */
   return LGN_SUCCESS;
 }
 
@@ -669,6 +686,12 @@ int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred, sunindextype *
     LGN_ERROR(mem, LGN_ILL_INPUT, "nred = NULL illegal.");
     return LGN_ILL_INPUT;
   }
+  if (mem->red_nout > 0) { /* left out at the start (lgn_redundancy.c) */
+    *nred = mem->red_nout;
+    if (rows != NULL)
+      for (i = 0; i < *nred; i++) rows[i] = mem->red_rows[mem->m + i];
+    return LGN_SUCCESS;
+  }
   *nred = mem->work_done ? mem->diag_nred : 0;
   if (rows != NULL)
     for (i = 0; i < *nred; i++) rows[i] = mem->diag_red[i];
@@ -746,8 +769,8 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, vdot0, mem->nv, "vdot0", __func__);
-  if (flag == LGN_SUCCESS && mem->m > 0)
-    flag = lgnCheckVector(mem, lambda0, mem->m, "lambda0", __func__);
+  if (flag == LGN_SUCCESS && mem->m_user > 0)
+    flag = lgnCheckVector(mem, lambda0, mem->m_user, "lambda0", __func__);
   if (flag == LGN_SUCCESS && mem->nst > 0) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "vdot0 and lambda0 can only be set before the first step "
@@ -757,16 +780,39 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
   if (flag == LGN_SUCCESS &&
       (!lgnAllFinite(N_VGetArrayPointer(vdot0), nv_own) ||
-       (mem->m > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m)))) {
+       (mem->m_user > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m_user)))) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");
     flag = LGN_ILL_INPUT;
+  }
+  /* redundant rows: selected now (with a linear solver: B is of its kind),
+   * and lambda0 must be 0 on the rows left out, as LGNGetMultipliers gives */
+  if (flag == LGN_SUCCESS && mem->LS != NULL && mem->nst == 0)
+    flag = lgnRedundancyAnalyse(mem, __func__);
+  if (flag == LGN_SUCCESS && mem->red_nout > 0) {
+    const sunrealtype *l0 = N_VGetArrayPointer(lambda0);
+    sunindextype i;
+    for (i = mem->m; i < mem->m_user; i++)
+      if (l0[mem->red_rows[i]] != SUN_RCONST(0.0)) {
+        LGN_ERROR(mem, LGN_ILL_INPUT,
+                  "lambda0[%lld] = %g: constraint %lld is left out as redundant, its "
+                  "multiplier must be 0 (the kept rows carry the constraint force).",
+                  (long long)mem->red_rows[i], (double)l0[mem->red_rows[i]],
+                  (long long)mem->red_rows[i]);
+        flag = LGN_ILL_INPUT;
+        break;
+      }
   }
   /* across ranks a collective call: agreed before the work space is made */
   flag = lgnAgree(mem, flag);
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
-  if (mem->m > 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  if (mem->m > 0 && mem->red_nout == 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  if (mem->m > 0 && mem->red_nout > 0) {
+    const sunrealtype *l0 = N_VGetArrayPointer(lambda0);
+    sunindextype i;
+    for (i = 0; i < mem->m; i++) lgnData(mem->lambda)[i] = l0[mem->red_rows[i]];
+  }
   mem->lambda_valid = SUNTRUE;
   lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */
   mem->user_vdot0 = SUNTRUE;
@@ -836,26 +882,28 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = lgnCheckVector(mem, lambda, mem->m, "lambda", __func__);
+  flag = lgnCheckVector(mem, lambda, mem->m_user, "lambda", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->m > 0) {
+  if (mem->m_user > 0) {
     /* the last output's consistent value (lgn_output.c); else the last
      * valid multipliers: in the work space, or kept while a setter
-     * dropped it (never the zeros of a new work space) */
-    if (mem->out_valid && mem->out_lambda != NULL) {
-      memcpy(N_VGetArrayPointer(lambda), mem->out_lambda, (size_t)mem->m * sizeof(sunrealtype));
-    } else if (mem->lambda != NULL && mem->lambda_valid) {
-      N_VScale(SUN_RCONST(1.0), mem->lambda, lambda);
-    } else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
-      memcpy(N_VGetArrayPointer(lambda), mem->lambda_keep,
-             (size_t)mem->m * sizeof(sunrealtype));
-    } else {
+     * dropped it (never the zeros of a new work space); 0 on the rows
+     * left out as redundant (lgn_redundancy.c) */
+    const sunrealtype *kept = NULL;
+    if (mem->out_valid && mem->out_lambda != NULL)
+      kept = mem->out_lambda;
+    else if (mem->lambda != NULL && mem->lambda_valid)
+      kept = lgnData(mem->lambda);
+    else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m)
+      kept = mem->lambda_keep;
+    if (kept == NULL) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "No multipliers yet for the %lld constraints: they are computed "
                 "at the start of the next LGNSolve that gets that far.",
-                (long long)mem->m);
+                (long long)mem->m_user);
       return LGN_ILL_INPUT;
     }
+    lgnRedundancyExpand(mem, kept, N_VGetArrayPointer(lambda));
   }
   return LGN_SUCCESS;
 }
@@ -1115,6 +1163,7 @@ const char *LGNGetReturnFlagName(long int flag)
   case LGN_ROOT_RETURN:        return "LGN_ROOT_RETURN";
   case LGN_RTFUNC_FAIL:        return "LGN_RTFUNC_FAIL";
   case LGN_WARNING:            return "LGN_WARNING";
+  case LGN_REDUNDANT_INCONSISTENT: return "LGN_REDUNDANT_INCONSISTENT";
   case LGN_BAD_T:              return "LGN_BAD_T";
   case LGN_BAD_K:              return "LGN_BAD_K";
   case LGN_MEM_NULL:           return "LGN_MEM_NULL";

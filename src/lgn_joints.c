@@ -1607,3 +1607,52 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
   }
   return LGN_SUCCESS;
 }
+
+/* ---------------------------------------------------------------------------
+ * Contact of a body's point with a plane (LGNApplyImpact's rows)
+ * ------------------------------------------------------------------------ */
+
+/* gap = n . (x + R s) - d and its row along q o exp(w): d x = P w_x,
+ * d (R s) = R (w_theta x s), so G = [n^T P, (s x R^T n)^T] at the body's
+ * six velocities (P = I on R^3 x SO(3), R on SE(3)). */
+int LGNJoints_PointPlaneContact(LGNJoints J, N_Vector q, int b, const sunrealtype s[3],
+                                const sunrealtype n[3], sunrealtype d, sunrealtype *gap,
+                                sunrealtype *row)
+{
+  const sunrealtype *qd, *x;
+  sunrealtype R[9], Rs[3], Rtn[3], g[3];
+  sunindextype i;
+  int flag;
+  if (J == NULL) return NullJoints(__func__);
+  if (b < 0 || b >= J->nb) {
+    JErr(J, LGN_ILL_INPUT, __func__, "body b = %d illegal (0..%d).", b, J->nb - 1);
+    return LGN_ILL_INPUT;
+  }
+  if (gap == NULL || row == NULL) {
+    JErr(J, LGN_ILL_INPUT, __func__, "%s = NULL illegal.", gap == NULL ? "gap" : "row");
+    return LGN_ILL_INPUT;
+  }
+  flag = lgnCheckVec3(&J->err, s, "s", __func__);
+  if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, n, "n", __func__);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] > SUN_RCONST(0.0)) || !isfinite(d)) {
+    JErr(J, LGN_ILL_INPUT, __func__, "n = 0 or d not finite: illegal.");
+    return LGN_ILL_INPUT;
+  }
+  if (lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__) != LGN_SUCCESS)
+    return LGN_ILL_INPUT;
+  qd = lgnVecData(q);
+  x  = qd + J->qoff[b];
+  LGNQuaternionToRotation(x + 3, R);
+  lgnMat3Apply(R, s, Rs);
+  lgnMat3ApplyT(R, n, Rtn);
+  *gap = n[0] * (x[0] + Rs[0]) + n[1] * (x[1] + Rs[1]) + n[2] * (x[2] + Rs[2]) - d;
+  for (i = 0; i < J->G->nv; i++) row[i] = SUN_RCONST(0.0);
+  if (J->se3[b]) lgnMat3ApplyT(R, n, g); /* P = R: (R^T n)^T */
+  else
+    for (i = 0; i < 3; i++) g[i] = n[i];
+  for (i = 0; i < 3; i++) row[J->voff[b] + i] = g[i];
+  lgnVec3Cross(s, Rtn, g);
+  for (i = 0; i < 3; i++) row[J->voff[b] + 3 + i] = g[i];
+  return LGN_SUCCESS;
+}

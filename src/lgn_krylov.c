@@ -95,6 +95,7 @@ int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS)
               "(SUNLinSolSetATimes): Lignum cannot apply its matrix.");
     return LGN_LS_MISMATCH;
   }
+  lgnFreeRedundancySolver(mem); /* a stand-in for the old direct solver */
   if (!mem->krylov) {
     mem->A = NULL; /* the user's matrix of a direct solver: not ours */
     mem->own_A = SUNFALSE;
@@ -176,10 +177,12 @@ int lgnKrylovCheck(LGNMem mem)
     /* its vectors would be read and written past their ends */
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The Krylov solver was made for vectors of local length %lld, but this "
-              "rank's unknowns are %lld (%s%lld velocities + m = %lld constraints): "
+              "rank's unknowns are %lld (%s%lld velocities + m = %lld constraints%s): "
               "make it with a template of that length.",
               (long long)len, (long long)n, mem->halo != NULL ? "the owned bodies' " : "",
-              (long long)mem->nv_own, (long long)mem->m);
+              (long long)mem->nv_own, (long long)mem->m,
+              mem->red_nout > 0 ? ", the rows kept of a redundant set: "
+                                  "LGNGetRedundantConstraints lists those left out" : "");
     flag = LGN_LS_MISMATCH;
   }
   /* agreed before lgnAllocKrylov, which is collective */

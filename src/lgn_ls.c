@@ -97,6 +97,7 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
   }
   if (mem->krylov) lgnFreeKrylov(mem, SUNFALSE); /* Lignum's A, vectors */
   mem->krylov = SUNFALSE;
+  lgnFreeRedundancySolver(mem); /* a stand-in for the old solver */
   mem->LS = LS;
   mem->A  = A;
   /* the model matrices are reallocated for A's type at the next solve; the
@@ -292,6 +293,26 @@ static int CheckGGL(LGNMem mem)
   return LGN_ILL_INPUT;
 }
 
+/* Rows left out as redundant (lgn_redundancy.c): the user's direct solver
+ * was made for nv + all m_user rows; a stand-in of its kind is made for
+ * the kept rows (and dropped when nothing is left out any more). A matrix
+ * of another size is left to the check below. */
+static int FitKeptRows(LGNMem mem)
+{
+  const sunindextype n = mem->nv + mem->nalg;
+  const sunindextype nuser = mem->nv + (mem->nalg > mem->m ? 2 : 1) * mem->m_user;
+  sunindextype rows;
+  if (mem->krylov || mem->A == NULL) return LGN_SUCCESS;
+  rows = lgnMatID(mem->A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
+  if (mem->red_LS != NULL) {
+    if (mem->red_nout > 0 && rows == n) return LGN_SUCCESS;
+    lgnFreeRedundancySolver(mem);
+    rows = lgnMatID(mem->A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
+  }
+  if (mem->red_nout == 0 || rows == n || rows != nuser) return LGN_SUCCESS;
+  return lgnAllocRedundancySolver(mem, n);
+}
+
 /* Before the first solve: the matrix must be (nv + nalg) x (nv + nalg),
  * nalg = m, or 2m under GGL. */
 /* The linear solver and A fit the problem (on this rank). */
@@ -306,6 +327,8 @@ static int CheckLinearSolver(LGNMem mem)
     ret = lgnKrylovCheck(mem);
     if (ret != LGN_SUCCESS) return ret;
   }
+  ret = FitKeptRows(mem);
+  if (ret != LGN_SUCCESS) return ret;
   sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
   if (mem->halo != NULL && !mem->krylov &&
       (!sparse || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_CUSTOM)) {

@@ -20,15 +20,20 @@
 #include <string.h>
 
 #include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "groups/lgn_group_impl.h"
 #include "lgn_blockprec.h"
+#include "lgn_dense_lu.h"
 #include "lgn_halo.h"
 #include "lgn_impl.h"
 #include "lgn_klu_solve.h"
 #include "lgn_sparse.h"
+#if defined(LGN_HAVE_KLU)
+#include <sunlinsol/sunlinsol_klu.h>
+#endif
 
 /* =============================================================================
  * Invalidation: what each change makes stale
@@ -480,8 +485,115 @@ void lgnFreeWork(LGNMem mem)
 }
 
 /* Everything the record holds (LGNFree). */
+/* The redundancy's arrays (lgn_redundancy.c): for m_user rows, B of the
+ * kind the model matrices will have (sparse for a sparse A or a Krylov
+ * solver, as lgnAllocMatrices decides), kept while those stay the same. */
+int lgnAllocRedundancy(LGNMem mem)
+{
+  const sunindextype mu = mem->m_user, nv = mem->nv;
+  const sunbooleantype sparse = mem->krylov || (mem->A != NULL && lgnMatIsSparse(mem->A));
+  const int type = mem->A != NULL && lgnMatIsSparse(mem->A)
+                       ? (int)SUNSparseMatrix_SparseType(mem->A) : CSC_MAT;
+  if (mem->red_B != NULL && N_VGetLength(mem->red_full) == mu &&
+      lgnMatIsSparse(mem->red_B) == sparse &&
+      (sparse ? SUNSparseMatrix_Columns(mem->red_B) == nv &&
+                    (int)SUNSparseMatrix_SparseType(mem->red_B) == type
+              : SUNDenseMatrix_Columns(mem->red_B) == nv))
+    return LGN_SUCCESS;
+  lgnFreeRedundancy(mem);
+  mem->red_rows = (sunindextype *)malloc((size_t)(3 * mu) * sizeof(sunindextype));
+  mem->red_keep = mem->red_rows != NULL ? mem->red_rows + 2 * mu : NULL;
+  mem->red_full = N_VNew_Serial(mu, mem->sunctx);
+  mem->red_lam  = N_VNew_Serial(mu, mem->sunctx);
+  mem->red_B    = sparse ? SUNSparseMatrix(mu, nv, SUNMAX(12 * mu, 1), type, mem->sunctx)
+                         : SUNDenseMatrix(mu, nv, mem->sunctx);
+  if (mem->red_rows == NULL || mem->red_full == NULL || mem->red_lam == NULL ||
+      mem->red_B == NULL) {
+    lgnFreeRedundancy(mem);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  return LGN_SUCCESS;
+}
+
+/* A direct solver of the user's kind (SUNDIALS' dense LU, Lignum's, KLU)
+ * for the n x n system of the kept rows, standing in for the user's (made
+ * for all m_user rows) while rows are left out (lgn_ls.c). */
+int lgnAllocRedundancySolver(LGNMem mem, sunindextype n)
+{
+  SUNLinearSolver LS = NULL;
+  SUNMatrix A = NULL;
+  N_Vector y  = N_VNew_Serial(n, mem->sunctx);
+  if (y != NULL && lgnDenseLUSize(mem->LS) >= 0) {
+    A  = SUNDenseMatrix(n, n, mem->sunctx);
+    LS = A != NULL ? LGNLinSol_Dense(y, A, mem->sunctx) : NULL;
+  } else if (y != NULL && SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_DENSE) {
+    A  = SUNDenseMatrix(n, n, mem->sunctx);
+    LS = A != NULL ? SUNLinSol_Dense(y, A, mem->sunctx) : NULL;
+#if defined(LGN_HAVE_KLU)
+  } else if (y != NULL && SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) {
+    A  = SUNSparseMatrix(n, n, SUNMAX(SUNSparseMatrix_NNZ(mem->A), 1),
+                         SUNSparseMatrix_SparseType(mem->A), mem->sunctx);
+    LS = A != NULL ? SUNLinSol_KLU(y, A, mem->sunctx) : NULL;
+#endif
+  } else if (y != NULL) {
+    N_VDestroy(y);
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "Redundant constraints are left out (B has rank %lld of %lld): the system "
+              "has %lld unknowns, and this linear solver cannot be remade for them by "
+              "Lignum; size A for the kept rows, or use SUNLinSol_Dense, "
+              "LGNLinSol_Dense or SUNLinSol_KLU.",
+              (long long)mem->m, (long long)mem->m_user, (long long)n);
+    return LGN_LS_MISMATCH;
+  }
+  if (y != NULL) N_VDestroy(y);
+  if (LS == NULL) {
+    if (A != NULL) SUNMatDestroy(A);
+    LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  mem->red_Auser  = mem->A;
+  mem->red_LSuser = mem->LS;
+  mem->red_A = mem->A = A;
+  mem->red_LS = mem->LS = LS;
+  lgnInvalidate(mem, LGN_CHANGE_LINSOL);
+  return LGN_SUCCESS;
+}
+
+/* The user's solver back in place of the stand-in (if any). */
+void lgnFreeRedundancySolver(LGNMem mem)
+{
+  if (mem->red_LS == NULL) return;
+  mem->A  = mem->red_Auser;
+  mem->LS = mem->red_LSuser;
+  SUNLinSolFree(mem->red_LS);
+  SUNMatDestroy(mem->red_A);
+  mem->red_A = NULL;
+  mem->red_LS = NULL;
+  mem->red_Auser = NULL;
+  mem->red_LSuser = NULL;
+  lgnInvalidate(mem, LGN_CHANGE_LINSOL);
+}
+
+void lgnFreeRedundancy(LGNMem mem)
+{
+  lgnFreeRedundancySolver(mem);
+  free(mem->red_rows);
+  mem->red_rows = mem->red_keep = NULL;
+  DestroyVector(&mem->red_full);
+  DestroyVector(&mem->red_lam);
+  if (mem->red_B != NULL) SUNMatDestroy(mem->red_B);
+  mem->red_B = NULL;
+  if (mem->red_nout > 0) { /* the work space was made for the kept rows */
+    mem->red_nout = 0;
+    mem->m        = mem->m_user;
+    lgnInvalidate(mem, LGN_CHANGE_SIZES);
+  }
+}
+
 void lgnFreeAll(LGNMem mem)
 {
+  lgnFreeRedundancy(mem);
   lgnFreeWork(mem);
   lgnFreeKrylov(mem, SUNTRUE);
   lgnFreeState(mem);
@@ -950,6 +1062,12 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   if (mem->bdf_q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
     rw += (long int)BDFBlockLength(mem);
   if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
+  if (mem->red_B != NULL) { /* redundant rows: the user's B, 2 vectors, the maps */
+    MatrixSpace(mem->red_B, &rw, &iw);
+    rw += 2L * (long int)mem->m_user;
+    iw += 3L * (long int)mem->m_user;
+  }
+  if (mem->red_A != NULL) MatrixSpace(mem->red_A, &rw, &iw); /* the stand-in's matrix */
   if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
   lgnBlockPrecSpace(mem->bp, &rw, &iw);
   *lenrw = rw;

@@ -89,7 +89,7 @@ int lgnEvalModelAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
 int lgnEvalConstraintJacobian(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B)
 {
   lgnMatClear(B);
-  return lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, mem->constr_jac(t, q, B, mem->user_data),
+  return lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, lgnUserConstrJac(mem, t, q, B),
                            B, "LGNSolve");
 }
 
@@ -106,7 +106,7 @@ int lgnConstraintVelocity(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B,
   if (mem->constr_time == NULL) return LGN_SUCCESS;
   N_VConst(SUN_RCONST(0.0), mem->phit);
   ret = lgnCallbackVector(mem, LGN_CB_CONSTR_TIME,
-                          mem->constr_time(t, q, mem->phit, mem->user_data),
+                          lgnUserConstrTime(mem, t, q, mem->phit),
                           mem->phit, "LGNSolve");
   if (ret != LGN_SUCCESS) return ret;
   pt = lgnData(mem->phit);
@@ -136,7 +136,7 @@ int lgnDynamicResidual(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix M,
   if (mem->m > 0 && mem->constr_force != NULL) {
     memset(rd, 0, (size_t)nv * sizeof(sunrealtype));
     ret = lgnCallbackVector(mem, LGN_CB_CONSTR_FORCE,
-                            mem->constr_force(t, q, mem->lambda1, r, mem->user_data),
+                            lgnUserConstrForce(mem, t, q, mem->lambda1, r),
                             r, "LGNSolve");
     if (ret != LGN_SUCCESS) return ret;
   } else if (mem->m > 0) {
@@ -176,7 +176,7 @@ int lgnNewtonResidual(LGNMem mem, sunrealtype t, sunrealtype scale,
     if (mem->constr_index != LGN_CONSTR_INDEX2) { /* index 3 and GGL: Phi(q) */
       memset(phi, 0, (size_t)m * sizeof(sunrealtype));
       ret = lgnCallbackVector(mem, LGN_CB_CONSTR,
-                              mem->constr(t, mem->q1, mem->phi, mem->user_data),
+                              lgnUserConstr(mem, t, mem->q1, mem->phi),
                               mem->phi, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
       for (i = 0; i < m; i++) rhs[nv + i] = -phi[i];

@@ -423,6 +423,14 @@ int LGNWriteRestart(void *lgn_mem, const char *filename)
               "Nothing to write before the first LGNSolve (or after a setting "
               "dropped the work space): the state at t0 is the user's q0, v0.");
     flag = LGN_ILL_INPUT;
+  } else if (mem->red_nout > 0) {
+    /* the row selection of redundant constraints is not in the format */
+    LGN_ERROR(mem, LGN_ILL_INPUT,
+              "%lld of the %lld constraint rows are left out as redundant: restart "
+              "files of mechanisms with redundant constraints are not supported "
+              "(make the constraints independent, or continue with LGNReInit from "
+              "the state).", (long long)mem->red_nout, (long long)mem->m_user);
+    flag = LGN_ILL_INPUT;
   }
   if (flag == LGN_SUCCESS) {
     flag = BuildImage(mem, &b);

@@ -3,9 +3,9 @@
  *
  * Shows: a closed loop made with the joint helpers and consistent initial
  * velocities from LGNCalcIC. Planar four-bars made of four revolute joints
- * are overconstrained in space (20 rows for 18 coordinates, two of them
- * redundant, and Lignum's saddle-point matrix singular); the RSUR linkage
- * below has the same planar motion with exactly as many rows as needed:
+ * are overconstrained in space (20 rows of rank 17: Lignum leaves three out,
+ * with a warning, as bricard.c shows); the RSUR linkage below has the same
+ * planar motion with exactly as many rows as needed:
  *
  *   ground - crank    revolute about z at A = (0, 0, 0)       5 rows
  *   crank  - coupler  spherical at B                           3 rows

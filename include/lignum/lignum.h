@@ -788,6 +788,88 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
  *  LGNCalcIC to project the start explicitly. */
 #define LGN_INCONSISTENT_IC    -14
 
+/* =============================================================================
+ * Redundant constraints
+ * ===========================================================================*/
+
+/** Return flag (solver failure): a constraint left out as redundant
+ *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
+ *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
+ *  the redundancy was not consistent (the mechanism cannot satisfy all its
+ *  constraints), or B(q) gained rank since the rows were selected. The
+ *  message names the constraint and the violation. */
+#define LGN_REDUNDANT_INCONSISTENT -16
+
+/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
+ *  has dependent rows on a maximal independent set of them (default). */
+#define LGN_REDUNDANT_ELIMINATE 170
+/** LGNSetRedundantConstraints: refuse a model with dependent constraint
+ *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
+#define LGN_REDUNDANT_REFUSE    171
+
+/** What to do with redundant constraints: rows of B(q) that depend on the
+ *  others, as in Bricard's mechanism or a planar four-bar built in space
+ *  from revolute joints.
+ *  - LGN_REDUNDANT_ELIMINATE (default): at the start (the first LGNSolve or
+ *    LGNCalcIC after LGNInit / LGNReInit or a change of the model) a
+ *    rank-revealing QR factorisation of B(q0)^T (column pivoting: LAPACK for
+ *    a dense B, SuiteSparseQR for a sparse one with KLU builds) selects a
+ *    maximal independent set of rows; the integrator uses those only. A
+ *    warning (LGN_WARNING, once per selection) names the rows left out, and
+ *    LGNGetRedundantConstraints lists them. After every step (and at the
+ *    start) the rows left out are checked: if one is violated,
+ *    LGNSolve returns LGN_REDUNDANT_INCONSISTENT. The multipliers of the
+ *    rows left out are 0 (LGNGetMultipliers): the kept rows carry the whole
+ *    constraint force B^T lambda, which the dynamics determines; its split
+ *    among dependent rows does not follow from rigid-body mechanics.
+ *    Not across MPI ranks (every row is kept there), nor for a dense B of
+ *    more than 4e6 entries. The user's dense or KLU solver, created for all
+ *    rows, is replaced by one of its kind for the kept rows.
+ *  - LGN_REDUNDANT_REFUSE: every row is used; dependent rows make the
+ *    matrix singular, and the start fails with LGN_IC_FAIL, naming them.
+ *  Takes effect at the next start (LGNInit / LGNReInit, LGNCalcIC).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another mode). */
+LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
+
+/* =============================================================================
+ * Impacts
+ * ===========================================================================*/
+
+/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
+ *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
+ *  needed): row i the derivative of contact i's gap along the group,
+ *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
+ *  of a point against a plane). Returns 0, or nonzero on failure. */
+typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
+                               void *user_data);
+
+/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
+ *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
+ *  contact rows
+ *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
+ *  e in [0, 1] (Newton's law at every contact), the velocity after the
+ *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
+ *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
+ *    G v+ = -e G v-
+ *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
+ *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
+ *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
+ *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
+ *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
+ *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
+ *  multipliers' sign
+ *  convention: a contact that pushes the bodies apart (its gap growing
+ *  along its row) has P < 0; one with P > 0 would have to pull, and a
+ *  unilateral contact should be released (solve again without it).
+ *  Nothing changes on failure.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
+ *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
+ *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
+ *  is singular: contacts dependent on each other or on the constraints),
+ *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
+LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
+                              sunrealtype e, N_Vector v, N_Vector P);
+
 /** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
 #define LGN_IC_PROJECT_Q  141
 /** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
@@ -988,7 +1070,8 @@ LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *a
  *  @param lgn_mem memory block
  *  @param filename the file (overwritten)
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
- *          (filename NULL or empty, no step taken), LGN_MEM_FAIL,
+ *          (filename NULL or empty, no step taken, or constraint rows
+ *          left out as redundant: not supported), LGN_MEM_FAIL,
  *          LGN_IO_FAIL (the file could not be written). */
 LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
 

@@ -334,6 +334,22 @@ LGN_EXPORT int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q,
 LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q,
                                    N_Vector lambda, SUNMatrix K);
 
+/**
+ * A contact of point s of body b (body frame) with the plane n . p = d
+ * (inertial; n need not be unit: the gap is then scaled by |n|), for the
+ * contact rows G of LGNApplyImpact: *gap = n . (x_b + R_b s) - d (> 0:
+ * apart) and row (length nv, overwritten) its derivative along the group,
+ * zero except at body b's six velocities: [n^T P, (s x R_b^T n)^T] with
+ * P = I on R^3 x SO(3), R_b on SE(3). Copy the row into a dense or sparse
+ * G; a root function of LGNRootInit can return *gap.
+ * @return LGN_SUCCESS, LGN_ILL_INPUT (bad body, NULL or non-finite
+ *         argument, n = 0, q of the wrong length).
+ */
+LGN_EXPORT int LGNJoints_PointPlaneContact(LGNJoints J, N_Vector q, int b,
+                                           const sunrealtype s[3],
+                                           const sunrealtype n[3], sunrealtype d,
+                                           sunrealtype *gap, sunrealtype *row);
+
 #ifdef __cplusplus
 }
 #endif

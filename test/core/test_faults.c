@@ -307,6 +307,10 @@ static int RunCreate(Run *r, SUNContext ctx, int solver, int newton, int with_cf
   LGNGroup_Normalize(r->G, N_VGetArrayPointer(r->q));
   flag = LGNSetGroup(r->mem, r->G);
   if (!flag) flag = LGNSetErrHandlerFn(r->mem, Capture, NULL);
+  /* a transient singular B (SingularOnce) is to be reported as a singular
+   * matrix: by default a B singular at the start is taken for redundant
+   * rows, left out and checked (test_redundant) */
+  if (!flag) flag = LGNSetRedundantConstraints(r->mem, LGN_REDUNDANT_REFUSE);
   if (!flag) flag = LGNSetMassFn(r->mem, Mass);
   if (!flag) flag = LGNSetForceFn(r->mem, Force);
   if (!flag) flag = LGNSetConstraints(r->mem, 3, Phi, Jac);

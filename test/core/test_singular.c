@@ -1,5 +1,7 @@
 /* -----------------------------------------------------------------------------
- * Lignum test: singular mechanisms are diagnosed in words.
+ * Lignum test: singular mechanisms are diagnosed in words (redundant
+ * constraints with LGN_REDUNDANT_REFUSE; by default they are left out and
+ * the mechanism runs: test_redundant).
  *
  *  (a) two identical sets of constraints (a body pinned twice at the same
  *      point): LGN_IC_FAIL, and exactly one of each pair of identical rows
@@ -138,6 +140,8 @@ static int Run(Model *md, LGNGroup G, N_Vector q0, int sparse, sunindextype m,
   if (!flag) flag = LGNSetForceFn(mem, Force);
   if (!flag && m > 0) flag = LGNSetConstraints(mem, m, Phi, Jac);
   if (!flag) flag = LGNInit(mem, 0.0, q0, v0);
+  /* the refusal (the default leaves redundant rows out: test_redundant) */
+  if (!flag) flag = LGNSetRedundantConstraints(mem, LGN_REDUNDANT_REFUSE);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = LGNSetStepSize(mem, 1e-3);
   last_msg[0] = '\0';

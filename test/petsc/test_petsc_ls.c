@@ -512,6 +512,9 @@ static void RunChain(int nb, int twice, int index, int newton, int solver, Chain
   }
   if (LS == NULL) flag = -1;
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
+  /* (d) diagnoses the singular matrix through PETSc's null pivots: the
+   * refusal (by default the doubled rows are left out, test_redundant) */
+  if (!flag && twice) flag = LGNSetRedundantConstraints(mem, LGN_REDUNDANT_REFUSE);
   if (!flag) flag = LGNSetGenAlpha(mem, 0.9);
   if (!flag) flag = LGNSetStepSize(mem, 1e-3);
   if (!flag) flag = LGNSetConstraintIndex(mem, index);
