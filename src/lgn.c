@@ -351,6 +351,8 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
 {
   int flag = lgnAgree(mem, CheckSettings(mem));
   if (flag == LGN_SUCCESS) flag = CheckSameSettings(mem, tout, itask);
+  /* before the model is evaluated (the redundancy analysis below) */
+  if (flag == LGN_SUCCESS && mem->krylov) flag = lgnAgree(mem, lgnKrylovCheckPreconditioner(mem));
   if (flag != LGN_SUCCESS) return flag;
   /* Phi_t on any rank: every rank takes part in its error norm */
   mem->any_constr_time =
@@ -519,7 +521,14 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     const int oflag = lgnOutputAt(mem, *tret, q, v);
     if (oflag != LGN_SUCCESS) flag = oflag;
   } else if (mem->nst != nst0) {
-    mem->out_valid = SUNFALSE; /* steps taken, then a failure: the state at tn */
+    mem->out_valid  = SUNFALSE; /* steps taken, then a failure: the state at tn */
+    mem->out_lvalid = SUNFALSE;
+  } else if (mem->out_lvalid && tret != NULL && *tret == mem->out_lt && q != NULL &&
+             v != NULL && lgnLocalLength(q) == lgnLocalLength(mem->out_lq) &&
+             lgnLocalLength(v) == lgnLocalLength(mem->out_lv)) {
+    /* no step taken: the outputs as the last (projected) output returned them */
+    N_VScale(SUN_RCONST(1.0), mem->out_lq, q);
+    N_VScale(SUN_RCONST(1.0), mem->out_lv, v);
   }
   return flag;
 }

@@ -42,6 +42,7 @@
 #define KEEP_BELOW  SUN_RCONST(1.2) /* 1 <= factor < 1.2: keep h           */
 #define CUT_FAIL    SUN_RCONST(0.25)
 #define CUT_MIN     SUN_RCONST(0.01) /* the largest cut after an error-test failure */
+#define RESCALE_MAX SUN_RCONST(100.0) /* the largest h / h_old a is rescaled by */
 #define LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 %   */
 
 /* The controller's factor for an error norm err: error per unit step, the
@@ -95,7 +96,11 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
     mem->a_step = a;
     return;
   }
-  r = h / mem->hlast;
+  /* a - vdot ~ (alpha_m - alpha_f) h_old vddot plus Newton's noise: the
+   * controller grows h by 2 at most, but a restart of the step size (after
+   * a collapse to 1e-18, or LGNSetInitStep after steps) would multiply the
+   * noise by h / h_old ~ 1e9; beyond RESCALE_MAX a is taken as ~ vdot */
+  r = SUNMIN(h / mem->hlast, RESCALE_MAX);
   for (i = 0; i < nv; i++) mem->a_scaled[i] = vdot[i] + r * (a[i] - vdot[i]);
   mem->a_step = mem->a_scaled;
 }

@@ -175,6 +175,9 @@ typedef struct LGNMemRec {
                                space is dropped (a setter changed sizes):
                                restored when it is made again with this m */
   sunindextype lambda_keep_len;
+  sunrealtype *out_keep;    /* the last output's vdot and lambda kept while
+                               a setter dropped the work space (or NULL) */
+  sunindextype out_keep_nv, out_keep_m;
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */
@@ -364,6 +367,10 @@ typedef struct LGNMemRec {
   sunrealtype *out_save;    /* q1, v1, vdot1, lambda1 kept while an output
                                is computed (nq + 3 nv + m)                 */
   N_Vector out_q, out_v;    /* LGNGetDky's q and v (clones; NULL until used) */
+  N_Vector out_lq, out_lv;  /* the last projected output's q, v (clones)   */
+  sunrealtype out_lt;       /* ... its time                                */
+  sunbooleantype out_lvalid; /* ... kept (a failed LGNSolve at that time
+                               returns them: lgn.c)                      */
   sunrealtype *out_lwork;   /* the iterate's consistent lambda (m)         */
   sunbooleantype lambda_errcon; /* LGNSetMultiplierErrorControl (default off) */
   sunrealtype lambda_atol;  /* ... its absolute tolerance of the multipliers */
@@ -632,6 +639,7 @@ int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b);
 
 int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS);
 int lgnKrylovCheck(LGNMem mem);
+int lgnKrylovCheckPreconditioner(LGNMem mem);
 int lgnKrylovSetup(LGNMem mem);
 int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b);
 void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c);

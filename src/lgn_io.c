@@ -872,6 +872,8 @@ int LGNGetAcceleration(void *lgn_mem, N_Vector vdot)
   if (flag != LGN_SUCCESS) return flag;
   if (mem->out_valid) /* the last output's consistent value (lgn_output.c) */
     memcpy(N_VGetArrayPointer(vdot), mem->out_vdot, (size_t)mem->nv * sizeof(sunrealtype));
+  else if (mem->out_keep != NULL && mem->out_keep_nv == mem->nv) /* kept (lgn_mem.c) */
+    memcpy(N_VGetArrayPointer(vdot), mem->out_keep, (size_t)mem->nv * sizeof(sunrealtype));
   else
     N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
   return LGN_SUCCESS;
@@ -892,6 +894,8 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
     const sunrealtype *kept = NULL;
     if (mem->out_valid && mem->out_lambda != NULL)
       kept = mem->out_lambda;
+    else if (mem->out_keep != NULL && mem->out_keep_m == mem->m && mem->m > 0)
+      kept = mem->out_keep + mem->out_keep_nv;
     else if (mem->lambda != NULL && mem->lambda_valid)
       kept = lgnData(mem->lambda);
     else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m)

@@ -166,6 +166,36 @@ static int MakeBlockPreconditioner(LGNMem mem)
 #endif
 }
 
+/* The preconditioner against the side the solver was made for: no model
+ * size enters, so LGNSolve checks it before the model is evaluated. */
+int lgnKrylovCheckPreconditioner(LGNMem mem)
+{
+  const sunbooleantype prec = HasPreconditioner(mem);
+  if (!prec && (mem->kry_pretype == SUN_PREC_LEFT || mem->kry_pretype == SUN_PREC_RIGHT ||
+                mem->kry_pretype == SUN_PREC_BOTH)) {
+    /* SUNLinSolInitialize would fail with SUNLS_PSOLVE_NULL (-807) */
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "The Krylov solver was created with %s but no preconditioner is "
+              "attached: call LGNSetPreconditioner or LGNSetBlockPreconditioner, "
+              "or create it with SUN_PREC_NONE.",
+              mem->kry_pretype == SUN_PREC_LEFT    ? "SUN_PREC_LEFT (PREC_LEFT)"
+              : mem->kry_pretype == SUN_PREC_RIGHT ? "SUN_PREC_RIGHT (PREC_RIGHT)"
+                                                   : "SUN_PREC_BOTH (PREC_BOTH)");
+    return LGN_LS_MISMATCH;
+  }
+  if (prec && (mem->kry_pretype == SUN_PREC_NONE ||
+               (mem->kry_pretype == SUN_PREC_RIGHT &&
+                SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_SPFGMR))) {
+    LGN_ERROR(mem, LGN_LS_MISMATCH,
+              "A preconditioner is attached but the Krylov solver was created "
+              "with %s: create it with PREC_LEFT (SPFGMR: PREC_RIGHT), the "
+              "side whose residual Lignum's tolerance measures.",
+              mem->kry_pretype == SUN_PREC_NONE ? "PREC_NONE" : "PREC_RIGHT");
+    return LGN_LS_MISMATCH;
+  }
+  return LGN_SUCCESS;
+}
+
 /* Before the first solve (lgnLsCheck): Lignum's matrix and vectors for the
  * sizes, the block preconditioner, and the hooks handed to the solver. */
 int lgnKrylovCheck(LGNMem mem)
@@ -190,28 +220,8 @@ int lgnKrylovCheck(LGNMem mem)
   if (flag != LGN_SUCCESS) return flag;
   flag = lgnAllocKrylov(mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!prec && (mem->kry_pretype == SUN_PREC_LEFT || mem->kry_pretype == SUN_PREC_RIGHT ||
-                mem->kry_pretype == SUN_PREC_BOTH)) {
-    /* SUNLinSolInitialize would fail with SUNLS_PSOLVE_NULL (-807) */
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "The Krylov solver was created with %s but no preconditioner is "
-              "attached: call LGNSetPreconditioner or LGNSetBlockPreconditioner, "
-              "or create it with SUN_PREC_NONE.",
-              mem->kry_pretype == SUN_PREC_LEFT    ? "SUN_PREC_LEFT (PREC_LEFT)"
-              : mem->kry_pretype == SUN_PREC_RIGHT ? "SUN_PREC_RIGHT (PREC_RIGHT)"
-                                                   : "SUN_PREC_BOTH (PREC_BOTH)");
-    return LGN_LS_MISMATCH;
-  }
-  if (prec && (mem->kry_pretype == SUN_PREC_NONE ||
-               (mem->kry_pretype == SUN_PREC_RIGHT &&
-                SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_SPFGMR))) {
-    LGN_ERROR(mem, LGN_LS_MISMATCH,
-              "A preconditioner is attached but the Krylov solver was created "
-              "with %s: create it with PREC_LEFT (SPFGMR: PREC_RIGHT), the "
-              "side whose residual Lignum's tolerance measures.",
-              mem->kry_pretype == SUN_PREC_NONE ? "PREC_NONE" : "PREC_RIGHT");
-    return LGN_LS_MISMATCH;
-  }
+  flag = lgnKrylovCheckPreconditioner(mem);
+  if (flag != LGN_SUCCESS) return flag;
   if (mem->bp_nblocks > 0) {
     flag = MakeBlockPreconditioner(mem);
     if (flag != LGN_SUCCESS) return flag;

@@ -412,6 +412,18 @@ void lgnFreeMatrices(LGNMem mem)
 static void KeepMultipliers(LGNMem mem)
 {
   const sunindextype m = mem->lambda != NULL ? lgnLocalLength(mem->lambda) : 0;
+  if (mem->out_valid && mem->out_vdot != NULL) {
+    /* the last output's consistent vdot and lambda (LGNGetAcceleration,
+     * LGNGetMultipliers report them) */
+    const size_t n = (size_t)(mem->nv + mem->m);
+    free(mem->out_keep);
+    mem->out_keep = (sunrealtype *)malloc(n * sizeof(sunrealtype));
+    if (mem->out_keep != NULL) {
+      memcpy(mem->out_keep, mem->out_vdot, n * sizeof(sunrealtype)); /* out_lambda follows */
+      mem->out_keep_nv = mem->nv;
+      mem->out_keep_m  = mem->m;
+    }
+  }
   if (!mem->lambda_valid || m == 0) return;
   free(mem->lambda_keep);
   mem->lambda_keep     = (sunrealtype *)malloc((size_t)m * sizeof(sunrealtype));
@@ -421,8 +433,22 @@ static void KeepMultipliers(LGNMem mem)
   mem->lambda_valid = SUNFALSE;
 }
 
+/* The kept output's vdot and lambda (KeepMultipliers) freed. */
+static void FreeKeptOutput(LGNMem mem)
+{
+  free(mem->out_keep);
+  mem->out_keep    = NULL;
+  mem->out_keep_nv = mem->out_keep_m = 0;
+}
+
 static void RestoreMultipliers(LGNMem mem)
 {
+  if (mem->out_keep != NULL && mem->out_keep_nv == mem->nv && mem->out_keep_m == mem->m &&
+      mem->out_vdot != NULL) {
+    memcpy(mem->out_vdot, mem->out_keep, (size_t)(mem->nv + mem->m) * sizeof(sunrealtype));
+    mem->out_valid = SUNTRUE;
+  }
+  FreeKeptOutput(mem);
   if (mem->lambda != NULL && mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
     memcpy(lgnData(mem->lambda), mem->lambda_keep, (size_t)mem->m * sizeof(sunrealtype));
     mem->lambda_valid = SUNTRUE;
@@ -462,6 +488,9 @@ void lgnFreeWork(LGNMem mem)
   mem->out_vdot = mem->out_lambda = mem->out_save = mem->out_lwork = NULL;
   mem->out_valid = SUNFALSE;
   DestroyVector(&mem->out_q);
+  DestroyVector(&mem->out_lq);
+  DestroyVector(&mem->out_lv);
+  mem->out_lvalid = SUNFALSE;
   DestroyVector(&mem->out_v);
   free(mem->diag_red);
   mem->diag_red  = NULL;
@@ -604,6 +633,7 @@ void lgnFreeAll(LGNMem mem)
   free(mem->lambda_keep); /* (kept by lgnFreeWork above) */
   mem->lambda_keep     = NULL;
   mem->lambda_keep_len = 0;
+  FreeKeptOutput(mem);
 }
 
 /* =============================================================================
@@ -747,6 +777,7 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   free(mem->lambda_keep); /* a new problem: the old multipliers are not its */
   mem->lambda_keep     = NULL;
   mem->lambda_keep_len = 0;
+  FreeKeptOutput(mem);
   mem->nq    = mem->G->nq;
   mem->nv    = mem->G->nv;
   mem->nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
@@ -1046,6 +1077,7 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
     rw += nq + 4 * nv + 3 * m;                            /* the outputs' block  */
     if (mem->out_q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
+    if (mem->out_lq != NULL) rw += nq + nv;               /* the last output's   */
     iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
   }
   if (mem->mat_done) {

@@ -209,6 +209,18 @@ int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
     mem->out_valid = SUNTRUE;
     mem->out_t     = t;
   }
+  mem->out_lvalid = SUNFALSE;
+  if (flag == LGN_SUCCESS && project) {
+    /* kept: a failed LGNSolve that takes no step returns them again */
+    if (mem->out_lq == NULL) mem->out_lq = N_VClone(q);
+    if (mem->out_lv == NULL) mem->out_lv = N_VClone(v);
+    if (mem->out_lq != NULL && mem->out_lv != NULL) {
+      N_VScale(SUN_RCONST(1.0), q, mem->out_lq);
+      N_VScale(SUN_RCONST(1.0), v, mem->out_lv);
+      mem->out_lt     = t;
+      mem->out_lvalid = SUNTRUE;
+    }
+  }
   return flag;
 }
 

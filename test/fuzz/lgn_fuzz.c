@@ -193,7 +193,6 @@ typedef struct {
   double tstop;
   int tstop_check;
   int root_returned; /* the last LGNSolve returned LGN_ROOT_RETURN */
-  int index_set;     /* LGNSetConstraintIndex accepted, no step since (issue 31, item 1) */
   /* a fault of the user preconditioner: 0 none, 1 (2) its setup returns +1
    * (-1), 3 (4) its solve, at call pc_fault_at of that function */
   int pc_fault;
@@ -902,7 +901,7 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     return flag;
   }
   Snap(o, &after);
-  if (after.nst > before.nst) o->vdot0_set = o->index_set = 0;
+  if (after.nst > before.nst) o->vdot0_set = 0;
   if (after.fs == 0 && before.fs == 0 && after.nst > before.nst)
     steps_left -= after.nst - before.nst;
   /* the rest of the step after a root is pending until a call succeeds or
@@ -910,7 +909,7 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
   o->root_returned = flag == LGN_ROOT_RETURN ||
                      (root_pending && flag < 0 && after.nst == before.nst);
   if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
-    /* under error control no step goes past an accepted stop time */
+    /* no step goes past an accepted stop time (fixed steps too) */
     if (o->stop_set && o->tstop_check)
       REQUIRE(after.t <= o->tstop + 1e-12 * fmax(1.0, fabs(o->tstop)) && tret <= after.t,
               "LGNSolve (%s) stepped past the stop time %.17g to %.17g",
@@ -990,15 +989,6 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
      * test/fuzz/README.md, reproducer crashes/bad_tout_changes_vdot.c), so
      * they are compared only once a step has been taken. */
     if (o->vdot0_set) memcpy(after.aux, before.aux, sizeof after.aux); /* finding 5 */
-    if (o->index_set) {
-      /* LGNSetConstraintIndex drops the multipliers (LGNGetMultipliers:
-       * "no multipliers yet"); an LGNSolve refused then (e.g. GGL with a
-       * smaller or a Krylov solver attached: LGN_LS_MISMATCH,
-       * LGN_ILL_INPUT) makes LGNGetMultipliers return zeros with success:
-       * issue 31, item 1 (being fixed on another branch; remove this then) */
-      memcpy(after.lambda, before.lambda, sizeof after.lambda);
-      after.fl = before.fl;
-    }
     if (before.nst == 0) {
       memcpy(after.vdot, before.vdot, sizeof after.vdot);
       memcpy(after.lambda, before.lambda, sizeof after.lambda);
@@ -1199,7 +1189,6 @@ static void Run(In *in)
                                  LGN_CONSTR_GGL, 0, LGN_CONSTR_GGL + 1};
       const unsigned s = U8(in);
       flag = CheckFlag(o, LGNSetConstraintIndex(mem, idx[s % 6]), "LGNSetConstraintIndex");
-      if (flag == 0) o->index_set = 1;
       if (trace) fprintf(stderr, "  constraint index %d -> %d\n", idx[s % 6], flag);
       if (flag == 0 && idx[s % 6] == LGN_CONSTR_GGL && (s & 8)) {
         MakeSolver(o, 0, o->nv + 2 * o->m);
@@ -1265,7 +1254,6 @@ static void Run(In *in)
       const int c = s == 0 ? LGN_STEP_FIXED : s == 3 ? 7 : LGN_STEP_ADAPTIVE;
       flag = CheckFlag(o, LGNSetStepControl(mem, c), "LGNSetStepControl");
       if (flag == 0) o->adaptive = c == LGN_STEP_ADAPTIVE;
-      if (flag == 0 && !o->adaptive) o->tstop_check = 0; /* issue 31, item 3 */
       o->sane = 0;
       break;
     }
@@ -1293,7 +1281,7 @@ static void Run(In *in)
         if (flag == 0) {
           o->stop_set    = 1;
           o->tstop       = ts;
-          o->tstop_check = o->adaptive && ts >= t;
+          o->tstop_check = ts >= t;
         }
       } else {
         flag = CheckFlag(o, LGNClearStopTime(mem), "LGNClearStopTime");
