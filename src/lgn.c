@@ -519,7 +519,17 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
   if (flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN) {
     /* the output: projected, with its consistent vdot and lambda (lgn_output.c) */
     const int oflag = lgnOutputAt(mem, *tret, q, v);
-    if (oflag != LGN_SUCCESS) flag = oflag;
+    if (oflag != LGN_SUCCESS) {
+      /* the output failed (a callback, a singular matrix): the state at tn,
+       * as after any failure (q, v may hold a part of the projection) */
+      flag = oflag;
+      CopyOut(mem, tret, q, v);
+      if (mem->nst != nst0) mem->out_lvalid = SUNFALSE;
+      if (mem->out_lvalid && *tret == mem->out_lt) {
+        N_VScale(SUN_RCONST(1.0), mem->out_lq, q);
+        N_VScale(SUN_RCONST(1.0), mem->out_lv, v);
+      }
+    }
   } else if (mem->nst != nst0) {
     mem->out_valid  = SUNFALSE; /* steps taken, then a failure: the state at tn */
     mem->out_lvalid = SUNFALSE;

@@ -82,6 +82,7 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     mem->rt_started  = SUNFALSE; /* root finding restarts at the new t0 */
     mem->rt_pending  = SUNFALSE;
     mem->out_valid   = SUNFALSE; /* the last output's vdot, lambda */
+    mem->out_lvalid  = SUNFALSE; /* ... and its projected q, v */
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
   if (what & (LGN_CHANGE_STATE | LGN_CHANGE_MODEL | LGN_CHANGE_METHOD))
@@ -383,6 +384,9 @@ void lgnFreeState(LGNMem mem)
   DestroyVector(&mem->dq_v);
   DestroyVector(&mem->rt_q);
   DestroyVector(&mem->rt_v);
+  DestroyVector(&mem->out_lq); /* the last projected output (lgn_output.c) */
+  DestroyVector(&mem->out_lv);
+  mem->out_lvalid  = SUNFALSE;
   mem->malloc_done = SUNFALSE;
 }
 
@@ -488,9 +492,6 @@ void lgnFreeWork(LGNMem mem)
   mem->out_vdot = mem->out_lambda = mem->out_save = mem->out_lwork = NULL;
   mem->out_valid = SUNFALSE;
   DestroyVector(&mem->out_q);
-  DestroyVector(&mem->out_lq);
-  DestroyVector(&mem->out_lv);
-  mem->out_lvalid = SUNFALSE;
   DestroyVector(&mem->out_v);
   free(mem->diag_red);
   mem->diag_red  = NULL;

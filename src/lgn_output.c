@@ -201,16 +201,19 @@ int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 {
   const sunbooleantype project = Projects(mem, t);
   int flag;
-  mem->out_valid = SUNFALSE;
-  if (!Ready(mem) || !(project || mem->out_consistent)) return LGN_SUCCESS;
+  if (!Ready(mem) || !(project || mem->out_consistent)) {
+    mem->out_valid = mem->out_lvalid = SUNFALSE;
+    return LGN_SUCCESS;
+  }
+  /* out_vdot, out_lambda are written only when all went well: on a
+   * failure the getters keep the last output's values */
   flag = ComputeKept(mem, t, q, v, project, mem->out_consistent ? mem->out_vdot : NULL,
                      mem->out_lambda);
-  if (flag == LGN_SUCCESS && mem->out_consistent) {
-    mem->out_valid = SUNTRUE;
-    mem->out_t     = t;
-  }
+  if (flag != LGN_SUCCESS) return flag;
+  mem->out_valid = mem->out_consistent;
+  if (mem->out_consistent) mem->out_t = t;
   mem->out_lvalid = SUNFALSE;
-  if (flag == LGN_SUCCESS && project) {
+  if (project) {
     /* kept: a failed LGNSolve that takes no step returns them again */
     if (mem->out_lq == NULL) mem->out_lq = N_VClone(q);
     if (mem->out_lv == NULL) mem->out_lv = N_VClone(v);

@@ -1016,8 +1016,14 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
     }
   } else if (after.fs == 0 && before.fs == 0) {
     /* LGN_NORMAL took steps, then failed: the last accepted state (so does
-     * LGN_ONE_STEP whose root function failed after the step) */
-    REQUIRE((itask == LGN_NORMAL || flag == LGN_RTFUNC_FAIL) && after.nst > before.nst &&
+     * LGN_ONE_STEP whose root function failed after the step, whose
+     * redundant rows were found violated after it, or whose output, the
+     * projection and consistent multipliers of lgn_output.c, failed in a
+     * callback or a singular saddle-point matrix) */
+    const int after_step = flag == LGN_RTFUNC_FAIL || flag == LGN_REDUNDANT_INCONSISTENT ||
+                           flag == LGN_REPTD_CALLBACK_ERR || flag == LGN_IC_FAIL ||
+                           flag == LGN_MEM_FAIL || (flag <= LGN_MASS_FAIL && flag >= LGN_NONFINITE);
+    REQUIRE((itask == LGN_NORMAL || after_step) && after.nst > before.nst &&
                 after.t > before.t,
             "LGNSolve(%d) failed (%s) with %ld -> %ld steps, t %.17g -> %.17g", itask,
             LGNGetReturnFlagName(flag), before.nst, after.nst, before.t, after.t);
