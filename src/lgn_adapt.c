@@ -85,6 +85,23 @@ sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout)
   return lgnLimitStep(mem, h);
 }
 
+/* The first step of an error-controlled run: the user's h0 (LGNSetInitStep)
+ * or lgnInitialStep's, either at most |tout - t0|, as IDA limits its first
+ * step by tstop and hmax. A step far beyond the time scale of the motion
+ * can pass the error test: the estimate compares the step with a Taylor
+ * increment of the same data, and both are meaningless there (a pendulum of
+ * period 2 s took a first step h0 = 1e6 cut to 61 s with |e| = 1.2e-3 and
+ * returned q off by 1.1 with success). */
+sunrealtype lgnFirstStep(LGNMem mem, sunrealtype tout)
+{
+  const sunrealtype span = fabs(tout - mem->tn);
+  sunrealtype h;
+  if (!(mem->h0_user > SUN_RCONST(0.0))) return lgnInitialStep(mem, tout);
+  h = mem->h0_user;
+  if (span > SUN_RCONST(0.0)) h = SUNMIN(h, span);
+  return lgnLimitStep(mem, h);
+}
+
 /* The auxiliary variable for a step of size h (header comment). */
 static void RescaleAux(LGNMem mem, sunrealtype h)
 {
@@ -115,8 +132,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
   LGNStepCoeffs c;
 
   if (!(mem->hnext > SUN_RCONST(0.0))) {
-    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? lgnLimitStep(mem, mem->h0_user)
-                                                    : lgnInitialStep(mem, tout);
+    mem->hnext     = lgnFirstStep(mem, tout);
     mem->h0_actual = mem->hnext;
   }
   h = lgnLimitStep(mem, mem->hnext); /* the limits may have changed since */

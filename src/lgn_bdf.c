@@ -755,8 +755,7 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
   flag = Prepare(mem);
   if (flag != LGN_SUCCESS) return flag;
   if (!(mem->hnext > SUN_RCONST(0.0))) {
-    mem->hnext     = mem->h0_user > SUN_RCONST(0.0) ? lgnLimitStep(mem, mem->h0_user)
-                                                    : lgnInitialStep(mem, tout);
+    mem->hnext     = lgnFirstStep(mem, tout);
     mem->h0_actual = mem->hnext;
   }
   h = lgnLimitStep(mem, mem->hnext);

@@ -707,6 +707,7 @@ int lgnStep(LGNMem mem, sunrealtype h);
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
 sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout);
+sunrealtype lgnFirstStep(LGNMem mem, sunrealtype tout);
 
 /* ---- lgn_bdf.c: the BDF family ------------------------------------------ */
 

@@ -605,7 +605,8 @@ LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
 LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
 
 /** The first step size of error control (0: estimated from the initial
- *  acceleration, the default). Called after steps, it also sets the size of
+ *  acceleration, the default); at most |tout - t0| of the first LGNSolve
+ *  (as the estimate). Called after steps, it also sets the size of
  *  the next step (0: estimated anew), e.g. to go on after a failure.
  *  @return LGN_ILL_INPUT if h0 < 0 or not finite. */
 LGN_EXPORT int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
