@@ -15,7 +15,7 @@
  * by -0.5 rad in the x-y plane (the tip at x = -2.4), and swing under
  * gravity (0, -9.81, 0) towards the wall x = 1.2, with a push out of the
  * plane. Generalized-alpha with error
- * control (rtol = atol = 1e-8), restitution e = 0.8, t in [0, 2].
+ * control (rtol = atol = 1e-6: per unit step), restitution e = 0.8, t in [0, 2].
  * Output: each impact (time, the tip's normal velocity before and after, the
  * kinetic energy before and after), then t, the tip (x, y, z), the energy.
  * SPDX-License-Identifier: BSD-3-Clause
@@ -112,7 +112,7 @@ static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v)
 
 int main(void)
 {
-  const sunrealtype th = -0.5, e = 0.8, tol = 1e-8, tend = 2.0, dtout = 0.25;
+  const sunrealtype th = -0.5, e = 0.8, tol = 1e-6, tend = 2.0, dtout = 0.25;
   const sunrealtype gvec[3] = {0.0, -9.81, 0.0}, J[3] = {1.0 / 12, 0.002, 1.0 / 12};
   const sunrealtype top[3] = {0.0, 0.5, 0.0}, bottom[3] = {0.0, -0.5, 0.0}, O[3] = {0, 0, 0};
   SUNContext ctx = NULL;
