@@ -404,21 +404,32 @@ static int WriteImage(LGNMem mem, const Buffer *b, const char *filename)
   return LGN_SUCCESS;
 }
 
+/* The checks both calls begin with: the memory, LGNInit, a file name.
+ * Messages name the public function (func). */
+static int AccessWithFile(void *lgn_mem, const char *filename, const char *func,
+                          LGNMem *mem)
+{
+  int flag = lgnAccessMem(lgn_mem, func, mem);
+  if (flag != LGN_SUCCESS) return flag;
+  if (!(*mem)->malloc_done) {
+    lgnProcessError(*mem, LGN_NO_MALLOC, __LINE__, func, __FILE__, MSG_NO_MALLOC);
+    return LGN_NO_MALLOC;
+  }
+  if (filename == NULL || filename[0] == '\0') {
+    lgnProcessError(*mem, LGN_ILL_INPUT, __LINE__, func, __FILE__, "filename = %s illegal.",
+                    filename == NULL ? "NULL" : "\"\"");
+    return lgnAgree(*mem, LGN_ILL_INPUT);
+  }
+  return LGN_SUCCESS;
+}
+
 int LGNWriteRestart(void *lgn_mem, const char *filename)
 {
   LGNMem mem;
   Buffer b = {NULL, 0, 0};
-  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  int flag = AccessWithFile(lgn_mem, filename, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->malloc_done) {
-    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
-    return LGN_NO_MALLOC;
-  }
-  if (filename == NULL || filename[0] == '\0') {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "filename = %s illegal.",
-              filename == NULL ? "NULL" : "\"\"");
-    flag = LGN_ILL_INPUT;
-  } else if (!mem->work_done || !mem->ic_done) {
+  if (!mem->work_done || !mem->ic_done) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "Nothing to write before the first LGNSolve (or after a setting "
               "dropped the work space): the state at t0 is the user's q0, v0.");
@@ -792,17 +803,8 @@ static int ReadRestart(LGNMem mem, const char *filename)
 int LGNReadRestart(void *lgn_mem, const char *filename)
 {
   LGNMem mem;
-  int flag = lgnAccessMem(lgn_mem, __func__, &mem);
+  int flag = AccessWithFile(lgn_mem, filename, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->malloc_done) {
-    LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
-    return LGN_NO_MALLOC;
-  }
-  if (filename == NULL || filename[0] == '\0') {
-    LGN_ERROR(mem, LGN_ILL_INPUT, "filename = %s illegal.",
-              filename == NULL ? "NULL" : "\"\"");
-    return lgnAgree(mem, LGN_ILL_INPUT);
-  }
   if (mem->G == NULL || mem->G->nq != mem->nq || mem->G->nv != mem->nv) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The Lie group changed size since LGNInit: call LGNInit.");
