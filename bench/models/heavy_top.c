@@ -919,6 +919,7 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
     flag = LGNSetStepControl(o->mem, LGN_STEP_ADAPTIVE);
     if (flag == 0) flag = LGNSetStopTime(o->mem, opt->t_end);
   }
+  if (flag == 0 && opt->max_steps > 0) flag = LGNSetMaxNumSteps(o->mem, opt->max_steps);
   /* the heavy top's studies measure the method itself: the step's own
    * vdot_n and lambda_n, and the step's q, v (not the consistent and
    * projected outputs of LGNSetConsistentOutputs / LGNSetProjectOutputs) */

@@ -556,6 +556,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   } else if (flag == 0 && opt->rtol > 0) {
     flag = LGNSStolerances(mem, opt->rtol, opt->atol);
   }
+  if (flag == 0 && opt->max_steps > 0) flag = LGNSetMaxNumSteps(mem, opt->max_steps);
 
   res->energy0 = rigid_energy(sys, sys->q0, sys->v0);
   res->energy  = res->energy0;
