@@ -40,7 +40,7 @@ option(LGN_ENABLE_PETSC
   "Build LGNLinSol_PETSc, a direct solve through PETSc's KSP with MUMPS (needs PETSc with MUMPS, and MPI)"
   ${_lgn_petsc_default})
 # Runs across MPI ranks (state vectors of type N_Vector_Parallel or
-# MPIPlusX; src/lgn_parallel.c) are built by default when MPI for C is
+# MPIPlusX; src/parallel/lgn_parallel.c) are built by default when MPI for C is
 # found (checked only while the option is not yet set). liblignum then
 # links MPI and SUNDIALS' parallel vectors privately; its headers do not
 # include <mpi.h>.

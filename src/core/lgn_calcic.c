@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * The public side of the consistent initial values (the top layer,
  * doc/architecture.md): LGNCalcIC, LGNGetConsistentIC, LGNSetPerturbedStart.
- * The numerics (projections, check, perturbed start) are lgn_ic.c's.
+ * The numerics (projections, check, perturbed start) are lgn_consistent_ic.c's.
  * ---------------------------------------------------------------------------*/
 
 #include "lgn_impl.h"

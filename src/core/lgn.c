@@ -404,7 +404,7 @@ static void CopyOut(LGNMem mem, sunrealtype *tret, N_Vector q, N_Vector v)
 }
 
 /* The output at t of the last step: the state itself at its end, else the
- * dense output (lgn_dense.c). */
+ * dense output (lgn_dense_output.c). */
 static int OutputAt(LGNMem mem, sunrealtype t, sunrealtype *tret, N_Vector q,
                     N_Vector v)
 {
