@@ -923,32 +923,6 @@ int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a)
   return LGN_SUCCESS;
 }
 
-/* Getters of one scalar: guard the memory block and the output pointer. */
-#define SCALAR_GETTER(NAME, TYPE, ARG, EXPR)              \
-  int NAME(void *lgn_mem, TYPE *ARG)                      \
-  {                                                       \
-    LGNMem mem;                                           \
-    ACCESS_MEM(lgn_mem, mem);                             \
-    if (ARG == NULL) {                                    \
-      LGN_ERROR(mem, LGN_ILL_INPUT, #ARG " = NULL illegal."); \
-      return LGN_ILL_INPUT;                               \
-    }                                                     \
-    *ARG = (EXPR);                                        \
-    return LGN_SUCCESS;                                   \
-  }
-
-SCALAR_GETTER(LGNGetCurrentTime, sunrealtype, tcur, mem->tn)
-SCALAR_GETTER(LGNGetLastStep, sunrealtype, hlast, mem->hlast)
-SCALAR_GETTER(LGNGetCurrentStep, sunrealtype, hcur,
-              mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h)
-SCALAR_GETTER(LGNGetActualInitStep, sunrealtype, hinused,
-              mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h)
-SCALAR_GETTER(LGNGetNumErrTestFails, long int, netfails, mem->netf)
-SCALAR_GETTER(LGNGetStepSize, sunrealtype, h, mem->h)
-SCALAR_GETTER(LGNGetKinematics, int, kinematics, mem->kinematics)
-SCALAR_GETTER(LGNGetConstraintIndex, int, index, mem->constr_index)
-SCALAR_GETTER(LGNGetNewtonMode, int, mode, mem->newton_mode)
-SCALAR_GETTER(LGNGetStepControl, int, control, mem->step_control)
 
 int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol)
 {
@@ -1002,25 +976,6 @@ int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails)
   *nncfails = mem->nncf;
   return LGN_SUCCESS;
 }
-SCALAR_GETTER(LGNGetLastErrNorm, sunrealtype, errnorm, mem->err_norm)
-SCALAR_GETTER(LGNGetNumSteps, long int, nsteps, mem->nst)
-SCALAR_GETTER(LGNGetNumNewtonIters, long int, nniters, mem->nni)
-SCALAR_GETTER(LGNGetNumNewtonConvFails, long int, nncfails, mem->nncf)
-SCALAR_GETTER(LGNGetNumStepFails, long int, nfails, mem->nfails)
-SCALAR_GETTER(LGNGetNumResEvals, long int, nres, mem->nre)
-SCALAR_GETTER(LGNGetNumDQEvals, long int, ndq, mem->ndq)
-SCALAR_GETTER(LGNGetNumJacEvals, long int, njevals, mem->nje)
-SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
-SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
-SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
-SCALAR_GETTER(LGNGetNumNewtonStalls, long int, nstalls, mem->nstall)
-SCALAR_GETTER(LGNGetNumMatrixReuses, long int, nreuses, mem->nreuse)
-SCALAR_GETTER(LGNGetNumNewtonRestarts, long int, nrestarts, mem->nrestart)
-SCALAR_GETTER(LGNGetNumSparsityAnalyses, long int, nanalyses,
-              mem->sp != NULL ? mem->sp->npattern : 0L)
-SCALAR_GETTER(LGNGetIterationMatrixNnz, long int, nnz, lgnIterationMatrixNnz(mem))
-SCALAR_GETTER(LGNGetNumDQColors, long int, ncolors,
-              mem->sp != NULL ? (long int)mem->sp->Kcol.ncolors : (long int)mem->nv)
 
 int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw)
 {
