@@ -43,7 +43,7 @@
 /* The method families (LGNSetNewmark ... / LGNSetBDF). */
 #define LGN_FAMILY_NEWMARK 0
 #define LGN_FAMILY_BDF     1
-#define LGN_BDF_MAXORD     5
+#define LGN_BDF_MAXORD     LGN_BDF_MAX_ORDER /* lignum.h */
 #define LGN_BDF_MAXHIST    (LGN_BDF_MAXORD + 2) /* points kept: order k + 2 */
 
 /* Which callback produced an error: used to pick the flag and message. */

@@ -296,7 +296,7 @@ int LGNGetLastOrder(void *lgn_mem, int *order)
   return LGN_SUCCESS;
 }
 
-int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6])
+int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[LGN_BDF_MAX_ORDER + 1])
 {
   LGNMem mem;
   int k;
