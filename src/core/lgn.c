@@ -223,6 +223,7 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
 static int CheckSettings(LGNMem mem)
 {
   int flag = lgnGhostsCheck(mem);
+  if (flag == LGN_SUCCESS) flag = lgnCheckFamilySettings(mem, "LGNSolve");
   if (flag != LGN_SUCCESS) return flag;
   if (mem->mass == NULL) {
     LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");

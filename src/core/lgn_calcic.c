@@ -45,6 +45,7 @@ static int PrepareModel(LGNMem mem, const char *func)
 {
   int flag = lgnAgree(mem, CheckModel(mem, func));
   if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnGhostsCheck(mem));
+  if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnCheckFamilySettings(mem, "LGNCalcIC"));
   /* (a halo on some ranks only is refused where the work space is made:
    * LGNSetHalo drops it, so lgnEnsureWork makes it anew on every rank) */
   /* the independent constraint rows at the current q (lgn_redundancy.c) */

@@ -601,6 +601,10 @@ const LGNKinematicsOps *lgnBDFOps(void);
 void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
 void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 
+/* ---- lgn_family_settings.c: settings of one method family only ---- */
+int lgnRefuseOtherFamily(LGNMem mem, int family, const char *func);
+int lgnCheckFamilySettings(LGNMem mem, const char *func);
+
 /* ---- lgn_matrix_sparse.c, lgn_matrix.c: the iteration matrix ------------ */
 
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
