@@ -457,9 +457,9 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
  * of 1e-13 (doc/theory.md). A change starts the BDF history anew.
  * @param lgn_mem the integrator memory
  * @param form    LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING
- * BDF family only: refused (LGN_ILL_INPUT) under the Newmark family, and
- * a form other than the default makes LGNSolve and LGNCalcIC refuse when
- * the Newmark family is selected afterwards.
+ * BDF family only: a form other than the default is refused
+ * (LGN_ILL_INPUT) under the Newmark family, and makes LGNSolve and
+ * LGNCalcIC refuse when the Newmark family is selected afterwards.
  * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form or
  *         under the Newmark family
  */
@@ -482,9 +482,9 @@ LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
 
 /** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default),
  *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants).
- *  Newmark family only: refused (LGN_ILL_INPUT) under the BDF family, and
- *  a value other than the default makes LGNSolve and LGNCalcIC refuse when
- *  the BDF family is selected afterwards (LGNSetBDF). */
+ *  Newmark family only: a value other than the default is refused
+ *  (LGN_ILL_INPUT) under the BDF family, and makes LGNSolve and LGNCalcIC
+ *  refuse when the BDF family is selected afterwards (LGNSetBDF). */
 LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
 
 /** Newton predictor: LGN_PREDICTOR_ZERO (default) or LGN_PREDICTOR_EXTRAPOLATE.
@@ -492,8 +492,8 @@ LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
  *  the number of Newton iterations does. Extrapolation saves about one
  *  iteration per step on damped methods but amplifies the parasitic
  *  multiplier oscillation of undamped index-3 Newmark (which then may fail).
- *  Newmark family only, refused under BDF as LGNSetKinematics is (BDF
- *  predicts with its own polynomial). */
+ *  Newmark family only: LGN_PREDICTOR_EXTRAPOLATE is refused under BDF as
+ *  LGNSetKinematics is (BDF predicts with its own polynomial). */
 LGN_EXPORT int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment

@@ -602,7 +602,7 @@ void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
 void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 
 /* ---- lgn_family_settings.c: settings of one method family only ---- */
-int lgnRefuseOtherFamily(LGNMem mem, int family, const char *func);
+int lgnRefuseOtherFamily(LGNMem mem, int family, sunbooleantype is_default, const char *func);
 int lgnCheckFamilySettings(LGNMem mem, const char *func);
 
 /* ---- lgn_matrix_sparse.c, lgn_matrix.c: the iteration matrix ------------ */

@@ -267,7 +267,9 @@ int LGNSetBDFForm(void *lgn_mem, int form)
               "LGN_BDF_FIXED_LEADING.", form);
     return LGN_ILL_INPUT;
   }
-  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_BDF, __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_BDF, form == LGN_BDF_VARIABLE_COEFF, __func__) !=
+      LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->bdf_form = form;
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
@@ -381,9 +383,11 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
               "LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA.", kinematics);
     return LGN_ILL_INPUT;
   }
-  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, kinematics == LGN_KINEMATICS_SIMPLIFIED,
+                           __func__) != LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->kinematics = kinematics;
-  mem->kin        = lgnKinematicsOps(kinematics);
+  if (mem->family == LGN_FAMILY_NEWMARK) mem->kin = lgnKinematicsOps(kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
@@ -398,7 +402,9 @@ int LGNSetPredictor(void *lgn_mem, int predictor)
               "LGN_PREDICTOR_EXTRAPOLATE.", predictor);
     return LGN_ILL_INPUT;
   }
-  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, predictor == LGN_PREDICTOR_ZERO, __func__) !=
+      LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->predictor = predictor;
   return LGN_SUCCESS;
 }

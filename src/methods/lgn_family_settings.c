@@ -6,8 +6,10 @@
  * known (the Newmark family by default; LGNSetBDF selects BDF, LGNSetNewmark,
  * LGNSetGenAlpha and LGNSetGenAlphaParams the Newmark family again), so
  *
- *   - a setter of one family is refused while the other family is selected
- *     (LGN_ILL_INPUT, the message names the setter and the family), and
+ *   - a setter of one family given a value other than its default is
+ *     refused while the other family is selected (LGN_ILL_INPUT, the
+ *     message names the setter and the family; the default, which asks
+ *     nothing of the other family, is accepted), and
  *   - a setting accepted under one family that is not at its default when
  *     the run starts under the other family makes LGNSolve and LGNCalcIC
  *     refuse (LGN_ILL_INPUT naming the setting), so the result does not
@@ -27,12 +29,12 @@ static const char *FamilyName(int family)
                                     "LGNSetGenAlphaParams)";
 }
 
-int lgnRefuseOtherFamily(LGNMem mem, int family, const char *func)
+int lgnRefuseOtherFamily(LGNMem mem, int family, sunbooleantype is_default, const char *func)
 {
-  if (mem->family == family) return LGN_SUCCESS;
+  if (mem->family == family || is_default) return LGN_SUCCESS;
   lgnProcessError(mem, LGN_ILL_INPUT, __LINE__, func, __FILE__,
-                  "%s applies to %s only; %s is selected: the setting is refused "
-                  "(nothing changed).", func, FamilyName(family), FamilyName(mem->family));
+                  "%s: a value other than the default applies to %s only; %s is "
+                  "selected: the setting is refused (nothing changed).", func, FamilyName(family), FamilyName(mem->family));
   return LGN_ILL_INPUT;
 }
 

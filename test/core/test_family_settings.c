@@ -3,9 +3,10 @@
  * (issue 32), whichever order the calls come in.
  *
  *  - at set time: LGNSetKinematics and LGNSetPredictor under the BDF family,
- *    LGNSetBDFForm under the Newmark family return LGN_ILL_INPUT with a
- *    message naming the setter, and change nothing (the getter still gives
- *    the old value; the same call is accepted once its family is selected);
+ *    LGNSetBDFForm under the Newmark family, with a value other than their
+ *    default, return LGN_ILL_INPUT with a message naming the setter, and
+ *    change nothing (the getter still gives the old value; the same call is
+ *    accepted once its family is selected); their defaults are accepted;
  *  - at the start: a setting accepted under its family and left at a value
  *    other than its default when the other family is selected makes LGNSolve
  *    and LGNCalcIC return LGN_ILL_INPUT naming the setting; set back to the
@@ -107,6 +108,8 @@ int main(void)
   CHECK(Refused(LGNSetBDFForm(r.mem, LGN_BDF_FIXED_LEADING), LGN_ILL_INPUT, "LGNSetBDFForm"),
         "LGNSetBDFForm under the Newmark family refused: %s", last_msg);
   CHECK(strstr(last_msg, "BDF family") != NULL, "the message names the family: %s", last_msg);
+  CHECK(LGNSetBDFForm(r.mem, LGN_BDF_VARIABLE_COEFF) == LGN_SUCCESS,
+        "the BDF default is accepted under the Newmark family");
   CHECK(LGNSetBDF(r.mem, 3) == LGN_SUCCESS, "LGNSetBDF");
   CHECK(Refused(LGNSetKinematics(r.mem, LGN_KINEMATICS_EXACT), LGN_ILL_INPUT, "LGNSetKinematics"),
         "LGNSetKinematics under BDF refused: %s", last_msg);
@@ -114,6 +117,9 @@ int main(void)
         "the refused kinematics changed nothing (%d)", kin);
   CHECK(Refused(LGNSetPredictor(r.mem, LGN_PREDICTOR_EXTRAPOLATE), LGN_ILL_INPUT,
                 "LGNSetPredictor"), "LGNSetPredictor under BDF refused: %s", last_msg);
+  CHECK(LGNSetKinematics(r.mem, LGN_KINEMATICS_SIMPLIFIED) == LGN_SUCCESS &&
+        LGNSetPredictor(r.mem, LGN_PREDICTOR_ZERO) == LGN_SUCCESS,
+        "the Newmark defaults are accepted under BDF");
   CHECK(Refused(LGNSetKinematics(r.mem, 12345), LGN_ILL_INPUT, "kinematics = 12345"),
         "an illegal value is named before the family: %s", last_msg);
   CHECK(LGNSetBDFForm(r.mem, LGN_BDF_FIXED_LEADING) == LGN_SUCCESS, "LGNSetBDFForm under BDF");
