@@ -48,6 +48,7 @@ extern "C" {
 
 #define LGN_SUCCESS             0   /**< success                                  */
 #define LGN_TSTOP_RETURN        1   /**< LGNSolve stopped at the stop time         */
+#define LGN_ROOT_RETURN         2   /**< LGNSolve returned at a root of g (LGNRootInit) */
 
 /* solver failures -1 .. -19 */
 #define LGN_TOO_MUCH_WORK      -1   /**< max number of steps reached before tout  */
@@ -62,7 +63,33 @@ extern "C" {
 #define LGN_REPTD_CALLBACK_ERR -10  /**< a recoverable callback error persisted   */
 #define LGN_IC_FAIL            -11  /**< consistent initial values not computable */
 #define LGN_ERR_FAILURE        -12  /**< the error test failed repeatedly or at hmin */
+#define LGN_RTFUNC_FAIL        -13  /**< the root function failed                 */
+/** Return flag (in the solver-failure range): the first LGNSolve after
+ *  LGNInit / LGNReInit found the initial state off the constraint the step
+ *  enforces by more than 100 times the tolerance scale,
+ *    index 3: |Phi_i(q0)| > 100 (atol + rtol max(1, |q0|_inf)),
+ *    index 2: |(B(q0) v0)_i| > 100 (atol + rtol |v0|_inf),
+ *  with rtol, atol of LGNSStolerances (defaults 1e-8). The message names the
+ *  violation, the constraint and the tolerance; nothing was integrated.
+ *  (At index 3, B v0 = 0 is not checked: the method keeps it only to O(h^2)
+ *  itself, so a restart from a computed state would fail; LGNCalcIC
+ *  projects v0 too.) Not checked when vdot_0 and lambda_0 are given with
+ *  LGNSetInitialAcceleration: whoever continues a run with its own initial
+ *  values vouches for them (a restart then equals the continued run bit
+ *  for bit).
+ *  An error rather than a warning: the first step would otherwise project
+ *  the start silently, with a jump of the size of the violation in q or v
+ *  and a multiplier spike of order violation / h^2 (index 3). Call
+ *  LGNCalcIC to project the start explicitly. */
+#define LGN_INCONSISTENT_IC    -14
 #define LGN_STEP_TOO_SMALL     -15  /**< t + h == t, or h < 3e-103 (h^2 scaling) */
+/** Return flag (solver failure): a constraint left out as redundant
+ *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
+ *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
+ *  the redundancy was not consistent (the mechanism cannot satisfy all its
+ *  constraints), or B(q) gained rank since the rows were selected. The
+ *  message names the constraint and the violation. */
+#define LGN_REDUNDANT_INCONSISTENT -16
 
 /* usage errors -20 .. -29 */
 #define LGN_MEM_NULL           -20  /**< the memory argument is NULL              */
@@ -88,10 +115,15 @@ extern "C" {
 
 #define LGN_UNRECOGNIZED_ERR   -99  /**< unknown failure                          */
 
+/* not a return flag: the error_code a warning is delivered with to the
+ * error handler (LGNSetErrHandlerFn) */
+#define LGN_WARNING             99  /**< error_code of a warning to the handler   */
+
 /* =============================================================================
  * Other constants. Each setter has its own range of values (kinematics
  * 100-102, Newton 110-111, predictor 120-121, constraint index 130s,
- * LGNCalcIC 141-143, step control 150-151), so a constant given to the
+ * LGNCalcIC 141-143, step control 150-151, BDF forms 160-161,
+ * redundant constraints 170-171), so a constant given to the
  * wrong setter is refused with a message naming the right ones.
  * ===========================================================================*/
 
@@ -131,6 +163,10 @@ extern "C" {
  *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
 #define LGN_KINEMATICS_SIGMA      102
 
+/** The highest order of the BDF family (LGNSetBDF); LGNGetNumStepsAtOrder
+ *  fills LGN_BDF_MAX_ORDER + 1 counts. */
+#define LGN_BDF_MAX_ORDER 5
+
 /** BDF form (LGNSetBDFForm): variable coefficients, the derivative at
  *  t_{n+1} of the polynomial through t_{n+1} and the last k points. */
 #define LGN_BDF_VARIABLE_COEFF 160
@@ -158,6 +194,25 @@ extern "C" {
  *  contraction rate exceeds 0.9; and a step whose iteration fails with a
  *  reused matrix is retried once with a fresh one. */
 #define LGN_NEWTON_MODIFIED 111
+
+/** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
+#define LGN_IC_PROJECT_Q  141
+/** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
+#define LGN_IC_PROJECT_V  142
+/** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
+#define LGN_IC_PROJECT_QV 143
+
+/* Which outputs LGNSetProjectOutputs projects. */
+#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
+#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
+#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
+
+/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
+ *  has dependent rows on a maximal independent set of them (default). */
+#define LGN_REDUNDANT_ELIMINATE 170
+/** LGNSetRedundantConstraints: refuse a model with dependent constraint
+ *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
+#define LGN_REDUNDANT_REFUSE    171
 
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
@@ -221,8 +276,24 @@ typedef void (*LGNErrHandlerFn)(int error_code, const char *module,
                                 const char *function, const char *msg,
                                 void *eh_data);
 
+/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
+ *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
+ *  needed): row i the derivative of contact i's gap along the group,
+ *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
+ *  of a point against a plane). Returns 0, or nonzero on failure. */
+typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
+                               void *user_data);
+
+/** Root functions g(t, q, v) whose zeros are events (impacts, switches):
+ *  write the nrtfn values g_i(t, q, v) into gout. q and v are scratch
+ *  vectors holding the solution at t (the dense output between steps);
+ *  do not keep them. Return 0 on success; any other value stops LGNSolve
+ *  with LGN_RTFUNC_FAIL. */
+typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
+                         sunrealtype *gout, void *user_data);
+
 /* =============================================================================
- * Lifecycle
+ * Create and initialise
  * ===========================================================================*/
 
 /** Create an integrator memory block.
@@ -255,28 +326,8 @@ LGN_EXPORT int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0);
 LGN_EXPORT int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0,
                          N_Vector v0);
 
-/** Advance the solution.
- *  @param lgn_mem memory block
- *  @param tout    the output time (LGN_NORMAL) or a direction hint (LGN_ONE_STEP)
- *  @param tret    on return, the time reached
- *  @param q       on return, the configuration at tret (length nq)
- *  @param v       on return, the velocity at tret (length nv)
- *  @param itask   LGN_NORMAL: steps until tout (fixed steps: of size h, the
- *                 last one shortened to land on tout; error control: past
- *                 tout, which is then interpolated, unless a stop time is
- *                 set); LGN_ONE_STEP: one step
- *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
- *          last accepted state (tret, q, v are that state), so it can continue
- *          after the cause has been fixed (e.g. a smaller step size). */
-LGN_EXPORT int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret,
-                        N_Vector q, N_Vector v, int itask);
-
-/** Free the memory block and everything Lignum allocated; sets *lgn_mem = NULL.
- *  Objects the user created (group, vectors, matrix, linear solver) are not freed. */
-LGN_EXPORT void LGNFree(void **lgn_mem);
-
 /* =============================================================================
- * Model description
+ * Settings: the model
  * ===========================================================================*/
 
 /** Set the Lie group (configuration space). Required before LGNInit.
@@ -348,7 +399,9 @@ LGN_EXPORT int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F);
 LGN_EXPORT int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
 
 /* =============================================================================
- * Method and solver settings (zero restores a default where stated)
+ * Settings: the method and the solver (zero restores a default where stated)
+ * A setting of one method family is refused under the other (LGN_ILL_INPUT
+ * naming the setting); see LGNSetBDF.
  * ===========================================================================*/
 
 /** Fixed step size h > 0: required with LGN_STEP_FIXED (the default step
@@ -404,7 +457,11 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
  * of 1e-13 (doc/theory.md). A change starts the BDF history anew.
  * @param lgn_mem the integrator memory
  * @param form    LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING
- * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form
+ * BDF family only: a form other than the default is refused
+ * (LGN_ILL_INPUT) under the Newmark family, and makes LGNSolve and
+ * LGNCalcIC refuse when the Newmark family is selected afterwards.
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form or
+ *         under the Newmark family
  */
 LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 
@@ -424,14 +481,19 @@ LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
 
 /** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default),
- *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants). */
+ *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants).
+ *  Newmark family only: a value other than the default is refused
+ *  (LGN_ILL_INPUT) under the BDF family, and makes LGNSolve and LGNCalcIC
+ *  refuse when the BDF family is selected afterwards (LGNSetBDF). */
 LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
 
 /** Newton predictor: LGN_PREDICTOR_ZERO (default) or LGN_PREDICTOR_EXTRAPOLATE.
  *  The converged solution does not depend on it (to the Newton tolerance),
  *  the number of Newton iterations does. Extrapolation saves about one
  *  iteration per step on damped methods but amplifies the parasitic
- *  multiplier oscillation of undamped index-3 Newmark (which then may fail). */
+ *  multiplier oscillation of undamped index-3 Newmark (which then may fail).
+ *  Newmark family only: LGN_PREDICTOR_EXTRAPOLATE is refused under BDF as
+ *  LGNSetKinematics is (BDF predicts with its own polynomial). */
 LGN_EXPORT int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment
@@ -476,105 +538,24 @@ LGN_EXPORT int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun,
 /** Set the stream of the default error handler (NULL silences it). */
 LGN_EXPORT int LGNSetErrFile(void *lgn_mem, FILE *errfp);
 
-/* =============================================================================
- * Parameter maps (pure functions, no memory block)
- * ===========================================================================*/
-
-/** Chung-Hulbert generalized-alpha parameters from rho_inf in [0, 1]:
- *  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
- *  gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4.
- *  @return LGN_SUCCESS, or LGN_ILL_INPUT if rho_inf is outside [0, 1] or
- *          an output pointer is NULL. */
-LGN_EXPORT int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
-                                     sunrealtype *alpha_f, sunrealtype *beta,
-                                     sunrealtype *gamma);
-
-/* =============================================================================
- * Outputs
- * ===========================================================================*/
-
-/** The order of the next step (BDF; 2 for the Newmark family). */
-LGN_EXPORT int LGNGetCurrentOrder(void *lgn_mem, int *order);
-/** The order of the last step taken (BDF; 2 for the Newmark family). */
-LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
-/** BDF: the number of steps taken at each order, nsteps[k] for k = 1 ... 5
- *  (nsteps[0] = 0); six entries. */
-LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
-
-/** Acceleration vdot (length nv) at the last output of LGNSolve (its
- *  tret, whether a step end, a stop time, an event or an interpolated
- *  tout): with consistent outputs (LGNSetConsistentOutputs, the default)
- *  the index-1 value at the returned (tret, q, v), accurate to the
- *  tolerance in every method and constraint form and equal to LGNGetDky(tret,
- *  2); without them, or before the first LGNSolve, or after an LGNSolve that
- *  failed after taking steps, the step's own vdot at the current time
- *  (LGNGetCurrentTime). */
-LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
-/** Multipliers lambda (length m) at the last output of LGNSolve: with
- *  consistent outputs (LGNSetConsistentOutputs, the default) the index-1
- *  multipliers at the returned (tret, q, v), from
- *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g, -z), accurate to the tolerance
- *  at every output; B(q)^T lambda at the returned q (LGNJoints_ConstraintForce)
- *  is the joint forces and motor torques. Without them (or before the first
- *  LGNSolve, or after one that failed after taking steps) the step's own
- *  multipliers at the current time, which no error test measures
- *  (generalized-alpha's carry O(h) errors after a change of step size):
- *  the last ones computed (or given with LGNSetInitialAcceleration), also
- *  after a failed LGNSolve.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (lambda
- *          NULL or of the wrong length, or none computed yet for the
- *          current m). */
-LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
-/** Algorithmic acceleration a at the current time (length nv). */
-LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
-/** Current time. */
-LGN_EXPORT int LGNGetCurrentTime(void *lgn_mem, sunrealtype *tcur);
-/** Size of the last step taken. */
-LGN_EXPORT int LGNGetLastStep(void *lgn_mem, sunrealtype *hlast);
-/** Method parameters in use. */
-LGN_EXPORT int LGNGetMethodParams(void *lgn_mem, sunrealtype *alpha_m,
-                                  sunrealtype *alpha_f, sunrealtype *beta,
-                                  sunrealtype *gamma);
-/** Number of steps taken. */
-LGN_EXPORT int LGNGetNumSteps(void *lgn_mem, long int *nsteps);
-/** Number of Newton iterations. */
-LGN_EXPORT int LGNGetNumNewtonIters(void *lgn_mem, long int *nniters);
-/** Number of Newton convergence failures. */
-LGN_EXPORT int LGNGetNumNewtonConvFails(void *lgn_mem, long int *nncfails);
-/** Number of failed step attempts (any cause). */
-LGN_EXPORT int LGNGetNumStepFails(void *lgn_mem, long int *nfails);
-/** Number of residual evaluations (M, g, B, Phi at one point) in Newton. */
-LGN_EXPORT int LGNGetNumResEvals(void *lgn_mem, long int *nres);
-/** Number of residual-type evaluations spent in difference quotients. */
-LGN_EXPORT int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
-/** Number of iteration matrix evaluations (Jacobian builds). */
-LGN_EXPORT int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
-/** Number of steps whose Newton iteration was accepted with the
- *  configuration converged and the multiplier corrections stalled at
- *  roundoff level (no longer contracting, or within the level of the last
- *  such stall at this step size; see doc/user-guide.md). */
-LGN_EXPORT int LGNGetNumNewtonStalls(void *lgn_mem, long int *nstalls);
-/** Work space of the integrator, like IDAGetWorkSpace: lenrw reals and leniw
- *  integers held by Lignum (vectors, model matrices, block storage, sparse
- *  patterns; not the user's A and linear solver). Allocated at the first
- *  LGNSolve, so call it afterwards. */
-LGN_EXPORT int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw);
-
-/** Number of Newton iterations solved with a reused (not freshly factorised)
- *  iteration matrix (modified Newton; 0 with full Newton). */
-LGN_EXPORT int LGNGetNumMatrixReuses(void *lgn_mem, long int *nreuses);
-
-/** Number of steps whose modified Newton iteration failed with a reused
- *  matrix and was restarted, successfully or not, with a fresh one. */
-LGN_EXPORT int LGNGetNumNewtonRestarts(void *lgn_mem, long int *nrestarts);
-/** Print all counters as aligned "Name = value" lines or CSV. */
-LGN_EXPORT int LGNPrintAllStats(void *lgn_mem, FILE *outfile,
-                                SUNOutputFormat fmt);
-/** Name of a return flag, e.g. "LGN_CONV_FAILURE" (static string, never NULL). */
-LGN_EXPORT const char *LGNGetReturnFlagName(long int flag);
+/** Whether a Newton iteration may stop with stalled multipliers (default
+ *  SUNTRUE). At index 3 the multipliers of a long or stiff mechanism are
+ *  determined only to about cond(A) eps |q| / (beta h^2), which can exceed
+ *  the tolerance: their corrections then stop contracting while the
+ *  configuration has converged. With SUNTRUE such an iteration is accepted
+ *  (counted by LGNGetNumNewtonStalls, printed by LGNPrintAllStats, and a
+ *  warning (LGN_WARNING) is given once when most steps of an LGNSolve call
+ *  were accepted that way); a stall is never taken for convergence unless
+ *  the configuration part of the correction has converged, from the third
+ *  iteration on, and the multiplier corrections have stopped contracting
+ *  (a diverging iteration fails). With SUNFALSE the iteration goes on
+ *  until the correction is within the tolerance on the multipliers too
+ *  (more iterations; a convergence failure if it cannot).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
+LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
 
 /* =============================================================================
- * Error control: adaptive steps, stop time, output between steps
+ * Settings: error control, stop time, outputs between steps
  * ===========================================================================*/
 
 /** Select the step size control: LGN_STEP_FIXED (default: the step of
@@ -649,24 +630,6 @@ LGN_EXPORT int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
 /** Forget the stop time. */
 LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
 
-/** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
- *  the last step [t_n, t_{n+1}], from the dense output on the group: a
- *  cubic Hermite interpolant in the chart of the step (BDF: its own
- *  polynomials), matching q and v at both ends, of the order of the
- *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
- *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
- *  consistent outputs (the default) vdot is the index-1 acceleration at
- *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
- *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
- *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
- *  not changed.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
- *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
- *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
- *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
- *          system at t singular, or the projection not converging). */
-LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
-
 /** Consistent outputs (default SUNTRUE): at every output of LGNSolve (step
  *  end, stop time, event, interpolated tout) Lignum solves the index-1 form
  *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g(q, v, t), -z(q, v, t)) at the
@@ -679,11 +642,6 @@ LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
  *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
  *          SUNFALSE). */
 LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
-
-/* Which outputs LGNSetProjectOutputs projects. */
-#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
-#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
-#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
 
 /** Outputs on the constraints: the q and v that LGNSolve and LGNGetDky
  *  return are projected onto Phi(q, t) = 0 (Newton on the group,
@@ -726,92 +684,9 @@ LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
 LGN_EXPORT int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on,
                                             sunrealtype atol_lambda);
 
-/** The number of outputs made consistent or projected (LGNSolve's and
- *  LGNGetDky's), each one or more factorisations of the saddle-point
- *  matrix (counted in LGNGetNumLinSolvSetups as well). */
-LGN_EXPORT int LGNGetNumOutputSolves(void *lgn_mem, long int *nout);
-
-/** The step size to be tried next (error control) or the fixed h. */
-LGN_EXPORT int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur);
-/** The first step size tried (error control) or the fixed h. */
-LGN_EXPORT int LGNGetActualInitStep(void *lgn_mem, sunrealtype *hinused);
-/** Steps rejected by the error test. */
-LGN_EXPORT int LGNGetNumErrTestFails(void *lgn_mem, long int *netfails);
-/** The local error estimate of the last step attempted (length nv). */
-LGN_EXPORT int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele);
-/** The error weights of the last step attempted, 1/(atol_i + rtol |s_i|)
- *  (length nv); the error test is the weighted RMS norm of ele. */
-LGN_EXPORT int LGNGetErrWeights(void *lgn_mem, N_Vector eweight);
-/** The error test's norm of the last step attempted (<= 1: accepted). */
-LGN_EXPORT int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
-
 /* =============================================================================
- * Diagnostics of singular mechanisms
+ * Settings: redundant constraints
  * ===========================================================================*/
-
-/** After LGN_LSETUP_FAIL or LGN_IC_FAIL with a singular matrix: the
- *  constraints found redundant (dependent on the others) by a
- *  rank-revealing QR factorisation of B(q) (done when B has at most 4e6
- *  entries as a dense matrix). rows (length m, or NULL) receives their
- *  0-based indices in ascending order; LGNJoints_DescribeConstraint names
- *  the joints of constraints built with the joint helpers. *nred = 0 if
- *  none was found (or no singular matrix was met).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (nred NULL). */
-LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
-                                          sunindextype *rows);
-
-/** After a singular matrix: the unknown at which the factorisation found a
- *  zero pivot (0 .. nv-1: a velocity component; nv .. nv+m-1: the
- *  multiplier of constraint k - nv; under LGN_CONSTR_GGL nv+m .. nv+2m-1:
- *  the kinematic multiplier mu of constraint k - nv - m), or -1 if none is
- *  known. The error
- *  message names it in words (body and direction). With ghost bodies and
- *  LGNLinSol_PETScSubdomain it is a global unknown of the ranks' summed
- *  matrix (LGNGetGlobalIndices numbers them).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
-LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
-
-/* =============================================================================
- * Consistent initial values
- * ===========================================================================*/
-
-/** Return flag (in the solver-failure range): the first LGNSolve after
- *  LGNInit / LGNReInit found the initial state off the constraint the step
- *  enforces by more than 100 times the tolerance scale,
- *    index 3: |Phi_i(q0)| > 100 (atol + rtol max(1, |q0|_inf)),
- *    index 2: |(B(q0) v0)_i| > 100 (atol + rtol |v0|_inf),
- *  with rtol, atol of LGNSStolerances (defaults 1e-8). The message names the
- *  violation, the constraint and the tolerance; nothing was integrated.
- *  (At index 3, B v0 = 0 is not checked: the method keeps it only to O(h^2)
- *  itself, so a restart from a computed state would fail; LGNCalcIC
- *  projects v0 too.) Not checked when vdot_0 and lambda_0 are given with
- *  LGNSetInitialAcceleration: whoever continues a run with its own initial
- *  values vouches for them (a restart then equals the continued run bit
- *  for bit).
- *  An error rather than a warning: the first step would otherwise project
- *  the start silently, with a jump of the size of the violation in q or v
- *  and a multiplier spike of order violation / h^2 (index 3). Call
- *  LGNCalcIC to project the start explicitly. */
-#define LGN_INCONSISTENT_IC    -14
-
-/* =============================================================================
- * Redundant constraints
- * ===========================================================================*/
-
-/** Return flag (solver failure): a constraint left out as redundant
- *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
- *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
- *  the redundancy was not consistent (the mechanism cannot satisfy all its
- *  constraints), or B(q) gained rank since the rows were selected. The
- *  message names the constraint and the violation. */
-#define LGN_REDUNDANT_INCONSISTENT -16
-
-/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
- *  has dependent rows on a maximal independent set of them (default). */
-#define LGN_REDUNDANT_ELIMINATE 170
-/** LGNSetRedundantConstraints: refuse a model with dependent constraint
- *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
-#define LGN_REDUNDANT_REFUSE    171
 
 /** What to do with redundant constraints: rows of B(q) that depend on the
  *  others, as in Bricard's mechanism or a planar four-bar built in space
@@ -838,86 +713,8 @@ LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
 
 /* =============================================================================
- * Impacts
+ * Settings: consistent initial values
  * ===========================================================================*/
-
-/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
- *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
- *  needed): row i the derivative of contact i's gap along the group,
- *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
- *  of a point against a plane). Returns 0, or nonzero on failure. */
-typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
-                               void *user_data);
-
-/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
- *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
- *  contact rows
- *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
- *  e in [0, 1] (Newton's law at every contact), the velocity after the
- *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
- *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
- *    G v+ = -e G v-
- *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
- *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
- *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
- *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
- *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
- *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
- *  multipliers' sign
- *  convention: a contact that pushes the bodies apart (its gap growing
- *  along its row) has P < 0; one with P > 0 would have to pull, and a
- *  unilateral contact should be released (solve again without it).
- *  Nothing changes on failure.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
- *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
- *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
- *  is singular: contacts dependent on each other or on the constraints),
- *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
-LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
-                              sunrealtype e, N_Vector v, N_Vector P);
-
-/** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
-#define LGN_IC_PROJECT_Q  141
-/** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
-#define LGN_IC_PROJECT_V  142
-/** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
-#define LGN_IC_PROJECT_QV 143
-
-/** Make the initial state consistent, like IDACalcIC: project the state at
- *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
- *  then compute the consistent vdot_0, lambda_0 (and a_0 = vdot_0) from
- *  [[M, B^T], [B, 0]] (vdot_0, lambda_0) = (-g, -Z(q0)(v0, v0)), as the first
- *  LGNSolve would (values given with LGNSetInitialAcceleration /
- *  LGNSetInitialAux are kept).
- *  - LGN_IC_PROJECT_Q: Newton on the group, q <- q o exp(dq) with the
- *    correction of least M-norm, [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
- *    until |Phi(q)|_inf is at roundoff level (100 eps max(1, |q|_inf)), or
- *    no longer decreases and is below a hundredth of the tolerance of the
- *    check (LGN_INCONSISTENT_IC); at most 20 iterations.
- *  - LGN_IC_PROJECT_V: the M-orthogonal projection, v <- v + dv with
- *    [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v).
- *  - LGN_IC_PROJECT_QV: both, q first.
- *  Useful at both constraint indices (at index 2 the method enforces only
- *  B v = 0, but a q0 off Phi = 0 stays off). Needs the model callbacks and
- *  the linear solver (dense or KLU), as LGNSolve does. The result is the
- *  state LGNSolve starts from (and returns for tout = t0); read it with
- *  LGNGetConsistentIC.
- *  @param lgn_mem memory block
- *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
- *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
- *          did not converge or the saddle-point matrix is singular; the
- *          message gives |Phi|), a callback's failure flag. On failure q0
- *          and v0 are left as they were. Only before the first step after
- *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
-LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
-
-/** The initial state as LGNCalcIC corrected it (or as given, without
- *  LGNCalcIC): q0 (length nq) and v0 (length nv); either may be NULL.
- *  Only before the first step after LGNInit / LGNReInit.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (a vector
- *          of the wrong length, both NULL, or a step already taken). */
-LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
 
 /** Perturbed starting values (Arnold, Brüls and Cardona): at the first step
  *  of size h after the initial values, vddot_0 from a central difference of
@@ -943,20 +740,8 @@ LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
 LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);
 
 /* =============================================================================
- * Events (root finding)
+ * Settings: events (root finding)
  * ===========================================================================*/
-
-#define LGN_ROOT_RETURN         2   /**< LGNSolve returned at a root of g         */
-#define LGN_RTFUNC_FAIL        -13  /**< the root function failed                 */
-#define LGN_WARNING             99  /**< error_code of a warning to the handler   */
-
-/** Root functions g(t, q, v) whose zeros are events (impacts, switches):
- *  write the nrtfn values g_i(t, q, v) into gout. q and v are scratch
- *  vectors holding the solution at t (the dense output between steps);
- *  do not keep them. Return 0 on success; any other value stops LGNSolve
- *  with LGN_RTFUNC_FAIL. */
-typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
-                         sunrealtype *gout, void *user_data);
 
 /** Root finding on nrtfn functions g (as IDARootInit). After every
  *  accepted step (fixed or adaptive, LGN_NORMAL or LGN_ONE_STEP) LGNSolve
@@ -995,61 +780,100 @@ LGN_EXPORT int LGNSetRootDirection(void *lgn_mem, int *rootdir);
  *  away from 0). The warning goes to the error handler with LGN_WARNING. */
 LGN_EXPORT int LGNSetNoInactiveRootWarn(void *lgn_mem);
 
-/** After LGN_ROOT_RETURN: rootsfound[i] = +1 if g_i has a root there and
- *  increases, -1 if it decreases, 0 if it has none (nrtfn entries).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (rootsfound NULL). */
-LGN_EXPORT int LGNGetRootInfo(void *lgn_mem, int *rootsfound);
-
-/** Evaluations of the root function (since LGNInit / LGNReInit). */
-LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
-
 /* =============================================================================
- * Newton: stalled multipliers
+ * Solve: consistent initial values, the time loop, output between
+ * steps, impacts
  * ===========================================================================*/
 
-/** Whether a Newton iteration may stop with stalled multipliers (default
- *  SUNTRUE). At index 3 the multipliers of a long or stiff mechanism are
- *  determined only to about cond(A) eps |q| / (beta h^2), which can exceed
- *  the tolerance: their corrections then stop contracting while the
- *  configuration has converged. With SUNTRUE such an iteration is accepted
- *  (counted by LGNGetNumNewtonStalls, printed by LGNPrintAllStats, and a
- *  warning (LGN_WARNING) is given once when most steps of an LGNSolve call
- *  were accepted that way); a stall is never taken for convergence unless
- *  the configuration part of the correction has converged, from the third
- *  iteration on, and the multiplier corrections have stopped contracting
- *  (a diverging iteration fails). With SUNFALSE the iteration goes on
- *  until the correction is within the tolerance on the multipliers too
- *  (more iterations; a convergence failure if it cannot).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
-LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
+/** Make the initial state consistent, like IDACalcIC: project the state at
+ *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
+ *  then compute the consistent vdot_0, lambda_0 (and a_0 = vdot_0) from
+ *  [[M, B^T], [B, 0]] (vdot_0, lambda_0) = (-g, -Z(q0)(v0, v0)), as the first
+ *  LGNSolve would (values given with LGNSetInitialAcceleration /
+ *  LGNSetInitialAux are kept).
+ *  - LGN_IC_PROJECT_Q: Newton on the group, q <- q o exp(dq) with the
+ *    correction of least M-norm, [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
+ *    until |Phi(q)|_inf is at roundoff level (100 eps max(1, |q|_inf)), or
+ *    no longer decreases and is below a hundredth of the tolerance of the
+ *    check (LGN_INCONSISTENT_IC); at most 20 iterations.
+ *  - LGN_IC_PROJECT_V: the M-orthogonal projection, v <- v + dv with
+ *    [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v).
+ *  - LGN_IC_PROJECT_QV: both, q first.
+ *  Useful at both constraint indices (at index 2 the method enforces only
+ *  B v = 0, but a q0 off Phi = 0 stays off). Needs the model callbacks and
+ *  the linear solver (dense or KLU), as LGNSolve does. The result is the
+ *  state LGNSolve starts from (and returns for tout = t0); read it with
+ *  LGNGetConsistentIC.
+ *  @param lgn_mem memory block
+ *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
+ *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
+ *          did not converge or the saddle-point matrix is singular; the
+ *          message gives |Phi|), a callback's failure flag. On failure q0
+ *          and v0 are left as they were. Only before the first step after
+ *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
+LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
 
-/* =============================================================================
- * Aggregate outputs and the settings in use (as IDA's IDAGetIntegratorStats)
- * ===========================================================================*/
+/** Advance the solution.
+ *  @param lgn_mem memory block
+ *  @param tout    the output time (LGN_NORMAL) or a direction hint (LGN_ONE_STEP)
+ *  @param tret    on return, the time reached
+ *  @param q       on return, the configuration at tret (length nq)
+ *  @param v       on return, the velocity at tret (length nv)
+ *  @param itask   LGN_NORMAL: steps until tout (fixed steps: of size h, the
+ *                 last one shortened to land on tout; error control: past
+ *                 tout, which is then interpolated, unless a stop time is
+ *                 set); LGN_ONE_STEP: one step
+ *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
+ *          last accepted state (tret, q, v are that state), so it can continue
+ *          after the cause has been fixed (e.g. a smaller step size). */
+LGN_EXPORT int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret,
+                        N_Vector q, N_Vector v, int itask);
 
-/** Steps, residual evaluations, linear solver setups, error-test failures,
- *  the first step size tried (the fixed h without error control), the last
- *  step size, the next one, and the current time, in one call.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (an output NULL, named). */
-LGN_EXPORT int LGNGetIntegratorStats(void *lgn_mem, long int *nsteps, long int *nrevals,
-                                     long int *nlinsetups, long int *netfails,
-                                     sunrealtype *hinused, sunrealtype *hlast,
-                                     sunrealtype *hcur, sunrealtype *tcur);
-/** Newton iterations and convergence failures, in one call. */
-LGN_EXPORT int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails);
-/** The fixed step size of LGNSetStepSize (0: not set). */
-LGN_EXPORT int LGNGetStepSize(void *lgn_mem, sunrealtype *h);
-/** The kinematics variant in use (LGN_KINEMATICS_*). */
-LGN_EXPORT int LGNGetKinematics(void *lgn_mem, int *kinematics);
-/** The constraint formulation in use (LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or
- *  LGN_CONSTR_GGL). */
-LGN_EXPORT int LGNGetConstraintIndex(void *lgn_mem, int *index);
-/** The Newton mode in use (LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED). */
-LGN_EXPORT int LGNGetNewtonMode(void *lgn_mem, int *mode);
-/** The step size control in use (LGN_STEP_FIXED or LGN_STEP_ADAPTIVE). */
-LGN_EXPORT int LGNGetStepControl(void *lgn_mem, int *control);
-/** The tolerances in use (with LGNSVtolerances, atol is their mean). */
-LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol);
+/** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
+ *  the last step [t_n, t_{n+1}], from the dense output on the group: a
+ *  cubic Hermite interpolant in the chart of the step (BDF: its own
+ *  polynomials), matching q and v at both ends, of the order of the
+ *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
+ *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
+ *  consistent outputs (the default) vdot is the index-1 acceleration at
+ *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
+ *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
+ *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
+ *  not changed.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
+ *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
+ *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
+ *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
+ *          system at t singular, or the projection not converging). */
+LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
+
+/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
+ *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
+ *  contact rows
+ *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
+ *  e in [0, 1] (Newton's law at every contact), the velocity after the
+ *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
+ *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
+ *    G v+ = -e G v-
+ *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
+ *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
+ *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
+ *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
+ *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
+ *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
+ *  multipliers' sign
+ *  convention: a contact that pushes the bodies apart (its gap growing
+ *  along its row) has P < 0; one with P > 0 would have to pull, and a
+ *  unilateral contact should be released (solve again without it).
+ *  Nothing changes on failure.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
+ *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
+ *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
+ *  is singular: contacts dependent on each other or on the constraints),
+ *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
+LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
+                              sunrealtype e, N_Vector v, N_Vector P);
 
 /* =============================================================================
  * Restart files (doc/restart-format.md)
@@ -1109,6 +933,217 @@ LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
  *          (filename NULL or empty), LGN_MEM_FAIL, LGN_IO_FAIL,
  *          LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH. */
 LGN_EXPORT int LGNReadRestart(void *lgn_mem, const char *filename);
+
+/* =============================================================================
+ * Getters: the solution and the statistics
+ * ===========================================================================*/
+
+/** Acceleration vdot (length nv) at the last output of LGNSolve (its
+ *  tret, whether a step end, a stop time, an event or an interpolated
+ *  tout): with consistent outputs (LGNSetConsistentOutputs, the default)
+ *  the index-1 value at the returned (tret, q, v), accurate to the
+ *  tolerance in every method and constraint form and equal to LGNGetDky(tret,
+ *  2); without them, or before the first LGNSolve, or after an LGNSolve that
+ *  failed after taking steps, the step's own vdot at the current time
+ *  (LGNGetCurrentTime). */
+LGN_EXPORT int LGNGetAcceleration(void *lgn_mem, N_Vector vdot);
+/** Multipliers lambda (length m) at the last output of LGNSolve: with
+ *  consistent outputs (LGNSetConsistentOutputs, the default) the index-1
+ *  multipliers at the returned (tret, q, v), from
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g, -z), accurate to the tolerance
+ *  at every output; B(q)^T lambda at the returned q (LGNJoints_ConstraintForce)
+ *  is the joint forces and motor torques. Without them (or before the first
+ *  LGNSolve, or after one that failed after taking steps) the step's own
+ *  multipliers at the current time, which no error test measures
+ *  (generalized-alpha's carry O(h) errors after a change of step size):
+ *  the last ones computed (or given with LGNSetInitialAcceleration), also
+ *  after a failed LGNSolve.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (lambda
+ *          NULL or of the wrong length, or none computed yet for the
+ *          current m). */
+LGN_EXPORT int LGNGetMultipliers(void *lgn_mem, N_Vector lambda);
+/** Algorithmic acceleration a at the current time (length nv). */
+LGN_EXPORT int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a);
+/** Current time. */
+LGN_EXPORT int LGNGetCurrentTime(void *lgn_mem, sunrealtype *tcur);
+/** Size of the last step taken. */
+LGN_EXPORT int LGNGetLastStep(void *lgn_mem, sunrealtype *hlast);
+/** Method parameters in use. */
+LGN_EXPORT int LGNGetMethodParams(void *lgn_mem, sunrealtype *alpha_m,
+                                  sunrealtype *alpha_f, sunrealtype *beta,
+                                  sunrealtype *gamma);
+/** Number of steps taken. */
+LGN_EXPORT int LGNGetNumSteps(void *lgn_mem, long int *nsteps);
+/** Number of Newton iterations. */
+LGN_EXPORT int LGNGetNumNewtonIters(void *lgn_mem, long int *nniters);
+/** Number of Newton convergence failures. */
+LGN_EXPORT int LGNGetNumNewtonConvFails(void *lgn_mem, long int *nncfails);
+/** Number of failed step attempts (any cause). */
+LGN_EXPORT int LGNGetNumStepFails(void *lgn_mem, long int *nfails);
+/** Number of residual evaluations (M, g, B, Phi at one point) in Newton. */
+LGN_EXPORT int LGNGetNumResEvals(void *lgn_mem, long int *nres);
+/** Number of residual-type evaluations spent in difference quotients. */
+LGN_EXPORT int LGNGetNumDQEvals(void *lgn_mem, long int *ndq);
+/** Number of iteration matrix evaluations (Jacobian builds). */
+LGN_EXPORT int LGNGetNumJacEvals(void *lgn_mem, long int *njevals);
+/** Number of steps whose Newton iteration was accepted with the
+ *  configuration converged and the multiplier corrections stalled at
+ *  roundoff level (no longer contracting, or within the level of the last
+ *  such stall at this step size; see doc/user-guide.md). */
+LGN_EXPORT int LGNGetNumNewtonStalls(void *lgn_mem, long int *nstalls);
+/** Work space of the integrator, like IDAGetWorkSpace: lenrw reals and leniw
+ *  integers held by Lignum (vectors, model matrices, block storage, sparse
+ *  patterns; not the user's A and linear solver). Allocated at the first
+ *  LGNSolve, so call it afterwards. */
+LGN_EXPORT int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw);
+
+/** Number of Newton iterations solved with a reused (not freshly factorised)
+ *  iteration matrix (modified Newton; 0 with full Newton). */
+LGN_EXPORT int LGNGetNumMatrixReuses(void *lgn_mem, long int *nreuses);
+
+/** Number of steps whose modified Newton iteration failed with a reused
+ *  matrix and was restarted, successfully or not, with a fresh one. */
+LGN_EXPORT int LGNGetNumNewtonRestarts(void *lgn_mem, long int *nrestarts);
+/** Print all counters as aligned "Name = value" lines or CSV. */
+LGN_EXPORT int LGNPrintAllStats(void *lgn_mem, FILE *outfile,
+                                SUNOutputFormat fmt);
+/** Name of a return flag, e.g. "LGN_CONV_FAILURE" (static string, never NULL). */
+LGN_EXPORT const char *LGNGetReturnFlagName(long int flag);
+
+/* =============================================================================
+ * Getters: the BDF family
+ * ===========================================================================*/
+
+/** The order of the next step (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetCurrentOrder(void *lgn_mem, int *order);
+/** The order of the last step taken (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
+/** BDF: the number of steps taken at each order, nsteps[k] for k = 1 ... 5
+ *  (nsteps[0] = 0); LGN_BDF_MAX_ORDER + 1 entries. */
+LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem,
+                                      long int nsteps[LGN_BDF_MAX_ORDER + 1]);
+
+/* =============================================================================
+ * Getters: error control and outputs
+ * ===========================================================================*/
+
+/** The number of outputs made consistent or projected (LGNSolve's and
+ *  LGNGetDky's), each one or more factorisations of the saddle-point
+ *  matrix (counted in LGNGetNumLinSolvSetups as well). */
+LGN_EXPORT int LGNGetNumOutputSolves(void *lgn_mem, long int *nout);
+
+/** The step size to be tried next (error control) or the fixed h. */
+LGN_EXPORT int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur);
+/** The first step size tried (error control) or the fixed h. */
+LGN_EXPORT int LGNGetActualInitStep(void *lgn_mem, sunrealtype *hinused);
+/** Steps rejected by the error test. */
+LGN_EXPORT int LGNGetNumErrTestFails(void *lgn_mem, long int *netfails);
+/** The local error estimate of the last step attempted (length nv). */
+LGN_EXPORT int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele);
+/** The error weights of the last step attempted, 1/(atol_i + rtol |s_i|)
+ *  (length nv); the error test is the weighted RMS norm of ele. */
+LGN_EXPORT int LGNGetErrWeights(void *lgn_mem, N_Vector eweight);
+/** The error test's norm of the last step attempted (<= 1: accepted). */
+LGN_EXPORT int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
+
+/* =============================================================================
+ * Getters: consistent initial values
+ * ===========================================================================*/
+
+/** The initial state as LGNCalcIC corrected it (or as given, without
+ *  LGNCalcIC): q0 (length nq) and v0 (length nv); either may be NULL.
+ *  Only before the first step after LGNInit / LGNReInit.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (a vector
+ *          of the wrong length, both NULL, or a step already taken). */
+LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
+
+/* =============================================================================
+ * Getters: diagnostics of singular mechanisms
+ * ===========================================================================*/
+
+/** After LGN_LSETUP_FAIL or LGN_IC_FAIL with a singular matrix: the
+ *  constraints found redundant (dependent on the others) by a
+ *  rank-revealing QR factorisation of B(q) (done when B has at most 4e6
+ *  entries as a dense matrix). rows (length m, or NULL) receives their
+ *  0-based indices in ascending order; LGNJoints_DescribeConstraint names
+ *  the joints of constraints built with the joint helpers. *nred = 0 if
+ *  none was found (or no singular matrix was met).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (nred NULL). */
+LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
+                                          sunindextype *rows);
+
+/** After a singular matrix: the unknown at which the factorisation found a
+ *  zero pivot (0 .. nv-1: a velocity component; nv .. nv+m-1: the
+ *  multiplier of constraint k - nv; under LGN_CONSTR_GGL nv+m .. nv+2m-1:
+ *  the kinematic multiplier mu of constraint k - nv - m), or -1 if none is
+ *  known. The error
+ *  message names it in words (body and direction). With ghost bodies and
+ *  LGNLinSol_PETScSubdomain it is a global unknown of the ranks' summed
+ *  matrix (LGNGetGlobalIndices numbers them).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (unknown NULL). */
+LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
+
+/* =============================================================================
+ * Getters: events
+ * ===========================================================================*/
+
+/** After LGN_ROOT_RETURN: rootsfound[i] = +1 if g_i has a root there and
+ *  increases, -1 if it decreases, 0 if it has none (nrtfn entries).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (rootsfound NULL). */
+LGN_EXPORT int LGNGetRootInfo(void *lgn_mem, int *rootsfound);
+
+/** Evaluations of the root function (since LGNInit / LGNReInit). */
+LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
+
+/* =============================================================================
+ * Getters: aggregate outputs and the settings in use (as IDA's
+ * IDAGetIntegratorStats)
+ * ===========================================================================*/
+
+/** Steps, residual evaluations, linear solver setups, error-test failures,
+ *  the first step size tried (the fixed h without error control), the last
+ *  step size, the next one, and the current time, in one call.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (an output NULL, named). */
+LGN_EXPORT int LGNGetIntegratorStats(void *lgn_mem, long int *nsteps, long int *nrevals,
+                                     long int *nlinsetups, long int *netfails,
+                                     sunrealtype *hinused, sunrealtype *hlast,
+                                     sunrealtype *hcur, sunrealtype *tcur);
+/** Newton iterations and convergence failures, in one call. */
+LGN_EXPORT int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails);
+/** The fixed step size of LGNSetStepSize (0: not set). */
+LGN_EXPORT int LGNGetStepSize(void *lgn_mem, sunrealtype *h);
+/** The kinematics variant in use (LGN_KINEMATICS_*). */
+LGN_EXPORT int LGNGetKinematics(void *lgn_mem, int *kinematics);
+/** The constraint formulation in use (LGN_CONSTR_INDEX3, LGN_CONSTR_INDEX2 or
+ *  LGN_CONSTR_GGL). */
+LGN_EXPORT int LGNGetConstraintIndex(void *lgn_mem, int *index);
+/** The Newton mode in use (LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED). */
+LGN_EXPORT int LGNGetNewtonMode(void *lgn_mem, int *mode);
+/** The step size control in use (LGN_STEP_FIXED or LGN_STEP_ADAPTIVE). */
+LGN_EXPORT int LGNGetStepControl(void *lgn_mem, int *control);
+/** The tolerances in use (with LGNSVtolerances, atol is their mean). */
+LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol);
+
+/* =============================================================================
+ * Parameter maps (pure functions, no memory block)
+ * ===========================================================================*/
+
+/** Chung-Hulbert generalized-alpha parameters from rho_inf in [0, 1]:
+ *  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
+ *  gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4.
+ *  @return LGN_SUCCESS, or LGN_ILL_INPUT if rho_inf is outside [0, 1] or
+ *          an output pointer is NULL. */
+LGN_EXPORT int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
+                                     sunrealtype *alpha_f, sunrealtype *beta,
+                                     sunrealtype *gamma);
+
+/* =============================================================================
+ * Free
+ * ===========================================================================*/
+
+/** Free the memory block and everything Lignum allocated; sets *lgn_mem = NULL.
+ *  Objects the user created (group, vectors, matrix, linear solver) are not freed. */
+LGN_EXPORT void LGNFree(void **lgn_mem);
 
 #ifdef __cplusplus
 }

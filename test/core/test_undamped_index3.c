@@ -10,7 +10,7 @@
  * The constraint mode of these methods is undamped at index 3 (with beta =
  * 1/4 a Jordan block at -1: the multipliers' step-to-step oscillation grows
  * by 4 V / h^2 per unit time from a velocity error V across the
- * constraints), and the error estimate follows it (lgn_adapt.c).
+ * constraints), and the error estimate follows it (lgn_newmark_adapt.c).
  *
  *  (a) the heavy top: mod. LGNM and LGNM (exact and simplified kinematics)
  *      and generalized-alpha with rho_inf = 1, index 3, error control:

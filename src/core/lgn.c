@@ -223,6 +223,7 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
 static int CheckSettings(LGNMem mem)
 {
   int flag = lgnGhostsCheck(mem);
+  if (flag == LGN_SUCCESS) flag = lgnCheckFamilySettings(mem, "LGNSolve");
   if (flag != LGN_SUCCESS) return flag;
   if (mem->mass == NULL) {
     LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");
@@ -280,7 +281,7 @@ static int CheckSettings(LGNMem mem)
               "only to Newton's tolerance ~ atol / h, which grows as h shrinks.");
     return LGN_ILL_INPUT;
   }
-  flag = lgnCheckIndex3Damping(mem); /* undamped index 3: refused (lgn_adapt.c) */
+  flag = lgnCheckIndex3Damping(mem); /* undamped index 3: refused (lgn_newmark_adapt.c) */
   if (flag != LGN_SUCCESS) return flag;
   if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
@@ -406,7 +407,7 @@ static void CopyOut(LGNMem mem, sunrealtype *tret, N_Vector q, N_Vector v)
 }
 
 /* The output at t of the last step: the state itself at its end, else the
- * dense output (lgn_dense.c). */
+ * dense output (lgn_dense_output.c). */
 static int OutputAt(LGNMem mem, sunrealtype t, sunrealtype *tret, N_Vector q,
                     N_Vector v)
 {
