@@ -11,7 +11,7 @@ class Result:
     """The outputs of :func:`solve_ivp`.
 
     Attributes: ``t`` (n,), ``q`` (n, nq), ``v`` (n, nv), ``vdot`` (n, nv),
-    ``lam`` (n, m), ``h`` and ``order`` (n,: the last step size and order
+    ``lam`` (n, m; NaN at t0 before the first step), ``h`` and ``order`` (n,: the last step size and order
     at each output), ``t_events`` (list per event function of arrays of
     times), ``q_events``, ``v_events``, ``stats`` (dict), ``status`` (0:
     reached the end, 1: a terminal event, -1: failed), ``message``,
@@ -82,8 +82,12 @@ def solve_ivp(model, t_span, t_eval=None, events=None,
             ts.append(sim.t)
             qs.append(sim.q.copy())
             vs.append(sim.v.copy())
-            vdots.append(sim.acceleration())
-            lams.append(sim.multipliers())
+            try:
+                vdot, lam = sim.acceleration(), sim.multipliers()
+            except LignumError:  # at t0: none computed before the first step
+                vdot, lam = np.full(sim.nv, np.nan), np.full(sim.m, np.nan)
+            vdots.append(vdot)
+            lams.append(lam)
             if sim.stats["steps"]:
                 hs.append(sim.last_step())
                 orders.append(sim.last_order())
