@@ -1,0 +1,110 @@
+"""The Python-style API: states as numpy views, stop times, events with
+Python root functions, calc_ic, statistics, solve_ivp, examples."""
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import lignum
+from conftest import SETTINGS, SOURCE_DIR, heavy_top
+
+
+def test_state_arrays_are_updated_in_place():
+    with lignum.Integrator(heavy_top(), **SETTINGS["fixed"]) as sim:
+        q = sim.q
+        sim.solve(0.01)
+        assert q is sim.q and q[2] != 0.0
+        assert sim.stats["steps"] == 10
+        assert sim.last_step() == pytest.approx(1e-3)
+        assert sim.acceleration().shape == (6,) and sim.multipliers().shape == (3,)
+        assert np.linalg.norm(sim.constraint_residual()) < 1e-12
+
+
+def test_stop_time_and_one_step():
+    with lignum.Integrator(heavy_top(), **SETTINGS["adaptive"]) as sim:
+        sim.set_stop_time(0.0123)
+        assert sim.solve(1.0) == "tstop"
+        assert sim.t == 0.0123
+        sim.clear_stop_time()
+        assert sim.solve(1.0, one_step=True) == "step"
+        assert 0.0123 < sim.t < 1.0
+
+
+def test_event_located():
+    """The centre of mass first crosses z = -0.5 (terminal event)."""
+    def below(t, q, v):
+        return q[2] + 0.5
+    below.terminal, below.direction = True, -1
+    r = lignum.solve_ivp(heavy_top(), (0.0, 1.0), t_eval=np.linspace(0, 1, 11), events=below,
+                         **SETTINGS["adaptive"])
+    assert r.status == 1 and r.success
+    assert len(r.t_events[0]) == 1
+    te = r.t_events[0][0]
+    assert 0.1 < te < 0.2  # z(0.1) = -0.149, z(0.2) = -0.524 (heavy_top.out)
+    assert abs(r.q_events[0][0][2] + 0.5) < 1e-6
+    assert r.t[-1] == te and r.stats["root_evals"] > 0
+
+
+def test_calc_ic_projects_velocities():
+    from four_bar import four_bar
+    mb, _ = four_bar()
+    q0, v0 = mb.initial_state()
+    v0[:6] = (-1.0, 0.0, 0.0, 0.0, 0.0, 2.0)
+    with lignum.Integrator(mb, v0=v0) as sim:
+        before = sim.v.copy()
+        sim.calc_ic("v")
+        assert not np.array_equal(before, sim.v)
+        with pytest.raises(ValueError):
+            sim.calc_ic("w")
+
+
+def test_solve_ivp_equals_integrator_loop():
+    r = lignum.solve_ivp(heavy_top(), (0.0, 0.05), t_eval=[0.0, 0.02, 0.05],
+                         **SETTINGS["fixed"])
+    with lignum.Integrator(heavy_top(), **SETTINGS["fixed"]) as sim:
+        for k, t in enumerate([0.02, 0.05]):
+            sim.solve(t)
+            np.testing.assert_array_equal(r.q[k + 1], sim.q)
+            np.testing.assert_array_equal(r.lam[k + 1], sim.multipliers())
+    assert r.q.shape == (3, 7) and r.lam.shape == (3, 3) and np.isnan(r.lam[0]).all()
+    every = lignum.solve_ivp(heavy_top(), (0.0, 0.01), **SETTINGS["bdf"])
+    assert np.all(np.diff(every.t) > 0) and every.t[-1] == 0.01
+    assert len(every.t) == every.stats["steps"] + 1 and np.all(every.order[1:] >= 1)
+    with pytest.raises(ValueError):
+        lignum.solve_ivp(heavy_top(), (0.0, 1.0), t_eval=[0.5, 0.2])
+
+
+def test_solve_ivp_failure_status():
+    r = lignum.solve_ivp(heavy_top(), (0.0, 1.0), t_eval=[0.5, 1.0], max_steps=5, step=1e-3)
+    assert r.status == -1 and not r.success and r.error.name == "LGN_TOO_MUCH_WORK"
+    with pytest.raises(lignum.LignumError):
+        lignum.solve_ivp(heavy_top(), (0.0, 1.0), t_eval=[1.0], max_steps=5, step=1e-3,
+                         raise_on_failure=True)
+
+
+def test_drivers_in_c():
+    """A motor at constant speed (polynomial law in C) turns a body
+    on a revolute joint: its angle is the law's."""
+    mb = lignum.Multibody()
+    b = mb.add_body(mass=1.0, inertia=(0.1, 0.1, 0.1), position=(1, 0, 0),
+                    velocity=(0, 2.0, 0), angular_velocity=(0, 0, 2.0))
+    mb.revolute(lignum.GROUND, (0, 0, 0), (0, 0, 1), b, (-1, 0, 0), (0, 0, 1))
+    mb.rotation_driver(lignum.GROUND, (0, 0, 1), (1, 0, 0), b, (1, 0, 0),
+                       lignum.polynomial(0.0, 2.0))
+    with lignum.Integrator(mb, step=1e-3) as sim:
+        sim.solve(0.5)
+        assert np.arctan2(sim.q[1], sim.q[0]) == pytest.approx(1.0, abs=1e-8)
+
+
+def test_examples_run(tmp_path):
+    """The examples write their figures; the heavy top fits in 30 lines."""
+    ex = SOURCE_DIR / "python" / "examples"
+    assert len((ex / "heavy_top.py").read_text().splitlines()) <= 30
+    env = dict(os.environ, MPLBACKEND="Agg")
+    for name in ("heavy_top", "four_bar", "chain"):
+        subprocess.run([sys.executable, str(ex / f"{name}.py")], cwd=tmp_path, env=env,
+                       check=True, capture_output=True, timeout=120)
+        assert (tmp_path / f"{name}.png").stat().st_size > 10000
