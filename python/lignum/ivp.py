@@ -130,12 +130,12 @@ def solve_ivp(model, t_span, t_eval=None, events=None,
                 raise
             res.status, res.message, res.error = -1, str(exc), exc
         res.stats = sim.stats
-        m = sim.m
+        nq, nv, m = sim.nq, sim.nv, sim.m
     res.success = res.status >= 0
     res.t = np.array(ts)
-    res.q = np.array(qs).reshape(len(ts), -1)
-    res.v = np.array(vs).reshape(len(ts), -1)
-    res.vdot = np.array(vdots).reshape(len(ts), -1)
+    res.q = np.array(qs).reshape(len(ts), nq)
+    res.v = np.array(vs).reshape(len(ts), nv)
+    res.vdot = np.array(vdots).reshape(len(ts), nv)
     res.lam = np.array(lams).reshape(len(ts), m)
     res.h = np.array(hs)
     res.order = np.array(orders)
