@@ -82,10 +82,22 @@ class Callbacks:
             raise exc
 
 
+_views = {}
+
+
 def _view(ptr, n):
+    """A numpy array on n doubles at ptr (no copy). Lignum passes the same
+    few work vectors again and again: the arrays are cached by address and
+    length (a bounded cache: cleared when it grows past 256 entries)."""
     if ptr == ffi.NULL or n == 0:
         return None
-    return np.frombuffer(ffi.buffer(ptr, 8 * n), dtype=np.float64)
+    key = (int(ffi.cast("uintptr_t", ptr)), n)
+    a = _views.get(key)
+    if a is None:
+        if len(_views) > 256:
+            _views.clear()
+        a = _views[key] = np.frombuffer(ffi.buffer(ptr, 8 * n), dtype=np.float64)
+    return a
 
 
 def _on_error(exception, exc_value, traceback):
