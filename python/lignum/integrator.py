@@ -45,7 +45,8 @@ class Integrator:
     kinematics : "simplified", "exact" or "sigma"
     constraints : "index3", "index2" or "ggl"
     step : float
-        Fixed step size; with ``adaptive=True`` the first step tried.
+        Fixed step size (required without ``adaptive``); with
+        ``adaptive=True`` the first step tried (default: Lignum's estimate).
     adaptive : bool
         Error-controlled steps with ``rtol``, ``atol``; ``hmin``, ``hmax``.
     max_steps : int
@@ -61,7 +62,7 @@ class Integrator:
 
     def __init__(self, model, t0=0.0, q0=None, v0=None, method="genalpha", rho_inf=0.9,
                  alpha_m=None, alpha_f=None, beta=None, gamma=None, bdf_order=5,
-                 kinematics=None, constraints=None, step=1e-3, adaptive=False, rtol=1e-6,
+                 kinematics=None, constraints=None, step=None, adaptive=False, rtol=1e-6,
                  atol=1e-6, h0=None, hmin=None, hmax=None, max_steps=100000, newton=None,
                  max_newton_iters=None, project_outputs=None):
         if not hasattr(model, "_build"):
@@ -104,7 +105,8 @@ class Integrator:
             sys.check(lib.LGNSetStepControl(mem, lib.LGN_STEP_ADAPTIVE), "LGNSetStepControl")
             sys.check(lib.LGNSStolerances(mem, as_real(rtol, "rtol"), as_real(atol, "atol")),
                       "LGNSStolerances")
-        sys.check(lib.LGNSetStepSize(mem, as_real(step, "step")), "LGNSetStepSize")
+        if step is not None:
+            sys.check(lib.LGNSetStepSize(mem, as_real(step, "step")), "LGNSetStepSize")
         if h0 is not None:
             sys.check(lib.LGNSetInitStep(mem, as_real(h0, "h0")), "LGNSetInitStep")
         if hmin is not None:

@@ -133,3 +133,19 @@ def test_python_model_agrees_with_c_model():
         assert np.max(np.abs(a.q - b.q)) < 1e-9
         assert np.max(np.abs(a.v - b.v)) < 1e-6
         assert a.q[2] != 0.0  # the top did move
+
+
+def test_tutorial_twin_prints_the_c_table():
+    """python/examples/tutorial_double_pendulum.py prints the C tutorial's
+    table (all columns but |Phi|, a round-off quantity computed otherwise)
+    and takes its 6431 steps."""
+    import subprocess
+    import sys
+    script = SOURCE_DIR / "python" / "examples" / "tutorial_double_pendulum.py"
+    out = subprocess.run([sys.executable, str(script)], check=True, capture_output=True,
+                         text=True, timeout=120).stdout.splitlines()
+    want = (SOURCE_DIR / "examples" / "tutorial_double_pendulum.out").read_text().splitlines()
+    got_rows = [line.split()[:6] for line in out[3:14]]
+    want_rows = [line.split()[:6] for line in want[3:14]]
+    assert len(want_rows) == 11 and got_rows == want_rows
+    assert "'steps': 6431" in out[-1]
