@@ -1,6 +1,7 @@
 """Low-level helpers shared by the model and integrator classes: the cffi
 library, flag checks, array conversion and the Python side of the
 callbacks."""
+import threading
 import warnings
 
 import numpy as np
@@ -100,22 +101,26 @@ def _view(ptr, n):
     return a
 
 
+# The exception a Python callback raised, per thread: cffi's onerror hook
+# does not see the handle, and a callback runs in the thread that called
+# the C function (cffi releases the GIL during C calls, so two integrators
+# may run in two threads; one integrator must not be shared by threads).
+_pending = threading.local()
+
+
 def _on_error(exception, exc_value, traceback):
-    # cffi calls this with the exception of a callback; the handle is not
-    # passed, so the exception is kept on the thread-less module state and
-    # claimed by the running integrator (one LGNSolve at a time per thread).
-    global _pending
-    _pending = exc_value if exc_value is not None else exception()
+    # keep the first exception of the C call; the callback returns -1
+    # (unrecoverable), the C call fails, System.check raises it again
+    if getattr(_pending, "exc", None) is None:
+        _pending.exc = exc_value if exc_value is not None else exception()
     return -1
 
 
-_pending = None
-
-
 def take_pending():
-    """The exception a callback raised during the last C call, or None."""
-    global _pending
-    exc, _pending = _pending, None
+    """The exception a callback raised during the last C call of this
+    thread, or None (and clear it)."""
+    exc = getattr(_pending, "exc", None)
+    _pending.exc = None
     return exc
 
 

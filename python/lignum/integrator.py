@@ -39,16 +39,20 @@ class Integrator:
     q0, v0 : arrays, optional
         Initial state (default: the model's).
     method : "genalpha", "newmark" or "bdf"
-        Generalized-alpha (``rho_inf``, or all four of ``alpha_m``,
-        ``alpha_f``, ``beta``, ``gamma``), Newmark (``beta``, ``gamma``) or
-        Lie group BDF up to order ``bdf_order``.
+        Generalized-alpha (``rho_inf``, default 0.9, or all four of
+        ``alpha_m``, ``alpha_f``, ``beta``, ``gamma``), Newmark (``beta``,
+        ``gamma``, default 1/4, 1/2) or Lie group BDF up to order
+        ``bdf_order`` (default 5). A parameter of another method is refused.
     kinematics : "simplified", "exact" or "sigma"
     constraints : "index3", "index2" or "ggl"
     step : float
         Fixed step size (required without ``adaptive``); with
         ``adaptive=True`` the first step tried (default: Lignum's estimate).
     adaptive : bool
-        Error-controlled steps with ``rtol``, ``atol``; ``hmin``, ``hmax``.
+        Error-controlled steps with ``rtol``, ``atol`` (default 1e-6 each),
+        ``h0`` (first step), ``hmin``, ``hmax`` (refused without error
+        control). With fixed steps ``rtol``, ``atol`` are the Newton
+        iteration's tolerances (LGNSStolerances), Lignum's own by default.
     max_steps : int
         Steps allowed per :meth:`solve` call.
     newton : "full" or "modified"; max_newton_iters : int
@@ -60,13 +64,30 @@ class Integrator:
     that Lignum updates in place (the N_Vectors wrap them, no copies).
     """
 
-    def __init__(self, model, t0=0.0, q0=None, v0=None, method="genalpha", rho_inf=0.9,
-                 alpha_m=None, alpha_f=None, beta=None, gamma=None, bdf_order=5,
-                 kinematics=None, constraints=None, step=None, adaptive=False, rtol=1e-6,
-                 atol=1e-6, h0=None, hmin=None, hmax=None, max_steps=100000, newton=None,
+    def __init__(self, model, t0=0.0, q0=None, v0=None, method="genalpha", rho_inf=None,
+                 alpha_m=None, alpha_f=None, beta=None, gamma=None, bdf_order=None,
+                 kinematics=None, constraints=None, step=None, adaptive=False, rtol=None,
+                 atol=None, h0=None, hmin=None, hmax=None, max_steps=100000, newton=None,
                  max_newton_iters=None, project_outputs=None):
         if not hasattr(model, "_build"):
             raise TypeError("model: expected a lignum.Multibody or lignum.PythonModel")
+        if adaptive not in (True, False):
+            raise TypeError(f"adaptive: expected True or False, got {adaptive!r}")
+        # every setting acts or is refused: none that the method ignores
+        unused = {"genalpha": ("bdf_order",), "bdf": ("rho_inf", "alpha_m", "alpha_f", "beta",
+                                                      "gamma"),
+                  "newmark": ("rho_inf", "alpha_m", "alpha_f", "bdf_order")}
+        if method not in unused:
+            raise ValueError(f"method: expected 'genalpha', 'newmark' or 'bdf', got {method!r}")
+        given = dict(rho_inf=rho_inf, alpha_m=alpha_m, alpha_f=alpha_f, beta=beta, gamma=gamma,
+                     bdf_order=bdf_order)
+        for name in unused[method]:
+            if given[name] is not None:
+                raise ValueError(f"{name}: not a setting of method={method!r}")
+        if not adaptive:
+            for name, value in (("h0", h0), ("hmin", hmin), ("hmax", hmax)):
+                if value is not None:
+                    raise ValueError(f"{name}: only with adaptive=True (error control)")
         self.model = model
         self._sys = sys = System()
         t0 = as_real(t0, "t0")
@@ -99,10 +120,11 @@ class Integrator:
             sys.check(lib.LGNSetConstraintIndex(mem, _choice(constraints, _CONSTRAINTS,
                                                              "constraints")),
                       "LGNSetConstraintIndex")
-        if adaptive not in (True, False):
-            raise TypeError(f"adaptive: expected True or False, got {adaptive!r}")
         if adaptive:
             sys.check(lib.LGNSetStepControl(mem, lib.LGN_STEP_ADAPTIVE), "LGNSetStepControl")
+        if adaptive or rtol is not None or atol is not None:
+            rtol = 1e-6 if rtol is None else rtol
+            atol = 1e-6 if atol is None else atol
             sys.check(lib.LGNSStolerances(mem, as_real(rtol, "rtol"), as_real(atol, "atol")),
                       "LGNSStolerances")
         if step is not None:
@@ -131,9 +153,11 @@ class Integrator:
         if method == "genalpha":
             params = (alpha_m, alpha_f, beta, gamma)
             if all(x is None for x in params):
+                rho_inf = 0.9 if rho_inf is None else rho_inf
                 sys.check(lib.LGNSetGenAlpha(mem, as_real(rho_inf, "rho_inf")), "LGNSetGenAlpha")
-            elif any(x is None for x in params):
-                raise ValueError("alpha_m, alpha_f, beta, gamma: give all four or none")
+            elif any(x is None for x in params) or rho_inf is not None:
+                raise ValueError("alpha_m, alpha_f, beta, gamma: give all four (and no "
+                                 "rho_inf) or none")
             else:
                 sys.check(lib.LGNSetGenAlphaParams(mem, *(as_real(x, n) for x, n in zip(
                     params, ("alpha_m", "alpha_f", "beta", "gamma")))), "LGNSetGenAlphaParams")
@@ -141,10 +165,9 @@ class Integrator:
             sys.check(lib.LGNSetNewmark(mem, as_real(0.25 if beta is None else beta, "beta"),
                                         as_real(0.5 if gamma is None else gamma, "gamma")),
                       "LGNSetNewmark")
-        elif method == "bdf":
-            sys.check(lib.LGNSetBDF(mem, as_int(bdf_order, "bdf_order")), "LGNSetBDF")
         else:
-            raise ValueError(f"method: expected 'genalpha', 'newmark' or 'bdf', got {method!r}")
+            sys.check(lib.LGNSetBDF(mem, as_int(5 if bdf_order is None else bdf_order,
+                                                "bdf_order")), "LGNSetBDF")
 
     # ---- running ----
     def _mem(self):

@@ -32,7 +32,10 @@ def test_lignum_flag_and_message():
 @pytest.mark.parametrize("kwargs, exc", [
     (dict(method="rk4"), ValueError), (dict(kinematics="fast"), ValueError),
     (dict(constraints="index1"), ValueError), (dict(rho_inf="0.9"), TypeError),
-    (dict(rho_inf=None), TypeError), (dict(step=float("nan")), ValueError),
+    (dict(method="bdf", rho_inf=0.5), ValueError), (dict(step=float("nan")), ValueError),
+    (dict(h0=1e-3), ValueError), (dict(method="newmark", bdf_order=2), ValueError),
+    (dict(alpha_m=0.1, alpha_f=0.1, beta=0.3, gamma=0.6, rho_inf=0.5), ValueError),
+    (dict(t0=float("inf")), ValueError), (dict(model_kinematics=1), TypeError),
     (dict(max_steps=1.5), TypeError), (dict(adaptive="yes"), TypeError),
     (dict(q0=np.zeros(6)), ValueError), (dict(q0=[1, 2, 3, 1, 0, 0, math.nan]), ValueError),
     (dict(v0=[[1.0] * 6]), ValueError), (dict(v0="abc"), TypeError),
