@@ -108,3 +108,29 @@ def test_examples_run(tmp_path):
         subprocess.run([sys.executable, str(ex / f"{name}.py")], cwd=tmp_path, env=env,
                        check=True, capture_output=True, timeout=120)
         assert (tmp_path / f"{name}.png").stat().st_size > 10000
+
+
+def test_lignum_warnings_become_python_warnings():
+    """A redundant mechanism (two revolute joints on one axis): Lignum's
+    warning arrives as a LignumWarning, the run goes on."""
+    mb = lignum.Multibody(gravity=(0.0, -9.81, 0.0))
+    b = mb.add_body(mass=1.0, inertia=(0.1, 0.1, 0.1), position=(1, 0, 0))
+    mb.revolute(lignum.GROUND, (0, 0, 0), (0, 0, 1), b, (-1, 0, 0), (0, 0, 1))
+    mb.revolute(lignum.GROUND, (0, 0, 1), (0, 0, 1), b, (-1, 0, 1), (0, 0, 1))
+    with lignum.Integrator(mb, step=1e-3) as sim:
+        with pytest.warns(lignum.LignumWarning, match="redundant constraints"):
+            sim.solve(0.01)
+        assert sim.q[1] < 0.0  # it falls, turning about z
+
+
+def test_every_public_call_has_a_docstring():
+    import inspect
+    for name in lignum.__all__:
+        obj = getattr(lignum, name)
+        if callable(obj):
+            assert inspect.getdoc(obj), name
+        if inspect.isclass(obj):
+            for attr, member in vars(obj).items():
+                if not attr.startswith("_") and (callable(member) or isinstance(member,
+                                                                                 property)):
+                    assert inspect.getdoc(member), f"{name}.{attr}"
