@@ -1,5 +1,8 @@
 """The integrator: Lignum's LGNCreate ... LGNSolve ... LGNFree in Python
 style (one object, keyword settings, numpy arrays, exceptions)."""
+import contextlib
+import threading
+
 import numpy as np
 
 from ._core import System, as_int, as_real, as_vector, double_ptr
@@ -95,8 +98,8 @@ class Integrator:
         p = sys.ptr
         nq, nv = p.nq, p.nv
         # the state arrays are owned here; the C vectors wrap them
-        self.q = as_vector(q_model if q0 is None else q0, nq, "q0").copy()
-        self.v = as_vector(v_model if v0 is None else v0, nv, "v0").copy()
+        self._q = as_vector(q_model if q0 is None else q0, nq, "q0").copy()
+        self._v = as_vector(v_model if v0 is None else v0, nv, "v0").copy()
         self._vdot = np.zeros(nv)
         self._lam = np.zeros(max(1, int(p.m)))
         cb = sys.callbacks
@@ -104,9 +107,14 @@ class Integrator:
         if isinstance(model, Multibody):
             # m is known after the joints were added; size lambda before Attach
             self._lam = np.zeros(max(1, int(lib.LGNJoints_NumConstraints(p.joints))))
-        sys.check(lib.LGNPy_Attach(p, t0, double_ptr(self.q), double_ptr(self.v),
+        sys.check(lib.LGNPy_Attach(p, t0, double_ptr(self._q), double_ptr(self._v),
                                    double_ptr(self._vdot), double_ptr(self._lam),
                                    1 if mass_constant else 0), "LGNInit")
+        # Lignum writes them; Python only reads them (assigning would not
+        # change the integrator's state: use a new Integrator or q0, v0)
+        self._q.flags.writeable = False
+        self._v.flags.writeable = False
+        self._lock = threading.Lock()
         cb.nq, cb.nv, cb.m = nq, nv, p.m
         self.nq, self.nv, self.m = nq, nv, int(p.m)
         self.t = t0
@@ -170,10 +178,35 @@ class Integrator:
                                                 "bdf_order")), "LGNSetBDF")
 
     # ---- running ----
+    @property
+    def q(self):
+        """The configuration at :attr:`t`: a read-only numpy array that
+        Lignum updates in place (the state N_Vector wraps it)."""
+        return self._q
+
+    @property
+    def v(self):
+        """The velocity at :attr:`t` (as :attr:`q`)."""
+        return self._v
+
     def _mem(self):
         if self._sys.closed:
             raise ValueError("the integrator is closed")
+        if self._lock.locked():
+            raise RuntimeError("the integrator is running (a call from one of its own "
+                               "callbacks, or from another thread)")
         return self._sys.ptr.mem
+
+    @contextlib.contextmanager
+    def _running(self):
+        """Hold the integrator during a C call that runs callbacks."""
+        if not self._lock.acquire(blocking=False):
+            raise RuntimeError("the integrator is running (a call from one of its own "
+                               "callbacks, or from another thread)")
+        try:
+            yield
+        finally:
+            self._lock.release()
 
     def solve(self, tout, one_step=False):
         """Integrate to ``tout`` (or one step towards it with
@@ -185,9 +218,10 @@ class Integrator:
         tout = as_real(tout, "tout")
         tret = ffi.new("double *")
         p = self._sys.ptr
-        flag = lib.LGNSolve(mem, tout, tret, p.q, p.v,
-                            lib.LGN_ONE_STEP if one_step else lib.LGN_NORMAL)
-        self._sys.check(flag, "LGNSolve")
+        with self._running():
+            flag = lib.LGNSolve(mem, tout, tret, p.q, p.v,
+                                lib.LGN_ONE_STEP if one_step else lib.LGN_NORMAL)
+            self._sys.check(flag, "LGNSolve")
         self.t = tret[0]
         if flag == lib.LGN_ROOT_RETURN:
             return "root"
@@ -208,7 +242,9 @@ class Integrator:
         """Make the initial state consistent (LGNCalcIC): project ``"q"``,
         ``"v"`` or both (``"qv"``); :attr:`q`, :attr:`v` then hold it."""
         mem = self._mem()
-        self._sys.check(lib.LGNCalcIC(mem, _choice(which, _IC, "which")), "LGNCalcIC")
+        icopt = _choice(which, _IC, "which")
+        with self._running():
+            self._sys.check(lib.LGNCalcIC(mem, icopt), "LGNCalcIC")
         p = self._sys.ptr
         self._sys.check(lib.LGNGetConsistentIC(mem, p.q, p.v), "LGNGetConsistentIC")
 
@@ -287,6 +323,7 @@ class Integrator:
     def energy(self, q=None, v=None):
         """(kinetic, potential) energy of a Multibody at q, v (default: the
         current state)."""
+        self._mem()
         if not isinstance(self.model, Multibody):
             raise TypeError("energy: only for a lignum.Multibody")
         return self.model.energy(self._sys, self.q if q is None else q,
@@ -294,6 +331,7 @@ class Integrator:
 
     def constraint_residual(self, q=None, t=None):
         """Phi(q, t) of a Multibody's joints (default: the current state)."""
+        self._mem()
         if not isinstance(self.model, Multibody):
             raise TypeError("constraint_residual: only for a lignum.Multibody")
         if self.m == 0:
@@ -306,6 +344,8 @@ class Integrator:
 
     def close(self):
         """Free the C integrator and model now (also done when collected)."""
+        if hasattr(self, "_lock") and self._lock.locked():
+            raise RuntimeError("close: the integrator is running")
         self._sys.close()
 
     def __enter__(self):

@@ -141,10 +141,14 @@ class Multibody:
             return lib.LGNPY_DRIVE_PYTHON, [0.0] * 4, law
         try:
             kind, coeffs = law
+            ok = kind in (lib.LGNPY_DRIVE_POLYNOMIAL, lib.LGNPY_DRIVE_HARMONIC) and \
+                len(coeffs) == 4
         except (TypeError, ValueError):
+            ok = False
+        if not ok:
             raise TypeError("law: expected lignum.polynomial(...), lignum.harmonic(...) "
-                            "or a function t -> (f, f', f'')") from None
-        return kind, coeffs, None
+                            "or a function t -> (f, f', f'')")
+        return kind, [as_real(c, "law") for c in coeffs], None
 
     def rotation_driver(self, a, axis_a, ref_a, b, ref_b, law):
         """Prescribed angle f(t) of direction ref_b of b about axis_a of a

@@ -154,3 +154,38 @@ def test_root_and_drive_functions_that_raise():
             sim.solve(0.01)
     with pytest.raises(TypeError):
         mb.rotation_driver(lignum.GROUND, (0, 0, 1), (1, 0, 0), b, (1, 0, 0), 3.0)
+
+
+def test_reentry_and_read_only_state():
+    """A callback that calls back into its own integrator is refused (a
+    RuntimeError through the callback); the state arrays are read-only."""
+    mb = heavy_top()
+    holder = {}
+
+    def force(t, q, v, f):
+        holder["sim"].stats  # reading the integrator while it runs
+
+    mb.applied_force = force
+    with lignum.Integrator(mb, **SETTINGS["fixed"]) as sim:
+        holder["sim"] = sim
+        with pytest.raises(RuntimeError, match="running"):
+            sim.solve(0.01)
+        with pytest.raises(ValueError):
+            sim.q[0] = 1.0
+        with pytest.raises(AttributeError):
+            sim.q = np.zeros(7)
+        assert sim.t == 0.0 and sim.stats["steps"] == 0
+
+
+def test_bad_drive_laws():
+    mb = lignum.Multibody()
+    b = mb.add_body(mass=1.0, inertia=(1, 1, 1), position=(1, 0, 0))
+    for law in [(7, [0, 0, 0, 0]), (0, [1, 2]), (0, ["a", 0, 0, 0]), "sin"]:
+        with pytest.raises(TypeError):
+            mb.rotation_driver(lignum.GROUND, (0, 0, 1), (1, 0, 0), b, (1, 0, 0), law)
+    mb.revolute(lignum.GROUND, (0, 0, 0), (0, 0, 1), b, (-1, 0, 0), (0, 0, 1))
+    mb.rotation_driver(lignum.GROUND, (0, 0, 1), (1, 0, 0), b, (1, 0, 0),
+                       lambda t: (np.nan, 0.0, 0.0))
+    with lignum.Integrator(mb, step=1e-3) as sim:
+        with pytest.raises(ValueError, match="non-finite"):
+            sim.solve(0.01)
