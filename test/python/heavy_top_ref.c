@@ -11,7 +11,7 @@
  * (the example's settings); fixed: generalized-alpha(0.9), h = 1e-3; bdf:
  * BDF up to order 5 with rtol = atol = 1e-6. Prints for each output
  * "t q[0..6] v[0..5] lambda[0..2]"; with --repeat N, runs N times and
- * prints "seconds_per_run steps" instead.
+ * prints "wall_seconds_per_run steps min_cpu_seconds_per_run" instead.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 #define _POSIX_C_SOURCE 199309L /* clock_gettime */
@@ -159,7 +159,8 @@ int main(int argc, char **argv)
 {
   const char *mode = argc > 1 ? argv[1] : "adaptive";
   long int nsteps = 0, repeat = 0, r;
-  struct timespec t0, t1;
+  struct timespec t0, t1, c0, c1;
+  double cpu, cpu_min = 0.0;
   int flag = 0;
 
   if (strcmp(mode, "adaptive") && strcmp(mode, "fixed") && strcmp(mode, "bdf")) {
@@ -169,9 +170,15 @@ int main(int argc, char **argv)
   if (argc > 3 && strcmp(argv[2], "--repeat") == 0) repeat = strtol(argv[3], NULL, 10);
   if (repeat < 1) return Run(mode, 1, &nsteps) ? 1 : 0;
   clock_gettime(CLOCK_MONOTONIC, &t0);
-  for (r = 0; !flag && r < repeat; r++) flag = Run(mode, 0, &nsteps);
+  for (r = 0; !flag && r < repeat; r++) { /* the fastest run's CPU time */
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+    flag = Run(mode, 0, &nsteps);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    cpu = (c1.tv_sec - c0.tv_sec) + 1e-9 * (c1.tv_nsec - c0.tv_nsec);
+    if (r == 0 || cpu < cpu_min) cpu_min = cpu;
+  }
   clock_gettime(CLOCK_MONOTONIC, &t1);
-  printf("%.9e %ld\n", ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / repeat,
-         nsteps);
+  printf("%.9e %ld %.9e\n", ((t1.tv_sec - t0.tv_sec) + 1e-9 * (t1.tv_nsec - t0.tv_nsec)) / repeat,
+         nsteps, cpu_min);
   return flag ? 1 : 0;
 }
