@@ -86,18 +86,22 @@ class Callbacks:
 _views = {}
 
 
-def _view(ptr, n):
-    """A numpy array on n doubles at ptr (no copy). Lignum passes the same
-    few work vectors again and again: the arrays are cached by address and
-    length (a bounded cache: cleared when it grows past 256 entries)."""
+def _view(ptr, n, writeable=True):
+    """A numpy array on n doubles at ptr (no copy); read-only for a
+    callback's inputs (t, q, v, ...: writing them would change Lignum's
+    state behind its back), writeable for its output. Lignum passes the
+    same few work vectors again and again: the arrays are cached by
+    address, length and mode (a bounded cache: cleared past 256 entries)."""
     if ptr == ffi.NULL or n == 0:
         return None
-    key = (int(ffi.cast("uintptr_t", ptr)), n)
+    key = (int(ffi.cast("uintptr_t", ptr)), n, writeable)
     a = _views.get(key)
     if a is None:
         if len(_views) > 256:
             _views.clear()
-        a = _views[key] = np.frombuffer(ffi.buffer(ptr, 8 * n), dtype=np.float64)
+        a = np.frombuffer(ffi.buffer(ptr, 8 * n), dtype=np.float64)
+        a.flags.writeable = writeable
+        _views[key] = a
     return a
 
 
@@ -137,12 +141,12 @@ def lgnpy_vec_cb(handle, which, t, q, v, out):
     fn = cb.vec[which]
     outv = _view(out, nout)
     if which == lib.LGNPY_CB_ROOT:
-        outv[:] = fn(t, _view(q, nq), _view(v, nv))
+        outv[:] = fn(t, _view(q, nq, False), _view(v, nv, False))
         return 0
     if v == ffi.NULL:
-        fn(t, _view(q, nq), outv)
+        fn(t, _view(q, nq, False), outv)
     else:
-        fn(t, _view(q, nq), _view(v, nv), outv)
+        fn(t, _view(q, nq, False), _view(v, nv, False), outv)
     return 0
 
 
@@ -154,11 +158,12 @@ def lgnpy_mat_cb(handle, which, t, q, v, vdot, lam, mat):
     M = _view(mat, rows * nv).reshape((rows, nv), order="F")
     fn = cb.mat[which]
     if which in (lib.LGNPY_CB_MASS, lib.LGNPY_CB_JAC):
-        fn(t, _view(q, nq), M)
+        fn(t, _view(q, nq, False), M)
     elif which == lib.LGNPY_CB_DAMPING:
-        fn(t, _view(q, nq), _view(v, nv), M)
+        fn(t, _view(q, nq, False), _view(v, nv, False), M)
     else:
-        fn(t, _view(q, nq), _view(v, nv), _view(vdot, nv), _view(lam, m), M)
+        fn(t, _view(q, nq, False), _view(v, nv, False), _view(vdot, nv, False),
+           _view(lam, m, False), M)
     return 0
 
 

@@ -189,3 +189,16 @@ def test_bad_drive_laws():
     with lignum.Integrator(mb, step=1e-3) as sim:
         with pytest.raises(ValueError, match="non-finite"):
             sim.solve(0.01)
+
+
+def test_callback_inputs_are_read_only():
+    """A callback cannot write Lignum's q or v behind its back."""
+    mb = heavy_top()
+
+    def force(t, q, v, f):
+        q[0] = 0.0
+
+    mb.applied_force = force
+    with lignum.Integrator(mb, **SETTINGS["fixed"]) as sim:
+        with pytest.raises(ValueError, match="read-only"):
+            sim.solve(0.01)
