@@ -212,17 +212,20 @@ class Integrator:
         """Integrate to ``tout`` (or one step towards it with
         ``one_step=True``); returns ``"tout"``, ``"tstop"`` or ``"root"``.
         The state is then in :attr:`t`, :attr:`q`, :attr:`v`. Raises
-        :class:`LignumError` (state as before the failed step) or the
-        exception a Python callback raised."""
+        :class:`LignumError` or the exception a Python callback raised;
+        :attr:`t`, :attr:`q`, :attr:`v` then hold the state at the end of
+        the last step that succeeded (the failed step is undone)."""
         mem = self._mem()
         tout = as_real(tout, "tout")
-        tret = ffi.new("double *")
+        tret = ffi.new("double *", self.t)
         p = self._sys.ptr
         with self._running():
             flag = lib.LGNSolve(mem, tout, tret, p.q, p.v,
                                 lib.LGN_ONE_STEP if one_step else lib.LGN_NORMAL)
+            # also after a failure: q, v then hold the state at the last
+            # step's end, tret its time
+            self.t = tret[0]
             self._sys.check(flag, "LGNSolve")
-        self.t = tret[0]
         if flag == lib.LGN_ROOT_RETURN:
             return "root"
         if flag == lib.LGN_TSTOP_RETURN:

@@ -202,3 +202,24 @@ def test_callback_inputs_are_read_only():
     with lignum.Integrator(mb, **SETTINGS["fixed"]) as sim:
         with pytest.raises(ValueError, match="read-only"):
             sim.solve(0.01)
+
+
+def test_failure_after_steps_leaves_a_consistent_state():
+    """Steps succeed, then a callback raises: t, q, v are the state after
+    the last good step, equal to a run that stopped there."""
+    mb = heavy_top()
+
+    def force(t, q, v, f):
+        if t > 0.0025:
+            raise KeyboardInterrupt  # as a Ctrl-C inside a callback
+
+    mb.applied_force = force
+    with lignum.Integrator(mb, **SETTINGS["fixed"]) as sim, \
+            lignum.Integrator(heavy_top(), **SETTINGS["fixed"]) as ref:
+        with pytest.raises(KeyboardInterrupt):
+            sim.solve(0.01)
+        assert sim.stats["steps"] == 2
+        ref.solve(sim.t)
+        assert ref.stats["steps"] == 2
+        np.testing.assert_array_equal(sim.q, ref.q)
+        np.testing.assert_array_equal(sim.v, ref.v)
