@@ -214,7 +214,8 @@ class Integrator:
         The state is then in :attr:`t`, :attr:`q`, :attr:`v`. Raises
         :class:`LignumError` or the exception a Python callback raised;
         :attr:`t`, :attr:`q`, :attr:`v` then hold the state at the end of
-        the last step that succeeded (the failed step is undone)."""
+        the last step that succeeded, as the step left it (not projected
+        onto the constraints; the failed step is undone)."""
         mem = self._mem()
         tout = as_real(tout, "tout")
         tret = ffi.new("double *", self.t)

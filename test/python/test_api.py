@@ -104,9 +104,13 @@ def test_examples_run(tmp_path):
     ex = SOURCE_DIR / "python" / "examples"
     assert len((ex / "heavy_top.py").read_text().splitlines()) <= 30
     env = dict(os.environ, MPLBACKEND="Agg")
-    for name in ("heavy_top", "four_bar", "chain"):
-        subprocess.run([sys.executable, str(ex / f"{name}.py")], cwd=tmp_path, env=env,
-                       check=True, capture_output=True, timeout=120)
+    names = ("heavy_top", "four_bar", "chain")
+    runs = [subprocess.Popen([sys.executable, str(ex / f"{name}.py")], cwd=tmp_path, env=env,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE) for name in names]
+    for name, run in zip(names, runs):  # side by side
+        out, err = run.communicate(timeout=180)
+        assert run.returncode == 0, f"{name}.py: {err.decode()}"
+        assert b"status=0" in out
         assert (tmp_path / f"{name}.png").stat().st_size > 10000
 
 
