@@ -238,7 +238,7 @@ static int OneStep(SUNContext ctx, int k, double h, double tn, double tol, LteRe
     memset(&c, 0, sizeof c);
     c.h = h; c.t1 = tn + h;
     c.gamma_p = mem->bdf.c0; c.beta_p = mem->bdf.c0 * mem->bdf.c0;
-    c.scale = 1.0 / c.beta_p; c.hmat = 1.0 / mem->bdf.c0;
+    c.scale = 1.0 / c.beta_p; c.hmat = 1.0 / mem->bdf.c0; c.beta_n = c.scale / (h * h);
     memcpy(mem->ec.ele, est, sizeof est);
     lgnErrorNorm(mem, &c, x1, SUN_RCONST(1.0), &nrm);
     memcpy(estp, mem->ec.ele, sizeof estp);

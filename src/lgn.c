@@ -36,6 +36,7 @@ void *LGNCreate(SUNContext sunctx)
   mem->red.mode     = LGN_REDUNDANT_ELIMINATE;
   mem->kinematics   = LGN_KINEMATICS_SIMPLIFIED;
   mem->kin          = lgnKinematicsOps(LGN_KINEMATICS_SIMPLIFIED);
+  mem->fam          = lgnFamilyOps(LGN_FAMILY_NEWMARK);
   mem->rtol         = LGN_RTOL_DEFAULT;
   mem->atol         = LGN_ATOL_DEFAULT;
   mem->maxcor       = LGN_MAXCOR_DEFAULT;
@@ -468,8 +469,7 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
       flag = LGN_TOO_MUCH_WORK;
       break;
     }
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFAdaptiveStep(mem, tout)
-                                         : lgnAdaptiveStep(mem, tout);
+    flag = mem->fam->adaptive_step(mem, tout);
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     nstloc++;
@@ -662,7 +662,7 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
     stop = mem->tstop_set &&
            mem->tn + mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)) >= mem->tstop;
     if (stop) hstep = mem->tstop - mem->tn;
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    flag = mem->fam->step(mem, hstep);
     if (flag == LGN_SUCCESS && stop) mem->tn = mem->tstop; /* exact arrival */
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0) {
@@ -703,10 +703,10 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
     /* BDF keeps its grid (a shortened step would enter its history with
      * an arbitrary step ratio): it steps past tout and interpolates there,
      * but never past a stop time */
-    if (mem->family == LGN_FAMILY_BDF && !stop &&
+    if (mem->fam->keeps_grid && !stop &&
         remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
       hstep = mem->h;
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    flag = mem->fam->step(mem, hstep);
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tend; /* exact arrival */

@@ -346,6 +346,7 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   c->beta_p  = mem->bdf.c0 * mem->bdf.c0;
   c->scale   = SUN_RCONST(1.0) / c->beta_p;
   c->hmat    = SUN_RCONST(1.0) / mem->bdf.c0;
+  c->beta_n  = c->scale / (h * h); /* scale = beta_n h^2 for Newton */
   c->qscale  = SUN_RCONST(1.0);
   for (i = 0; i < mem->nq; i++) c->qscale = SUNMAX(c->qscale, fabs(lgnData(mem->q)[i]));
   c->qscale = lgnMaxAll(mem, c->qscale);

@@ -16,7 +16,7 @@
  * from its derivatives, with v = T(s) s' / h and
  * vdot = Tdot(s, s'/h) s'/h + T(s) s'' / h^2 (vdot is first order).
  * The BDF family interpolates with its own polynomials instead, of the
- * order of its last step (BDFDenseOutput).
+ * order of its last step (lgnBDFDenseOutput).
  * ---------------------------------------------------------------------------*/
 
 #include <string.h>
@@ -29,7 +29,7 @@
  * (x_{n+1} = sigma, x_n = 0, x_{n-j} = log(q_n^{-1} q_{n-j})) and v:
  *   q(t) = q_n o exp(P_x(t)),  v(t) = P_v(t),  vdot(t) = P_v'(t),
  * of the method's order (doc/theory.md §8). */
-static int BDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
+int lgnBDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
 {
   LGNGroup G = mem->G;
   const sunindextype nv = mem->nv;
@@ -82,7 +82,9 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
     memcpy(out, lgnData(x), (size_t)(k == 0 ? mem->nq : nv) * sizeof(sunrealtype));
     return LGN_SUCCESS;
   }
-  if (mem->family == LGN_FAMILY_BDF && mem->bdf.nhist >= 2) return BDFDenseOutput(mem, t, k, out);
+  /* the family's own interpolant (BDF: once two points are in its history) */
+  if (mem->fam->dense_output != NULL && mem->bdf.nhist >= 2)
+    return mem->fam->dense_output(mem, t, k, out);
   /* m1 = h T(s_1)^{-1} v_{n+1} */
   ret = G->ops.tangent_inverse_apply(G, s1, lgnData(mem->v), m1);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");

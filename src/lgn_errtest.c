@@ -174,7 +174,7 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 {
   const sunindextype m = mem->m;
-  const sunrealtype hs = mem->family == LGN_FAMILY_BDF ? c->h : SUN_RCONST(1.0);
+  const sunrealtype hs = mem->fam->error_per_step ? c->h : SUN_RCONST(1.0);
   sunrealtype s[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)}, w; /* sum, rows */
   sunindextype i;
   int ret = LGN_SUCCESS;

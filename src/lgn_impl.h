@@ -361,6 +361,7 @@ typedef struct LGNMemRec {
   const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
   int family;               /* LGN_FAMILY_NEWMARK or LGN_FAMILY_BDF        */
+  const struct LGNFamilyOps *fam; /* its operations (lgn_family.c)         */
 
   /* ---- BDF (lgn_bdf.c): the history q_{n-j}, v_{n-j} at t_{n-j} ---- */
   struct LGNBDFRec bdf; /* the BDF family: settings, history, order control */
@@ -624,6 +625,8 @@ typedef struct {
   sunrealtype qscale;  /* max(1, |q_n|_max): size of the configuration       */
   sunrealtype hmat;    /* the step the iteration matrix depends on: h (Newmark),
                         * 1/c0 (BDF), compared for its reuse                */
+  sunrealtype beta_n;  /* Newton's beta: scale = beta_n h^2 (the multipliers'
+                        * roundoff floor): beta (Newmark), 1/(c0 h)^2 (BDF) */
 } LGNStepCoeffs;
 
 /* The scaled iteration matrix as a sum of terms (lgn_matrix.c):
@@ -752,6 +755,9 @@ void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunr
 /* ---- lgn_dense.c: output between steps ---------------------------------- */
 
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+/* The BDF family's interpolating polynomials (its table's dense output,
+ * used once its history holds two points). */
+int lgnBDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 
 /* ---- lgn_output.c: the outputs LGNSolve and LGNGetDky return ------------- */
 
@@ -783,6 +789,33 @@ sunrealtype lgnFirstStep(LGNMem mem, sunrealtype tout);
 
 int lgnBDFStep(LGNMem mem, sunrealtype h);
 int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout);
+
+/* ---- lgn_family.c: the method families, one table each ----------------- */
+
+/* A method family: what the driver, the getters, the dense output, the
+ * error norm and Newton ask of it. Adding a family is adding its files and
+ * one of these tables (lgnFamilyOps). */
+typedef struct LGNFamilyOps {
+  const char *name;
+  int id;                      /* LGN_FAMILY_*                              */
+  sunbooleantype error_per_step; /* the error test in the units of the step
+                                  (else per unit step, lgnErrorNorm)       */
+  sunbooleantype keeps_grid;   /* fixed steps: step past tout and interpolate
+                                  rather than shorten the last step        */
+  sunbooleantype ggl_at_tn;    /* GGL corrects with B(q_n) (Newton's GGL
+                                  correction, the Jacobian at t_n)         */
+  int (*prepare)(LGNMem mem);  /* its work space before the first step
+                                  (NULL: none beyond lgnAllocWork)         */
+  int (*step)(LGNMem mem, sunrealtype h);               /* a fixed step      */
+  int (*adaptive_step)(LGNMem mem, sunrealtype tout);   /* error-controlled  */
+  int (*dense_output)(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+                               /* between t_n and t_{n+1} (NULL, or the BDF
+                                  history short of two points: the Hermite
+                                  interpolant of lgn_dense.c)              */
+  int (*order)(const struct LGNMemRec *mem, sunbooleantype last);
+} LGNFamilyOps;
+
+const LGNFamilyOps *lgnFamilyOps(int family);
 
 /* ---- lgn_root.c: events (root finding on the dense output) ------------- */
 

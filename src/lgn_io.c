@@ -236,6 +236,7 @@ static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
   mem->beta    = beta;
   mem->gamma   = gamma;
   mem->family  = LGN_FAMILY_NEWMARK; /* (back) to the Newmark family */
+  mem->fam     = lgnFamilyOps(LGN_FAMILY_NEWMARK);
   mem->kin     = lgnKinematicsOps(mem->kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
@@ -251,6 +252,7 @@ int LGNSetBDF(void *lgn_mem, int maxord)
     return LGN_ILL_INPUT;
   }
   mem->family     = LGN_FAMILY_BDF;
+  mem->fam        = lgnFamilyOps(LGN_FAMILY_BDF);
   mem->bdf.maxord = maxord;
   mem->kin        = lgnBDFOps();
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
@@ -280,7 +282,7 @@ int LGNGetCurrentOrder(void *lgn_mem, int *order)
     LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf.order : 2;
+  *order = mem->fam->order(mem, SUNFALSE);
   return LGN_SUCCESS;
 }
 
@@ -292,7 +294,7 @@ int LGNGetLastOrder(void *lgn_mem, int *order)
     LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf.last_order : 2;
+  *order = mem->fam->order(mem, SUNTRUE);
   return LGN_SUCCESS;
 }
 

@@ -121,9 +121,8 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
    * each with one division */
   const sunrealtype sigma_atol  = atol * h + roundoff;
   const sunrealtype lambda_unit = c->scale / h;
-  /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
-  const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
-  const sunrealtype lambda_atol = mem->nls.latol + roundoff / (beta * h);
+  /* the family's beta (c->beta_n: scale = beta_n h^2) */
+  const sunrealtype lambda_atol = mem->nls.latol + roundoff / (c->beta_n * h);
   const sunbooleantype ggl = m > 0 && mem->constr_index == LGN_CONSTR_GGL;
   const sunrealtype n = mem->ranks.nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->ranks.m_all;
   sunrealtype sum[2]; /* the configuration and multiplier parts */
@@ -335,7 +334,7 @@ static void GGLCorrection(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype 
   sunindextype i, k, nv = mem->nv, m = mem->m;
   const sunrealtype *Bn = mem->ggl_Bn;
   sunrealtype w;
-  if (mem->family == LGN_FAMILY_BDF) {
+  if (!mem->fam->ggl_at_tn) { /* BDF: mu at the iterate */
     for (i = 0; i < m; i++) mem->ggl_mu[i] += c->gamma_p * dnu[i];
     return;
   }

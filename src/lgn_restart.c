@@ -775,7 +775,7 @@ static void CopyState(LGNMem mem, const unsigned char *p, size_t len)
 static int PrepareRecord(LGNMem mem)
 {
   int flag = lgnEnsureWork(mem);
-  if (flag == LGN_SUCCESS && mem->family == LGN_FAMILY_BDF) flag = lgnAgree(mem, lgnAllocBDF(mem));
+  if (flag == LGN_SUCCESS && mem->fam->prepare != NULL) flag = lgnAgree(mem, mem->fam->prepare(mem));
   if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0) flag = lgnAgree(mem, lgnAllocRootVectors(mem));
   return flag;
 }

@@ -29,6 +29,7 @@ LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
   c.scale   = mem->beta * h * h;
   c.qscale  = SUN_RCONST(1.0);
   c.hmat    = h;
+  c.beta_n  = mem->beta;
   for (i = 0; i < mem->nq; i++) c.qscale = SUNMAX(c.qscale, fabs(q[i]));
   c.qscale = lgnMaxAll(mem, c.qscale); /* the same Newton test on every rank */
   return c;
