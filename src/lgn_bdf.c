@@ -846,27 +846,10 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
         factor = BDF_CUT_FAIL;
       }
     } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
-      /* singular on any rank: the same flag on all */
-      const sunbooleantype singular =
-          lgnMaxAll(mem, flag == LGN_RECOVERABLE && mem->ls.last_flag != 0 ? SUN_RCONST(1.0)
-                                                                             : SUN_RCONST(0.0)) >
-          SUN_RCONST(0.0);
-      ncf++;
-      if (ncf >= mem->ec.maxncf || h <= mem->ec.hmin) {
-        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE
-                      : singular                 ? LGN_LSETUP_FAIL
-                                                 : LGN_REPTD_CALLBACK_ERR;
-        LGN_ERROR(mem, out,
-                  MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
-                  "is kept).%s", (double)mem->tn,
-                  flag == LGN_CONV_FAILURE ? "the Newton iteration failed to converge"
-                  : singular ? "the iteration matrix was singular"
-                             : "a callback failed recoverably",
-                  ncf, (double)h, h <= mem->ec.hmin ? " at the minimum step size" : "",
-                  singular ? mem->diag.text : "");
-        return out;
-      }
-      factor = BDF_CUT_FAIL;
+      /* Newton, a singular matrix, a callback: the shared policy (lgn_failure.c) */
+      flag = lgnHandleNFlag(mem, flag, h, &ncf);
+      if (flag != LGN_RECOVERABLE) return flag;
+      factor = LGN_CUT_NFAIL;
     } else {
       return flag; /* unrecoverable: reported where it happened */
     }

@@ -743,6 +743,18 @@ void lgnFixedNewtonTolerances(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
+/* ---- lgn_failure.c: the step-failure policy of the error-controlled loops */
+
+/* The cut of h after a Newton, singular-matrix or recoverable callback
+ * failure (every family; IDA's IDAHandleNFlag cuts by 1/4 as well). */
+#define LGN_CUT_NFAIL SUN_RCONST(0.25)
+
+/* The flag of a failed attempt (LGN_CONV_FAILURE or LGN_RECOVERABLE) at
+ * step size h, the ncf-th of the step: LGN_RECOVERABLE (retry with
+ * h * LGN_CUT_NFAIL) or the final flag, reported, after maxncf failures or
+ * at hmin: LGN_CONV_FAILURE, LGN_LSETUP_FAIL or LGN_REPTD_CALLBACK_ERR. */
+int lgnHandleNFlag(LGNMem mem, int flag, sunrealtype h, int *ncf);
+
 /* ---- lgn_errtest.c: the local error of a step --------------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
