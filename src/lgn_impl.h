@@ -549,6 +549,22 @@ int lgnAllocRoots(LGNMem mem, int nrtfn);
 int lgnAllocRootVectors(LGNMem mem);
 void lgnFreeRoots(LGNMem mem);
 
+/* ---- lgn_workspace.c: the work blocks, one table of slices each -------- */
+
+/* The blocks: the step's arrays (sigma ... ggl_Bn), T's packed blocks, the
+ * outputs, the BDF history. Each is one allocation; the table that points
+ * its slices also counts it (lgnWorkSpace), so the two cannot drift. */
+#define LGN_WORK_STEP    0
+#define LGN_WORK_TANGENT 1
+#define LGN_WORK_OUTPUT  2
+#define LGN_WORK_BDF     3
+#define LGN_WORK_NBLOCKS 4
+
+int lgnWorkBlockAlloc(LGNMem mem, int block);      /* LGN_MEM_FAIL, no message */
+void lgnWorkBlockFree(LGNMem mem, int block);      /* and its slices NULL      */
+size_t lgnWorkBlockLength(const struct LGNMemRec *mem, int block); /* reals */
+sunbooleantype lgnWorkBlockAllocated(const struct LGNMemRec *mem, int block);
+
 /* Report an error from inside a function: fills in line, function and file. */
 #define LGN_ERROR(mem, code, ...) \
   lgnProcessError((mem), (code), __LINE__, __func__, __FILE__, __VA_ARGS__)

@@ -481,15 +481,9 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->ranks.hx_x);
   free(mem->ranks.hx_ext);
   mem->ranks.hx_ext = mem->ranks.hx_ext2 = NULL;
-  free(mem->sigma);
-  mem->sigma = NULL;
-  mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
-  mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
-  mem->ec.ele = mem->ec.ewt = mem->ec.a_scaled = mem->dense.incr = mem->dense.zero_nv = NULL;
-  mem->ggl_mu = mem->ggl_Bn = NULL;
+  lgnWorkBlockFree(mem, LGN_WORK_STEP);
   mem->ggl_Bn_valid = SUNFALSE;
-  free(mem->out.vdot); /* the outputs' block (lgn_output.c) */
-  mem->out.vdot = mem->out.lambda = mem->out.save = mem->out.lwork = NULL;
+  lgnWorkBlockFree(mem, LGN_WORK_OUTPUT); /* the outputs' block (lgn_output.c) */
   mem->out.valid = SUNFALSE;
   DestroyVector(&mem->out.q);
   DestroyVector(&mem->out.v);
@@ -497,15 +491,11 @@ void lgnFreeWork(LGNMem mem)
   mem->diag.red  = NULL;
   mem->diag.nred = 0;
   mem->diag.pivot = -1;
-  mem->dense.work = NULL;
   mem->ec.a_step = NULL;
   mem->dense.valid = SUNFALSE;
   mem->h_prev = SUN_RCONST(0.0);
-  free(mem->Tm);
-  mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
-  free(mem->bdf.q);
-  mem->bdf.q = mem->bdf.v = mem->bdf.x = mem->bdf.rx = mem->bdf.rv = mem->bdf.l = NULL;
-  mem->bdf.xpred = mem->bdf.vpred = mem->bdf.dd = mem->bdf.ele_keep = NULL;
+  lgnWorkBlockFree(mem, LGN_WORK_TANGENT);
+  lgnWorkBlockFree(mem, LGN_WORK_BDF);
   mem->bdf.nhist = 0;
   BlocksFree(mem);
   mem->work_done = SUNFALSE;
@@ -887,54 +877,20 @@ int lgnAllocWork(LGNMem mem)
     }
   }
   if (!fail) {
-    /* sigma, sigma_dot and sigma_ddot of the exact variant
-     * (lgn_kinematics.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag,
-     * ele, ewt, a_scaled, incr, zero_nv (nv each), the dense output's
-     * scratch (4 nv), lambda_prev, work_m and GGL's mu (m each) and GGL's
-     * B(q_n) (m nv, the Newmark family) in one block */
-    const sunindextype nbn = mem->constr_index == LGN_CONSTR_GGL ? m * nv : 0;
-    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 3 * m + nbn), sizeof(sunrealtype));
-    /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
-    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->blk.tlen + 3 * mem->blk.max),
-                                       sizeof(sunrealtype));
+    /* the step's arrays, T's blocks, the outputs (lgn_workspace.c) */
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_STEP) != LGN_SUCCESS;
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_TANGENT) != LGN_SUCCESS || fail;
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_OUTPUT) != LGN_SUCCESS || fail;
     /* the redundant constraints of a singular matrix (lgn_diag.c) */
     mem->diag.red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
-    /* the outputs (lgn_output.c): vdot, lambda, the kept slots */
-    mem->out.vdot = (sunrealtype *)calloc((size_t)(mem->nq + 4 * nv + 3 * m),
-                                          sizeof(sunrealtype));
-    fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag.red == NULL ||
-                  mem->out.vdot == NULL);
+    fail          = fail || mem->diag.red == NULL;
   }
   if (lgnAgree(mem, fail ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeWork(mem);
     if (fail) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->Tv         = mem->Tm + mem->blk.tlen;
-  mem->Ta         = mem->Tm + 2 * mem->blk.tlen;
-  mem->blk_work   = mem->Tm + 3 * mem->blk.tlen;
-  mem->sigma_dot  = mem->sigma + nv;
-  mem->sigma_ddot = mem->sigma + 2 * nv;
-  mem->a_pred     = mem->sigma + 3 * nv;
-  mem->work_nv    = mem->sigma + 4 * nv;
-  mem->work2_nv   = mem->sigma + 5 * nv;
-  mem->vdot_prev  = mem->sigma + 6 * nv;
-  mem->mass_diag  = mem->sigma + 7 * nv;
-  mem->ec.ele        = mem->sigma + 8 * nv;
-  mem->ec.ewt        = mem->sigma + 9 * nv;
-  mem->ec.a_scaled   = mem->sigma + 10 * nv;
-  mem->dense.incr       = mem->sigma + 11 * nv;
-  mem->dense.zero_nv    = mem->sigma + 12 * nv;
-  mem->dense.work = mem->sigma + 13 * nv;
-  mem->lambda_prev = m > 0 ? mem->sigma + 17 * nv : NULL;
-  mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
-  mem->ggl_mu      = m > 0 && mem->constr_index == LGN_CONSTR_GGL ? mem->sigma + 17 * nv + 2 * m
-                                                                  : NULL;
-  mem->ggl_Bn      = mem->ggl_mu != NULL ? mem->ggl_mu + m : NULL;
   mem->ggl_Bn_valid = SUNFALSE;
-  mem->out.lambda  = m > 0 ? mem->out.vdot + nv : NULL;
-  mem->out.save    = mem->out.vdot + nv + m;
-  mem->out.lwork   = m > 0 ? mem->out.save + mem->nq + 3 * nv + m : NULL;
   mem->out.valid   = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->lambda_valid = SUNFALSE;
@@ -958,36 +914,15 @@ int lgnEnsureWork(LGNMem mem)
   return flag;
 }
 
-/* The length of the BDF history and work arrays (lgn_bdf.c), allocated
- * once in one block (lgnAllocBDF) and counted by lgnWorkSpace:
- * LGN_BDF_MAXHIST points of q (nq) and v, x (nv), r_x, r_v, the predictor
- * (4 nv), the divided differences ((LGN_BDF_MAXHIST + 1) nv), the
- * multipliers (LGN_BDF_MAXHIST m) and a copy of the step's estimate (nv). */
-static size_t BDFBlockLength(const LGNMem mem)
-{
-  const size_t H = LGN_BDF_MAXHIST;
-  return H * ((size_t)mem->nq + (size_t)mem->m) + (3 * H + 6) * (size_t)mem->nv;
-}
-
+/* The BDF history and work arrays (lgn_bdf.c), allocated once in one
+ * block (lgn_workspace.c's BDF table) and counted by lgnWorkSpace. */
 int lgnAllocBDF(LGNMem mem)
 {
-  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
-  const size_t H = LGN_BDF_MAXHIST;
   if (mem->bdf.q != NULL) return LGN_SUCCESS;
-  mem->bdf.q = (sunrealtype *)calloc(BDFBlockLength(mem), sizeof(sunrealtype));
-  if (mem->bdf.q == NULL) {
+  if (lgnWorkBlockAlloc(mem, LGN_WORK_BDF) != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->bdf.v     = mem->bdf.q + H * nq;
-  mem->bdf.x     = mem->bdf.v + H * nv;
-  mem->bdf.rx    = mem->bdf.x + H * nv;
-  mem->bdf.rv    = mem->bdf.rx + nv;
-  mem->bdf.xpred = mem->bdf.rv + nv;
-  mem->bdf.vpred = mem->bdf.xpred + nv;
-  mem->bdf.dd    = mem->bdf.vpred + nv;
-  mem->bdf.l     = mem->bdf.dd + (H + 1) * nv;
-  mem->bdf.ele_keep = mem->bdf.l + H * m;
   mem->bdf.nhist = 0;
   return LGN_SUCCESS;
 }
@@ -1074,9 +1009,9 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   }
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
-    rw += 17 * nv + 3 * m + 3 * (long int)(mem->blk.tlen + mem->blk.max);
-    if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
-    rw += nq + 4 * nv + 3 * m;                            /* the outputs' block  */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_STEP);    /* the work blocks */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_TANGENT); /* (lgn_workspace.c) */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_OUTPUT);
     if (mem->out.q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
     if (mem->out.lq != NULL) rw += nq + nv;               /* the last output's   */
     iw += 3 * (mem->blk.n + 1) + nv + mem->blk.n;           /* block tables        */
@@ -1092,8 +1027,8 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     lgnSparseWorkSpace(mem, &rw, &iw);
     lgnKluCopySpace(mem->klu.copy, &rw, &iw);
   }
-  if (mem->bdf.q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
-    rw += (long int)BDFBlockLength(mem);
+  if (lgnWorkBlockAllocated(mem, LGN_WORK_BDF)) /* the BDF history (lgnAllocBDF) */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_BDF);
   if (mem->kry.own_A) MatrixSpace(mem->ls.A, &rw, &iw); /* Krylov: Lignum's A */
   if (mem->red.B != NULL) { /* redundant rows: the user's B, 2 vectors, the maps */
     MatrixSpace(mem->red.B, &rw, &iw);
