@@ -75,7 +75,13 @@ typedef enum {
  * The memory record
  * ===========================================================================*/
 
-/* A run across MPI ranks and its ghost bodies (lgn_parallel.c, lgn_ghosts.c, lgn_mem.c) */
+/* The record's sub-records, one per subsystem, as IDA keeps its linear
+ * solver's state in IDALsMem: mem->sub.field. The files that may write a
+ * sub-record's fields are listed with it and in doc/architecture.md's
+ * owners table, which the test arch_check_owners enforces; every other file
+ * reads them. Their arrays are cut from the work blocks (lgn_workspace.c). */
+
+/* A run across MPI ranks and its ghost bodies (writers: lgn_mem.c, lgn_ghosts.c) */
 struct LGNRanksRec {
   LGNParallel par;          /* the communicator of q0 and v0              */
   sunrealtype nv_all;       /* nv and m summed over the ranks: the sizes  */
@@ -92,7 +98,7 @@ struct LGNRanksRec {
   sunrealtype *hx_ext2;     /* nv + m scratch                               */
 };
 
-/* The BDF family: settings, history q_{n-j}, v_{n-j} at t_{n-j}, order control (lgn_bdf.c) */
+/* The BDF family: settings, history q_{n-j}, v_{n-j} at t_{n-j}, order control (writers: lgn_bdf.c, lgn_mem.c, lgn_io.c, lgn.c) */
 struct LGNBDFRec {
   int maxord;           /* LGNSetBDF: 1 ... 5                          */
   int form;             /* LGNSetBDFForm: LGN_BDF_VARIABLE_COEFF / ..._FIXED_LEADING */
@@ -122,7 +128,7 @@ struct LGNBDFRec {
   long int nord[LGN_BDF_MAXORD + 1]; /* steps taken at each order      */
 };
 
-/* The diagonal blocks of T: the leaves of the group (lgn_mem.c) */
+/* The diagonal blocks of T: the leaves of the group (writers: lgn_mem.c) */
 struct LGNBlocksRec {
   int n;
   sunindextype *voff;   /* nblk + 1 offsets in v                       */
@@ -134,12 +140,12 @@ struct LGNBlocksRec {
   sunindextype tlen;        /* packed length (identity blocks store none)  */
 };
 
-/* Difference-quotient scratch vectors (lgn_dq.c) */
+/* Difference-quotient scratch vectors (writers: lgn_mem.c) */
 struct LGNDQRec {
   N_Vector q, v, g, r, z;
 };
 
-/* The linear solver (LS and A not owned) (lgn_ls.c) */
+/* The linear solver (writers: lgn_ls.c, lgn_krylov.c, lgn_mem.c, lgn.c, lgn_adapt.c, lgn_bdf.c) */
 struct LGNLinSolRec {
   SUNLinearSolver LS;
   SUNMatrix A;
@@ -154,7 +160,7 @@ struct LGNLinSolRec {
   long int last_flag;       /* the last linear solver flag (lgn_diag.c)  */
 };
 
-/* Krylov solvers and preconditioners (lgn_krylov.c) */
+/* Krylov solvers and preconditioners (writers: lgn_krylov.c, lgn_ls.c, lgn_matrix.c, lgn_mem.c, lgn.c) */
 struct LGNKrylovRec {
   sunbooleantype on;    /* LS is a matrix-free iterative solver: A is
                                Lignum's own CSC matrix (own_A)             */
@@ -181,7 +187,7 @@ struct LGNKrylovRec {
                                in the current Krylov solve (0: none)      */
 };
 
-/* Lignum's solves with a copy of KLU's factors (lgn_ls.c, lgn_klu_solve.c) */
+/* Lignum's solves with a copy of KLU's factors (writers: lgn_ls.c, lgn_mem.c, lgn_restart.c, lgn.c) */
 struct LGNKluRec {
   sunbooleantype own_solves; /* LGNSetOwnKLUSolves (default SUNFALSE)  */
   sunbooleantype valid;      /* klu holds the factors now in LS         */
@@ -200,7 +206,7 @@ struct LGNKluRec {
   long int nnocopy;          /* no copy possible (sizes, memory, A)     */
 };
 
-/* Redundant constraints (lgn_redundancy.c) */
+/* Redundant constraints (writers: lgn_redundancy.c, lgn_mem.c, lgn_io.c, lgn.c) */
 struct LGNRedundancyRec {
   sunindextype m_user;      /* the user's constraint rows (LGNSetConstraints);
                                m counts those the integrator keeps         */
@@ -220,7 +226,7 @@ struct LGNRedundancyRec {
   SUNLinearSolver LSuser; /* and red_LS stand in for them              */
 };
 
-/* The diagnosis of the last singular matrix (lgn_diag.c) */
+/* The diagnosis of the last singular matrix (writers: lgn_diag.c, lgn_krylov.c, lgn_mem.c) */
 struct LGNDiagRec {
   sunindextype *red;   /* redundant constraints (m; work space)       */
   sunindextype nred;   /* their number (0: none found)                */
@@ -228,7 +234,7 @@ struct LGNDiagRec {
   char text[400];       /* the diagnosis of the last singular matrix  */
 };
 
-/* The Newton iteration: tolerances, the reused factorisation (lgn_newton.c) */
+/* The Newton iteration: tolerances, the reused factorisation (writers: lgn_newton.c, lgn_krylov.c, lgn_mem.c, lgn_restart.c, lgn.c) */
 struct LGNNewtonRec {
   sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
   sunrealtype lu_h;         /* the step size it was built with             */
@@ -244,7 +250,7 @@ struct LGNNewtonRec {
   sunrealtype latol;
 };
 
-/* Error control and step-size selection (LGN_STEP_ADAPTIVE) (lgn_adapt.c, lgn_errtest.c, lgn_bdf.c) */
+/* Error control and step-size selection (writers: lgn_adapt.c, lgn_errtest.c, lgn_bdf.c, lgn_step.c, lgn_output.c, lgn_mem.c, lgn_io.c, lgn.c) */
 struct LGNErrConRec {
   int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
   sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
@@ -267,7 +273,7 @@ struct LGNErrConRec {
   sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
 };
 
-/* The last step, for dense output (lgn_dense.c) */
+/* The last step, for dense output (writers: lgn_step.c, lgn_bdf.c, lgn_kinematics.c, lgn_mem.c) */
 struct LGNDenseRec {
   sunrealtype tprev;        /* its start t_n; it ends at tn                */
   sunbooleantype valid;     /* q1, v1, vdot1 hold its start, and incr
@@ -277,7 +283,7 @@ struct LGNDenseRec {
   sunrealtype *work;  /* the dense output's scratch (4 nv)           */
 };
 
-/* What LGNSolve and LGNGetDky return (lgn_output.c) */
+/* What LGNSolve and LGNGetDky return (writers: lgn_output.c, lgn_mem.c, lgn.c) */
 struct LGNOutputRec {
   sunrealtype *keep;    /* the last output's vdot and lambda kept while
                                a setter dropped the work space (or NULL) */
@@ -299,7 +305,7 @@ struct LGNOutputRec {
   long int n;            /* outputs made consistent or projected        */
 };
 
-/* Root finding (events) (lgn_root.c) */
+/* Root finding (writers: lgn_root.c, lgn_mem.c, lgn.c) */
 struct LGNRootRec {
   int nrtfn;                /* number of root functions (0: off)           */
   LGNRootFn gfun;           /* g(t, q, v, gout, user_data)                 */

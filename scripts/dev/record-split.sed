@@ -5,6 +5,12 @@
 # ((LGNMem)x)->field; another name of the record is left alone), and the
 # restart tables' SCALAR/ARRAY/INLINE(field, ...) entries of moved fields
 # (the file keeps the old name). GNU sed, -E; apply once.
+# Not rewritten (port by hand; the compiler names each): the record under
+# another name (FlattenGroup's `out`, a test's `m`), and a macro that pastes a
+# field name after mem-> (KRYLOV_GETTER in lgn_krylov.c now writes
+# mem->kry.FIELD). New fields of a sub-record go into its struct in
+# lgn_impl.h, and a new writer of one into doc/architecture.md's owners
+# table (the test arch_check_owners).
 # ---- ranks: struct LGNRanksRec (a run across MPI ranks and its ghost bodies)
 s/(\b(mem|mon|moff|mflip)|\(\*mem\)|\(\(LGNMem\)[A-Za-z0-9_.>-]+\))->par\b/\1->ranks.par/g
 s/\b(SCALAR|ARRAY|INLINE)\(par,/\1N(par, ranks.par,/g
