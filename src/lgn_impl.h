@@ -79,7 +79,8 @@ typedef enum {
  * solver's state in IDALsMem: mem->sub.field. The files that may write a
  * sub-record's fields are listed with it and in doc/architecture.md's
  * owners table, which the test arch_check_owners enforces; every other file
- * reads them. Their arrays are cut from the work blocks (lgn_workspace.c). */
+ * reads them. The arrays of the step, the outputs and the BDF history are
+ * cut from the work blocks (lgn_workspace.c). */
 
 /* A run across MPI ranks and its ghost bodies (writers: lgn_mem.c, lgn_ghosts.c) */
 struct LGNRanksRec {
