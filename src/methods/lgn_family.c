@@ -3,10 +3,10 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * The method families, one table of operations each (LGNFamilyOps,
- * lgn_impl.h): the Newmark / generalized-alpha family (lgn_step.c,
- * lgn_adapt.c, lgn_errtest.c, the Hermite output of lgn_dense.c) and the
- * BDF family (lgn_bdf.c and its interpolating polynomials in lgn_dense.c).
- * The driver (lgn.c), the getters (lgn_io.c), the dense output, the error
+ * lgn_impl.h): the Newmark / generalized-alpha family (lgn_newmark_step.c,
+ * lgn_newmark_adapt.c, lgn_newmark_errtest.c, the Hermite output of lgn_dense_output.c) and the
+ * BDF family (lgn_bdf.c and its interpolating polynomials in lgn_dense_output.c).
+ * The driver (lgn.c), the getters (lgn_setget.c), the dense output, the error
  * norm and Newton reach the family only through mem->fam; adding a family
  * is adding its files and one table here.
  * ---------------------------------------------------------------------------*/
@@ -35,7 +35,7 @@ static const LGNFamilyOps NewmarkFamily = {
   NULL,                 /* no work space of its own beyond lgnAllocWork     */
   lgnStep,
   lgnAdaptiveStep,
-  NULL,                 /* the cubic Hermite interpolant of lgn_dense.c     */
+  NULL,                 /* the cubic Hermite interpolant of lgn_dense_output.c     */
   NewmarkOrder,
 };
 

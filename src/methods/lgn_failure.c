@@ -3,7 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * The step-failure policy the error-controlled loops of every family share
- * (lgn_adapt.c, lgn_bdf.c), on the model of IDA's IDAHandleNFlag: a Newton
+ * (lgn_newmark_adapt.c, lgn_bdf.c), on the model of IDA's IDAHandleNFlag: a Newton
  * iteration that did not converge, a singular iteration matrix (the setup
  * is recoverable inside the loops: lgnLsSetup returns LGN_RECOVERABLE) or a
  * callback that asked for a retry is retried with the step cut by

@@ -43,7 +43,7 @@
 /* The method families (LGNSetNewmark ... / LGNSetBDF). */
 #define LGN_FAMILY_NEWMARK 0
 #define LGN_FAMILY_BDF     1
-#define LGN_BDF_MAXORD     5
+#define LGN_BDF_MAXORD     LGN_BDF_MAX_ORDER /* lignum.h */
 #define LGN_BDF_MAXHIST    (LGN_BDF_MAXORD + 2) /* points kept: order k + 2 */
 
 /* Which callback produced an error: used to pick the flag and message. */
@@ -99,7 +99,7 @@ struct LGNRanksRec {
   sunrealtype *hx_ext2;     /* nv + m scratch                               */
 };
 
-/* The BDF family: settings, history q_{n-j}, v_{n-j} at t_{n-j}, order control (writers: lgn_bdf.c, lgn_mem.c, lgn_io.c, lgn.c) */
+/* The BDF family: settings, history q_{n-j}, v_{n-j} at t_{n-j}, order control (writers: lgn_bdf.c, lgn_mem.c, lgn_setget.c, lgn.c) */
 struct LGNBDFRec {
   int maxord;           /* LGNSetBDF: 1 ... 5                          */
   int form;             /* LGNSetBDFForm: LGN_BDF_VARIABLE_COEFF / ..._FIXED_LEADING */
@@ -146,7 +146,7 @@ struct LGNDQRec {
   N_Vector q, v, g, r, z;
 };
 
-/* The linear solver (writers: lgn_ls.c, lgn_krylov.c, lgn_mem.c, lgn.c, lgn_adapt.c, lgn_bdf.c) */
+/* The linear solver (writers: lgn_ls.c, lgn_krylov.c, lgn_mem.c, lgn.c, lgn_newmark_adapt.c, lgn_bdf.c) */
 struct LGNLinSolRec {
   SUNLinearSolver LS;
   SUNMatrix A;
@@ -207,7 +207,7 @@ struct LGNKluRec {
   long int nnocopy;          /* no copy possible (sizes, memory, A)     */
 };
 
-/* Redundant constraints (writers: lgn_redundancy.c, lgn_mem.c, lgn_io.c, lgn.c) */
+/* Redundant constraints (writers: lgn_redundancy.c, lgn_mem.c, lgn_setget.c, lgn.c) */
 struct LGNRedundancyRec {
   sunindextype m_user;      /* the user's constraint rows (LGNSetConstraints);
                                m counts those the integrator keeps         */
@@ -251,7 +251,7 @@ struct LGNNewtonRec {
   sunrealtype latol;
 };
 
-/* Error control and step-size selection (writers: lgn_adapt.c, lgn_errtest.c, lgn_bdf.c, lgn_step.c, lgn_output.c, lgn_mem.c, lgn_io.c, lgn.c) */
+/* Error control and step-size selection (writers: lgn_newmark_adapt.c, lgn_newmark_errtest.c, lgn_bdf.c, lgn_newmark_step.c, lgn_output.c, lgn_mem.c, lgn_setget.c, lgn.c) */
 struct LGNErrConRec {
   int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
   sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
@@ -274,7 +274,7 @@ struct LGNErrConRec {
   sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
 };
 
-/* The last step, for dense output (writers: lgn_step.c, lgn_bdf.c, lgn_kinematics.c, lgn_mem.c) */
+/* The last step, for dense output (writers: lgn_newmark_step.c, lgn_bdf.c, lgn_kinematics.c, lgn_mem.c) */
 struct LGNDenseRec {
   sunrealtype tprev;        /* its start t_n; it ends at tn                */
   sunbooleantype valid;     /* q1, v1, vdot1 hold its start, and incr
@@ -451,7 +451,7 @@ typedef struct LGNMemRec {
   /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
   struct LGNKluRec klu; /* Lignum's solves with a copy of KLU's factors */
 
-  /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
+  /* ---- the factorised iteration matrix, for modified Newton (lgn_newmark_step.c) ---- */
   struct LGNNewtonRec nls; /* the Newton iteration: tolerances, the reused factorisation */
 
   /* ---- bookkeeping ---- */
@@ -460,12 +460,12 @@ typedef struct LGNMemRec {
   sunbooleantype mat_done;    /* model matrices allocated for the type of A */
   sunrealtype hlast;
 
-  /* ---- error control (LGN_STEP_ADAPTIVE; lgn_adapt.c, lgn_errtest.c) ---- */
+  /* ---- error control (LGN_STEP_ADAPTIVE; lgn_newmark_adapt.c, lgn_newmark_errtest.c) ---- */
   struct LGNErrConRec ec; /* error control and step-size selection (LGN_STEP_ADAPTIVE) */
   sunrealtype tstop;        /* LGNSetStopTime                              */
   sunbooleantype tstop_set;
 
-  /* ---- the last step, for dense output (lgn_dense.c) ---- */
+  /* ---- the last step, for dense output (lgn_dense_output.c) ---- */
   struct LGNDenseRec dense; /* the last step, for dense output */
 
   /* ---- what LGNSolve returns (lgn_output.c) ---- */
@@ -639,7 +639,7 @@ int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t);
 
 /* ---- lgn_kinematics.c: the kinematics variants -------------------------- */
 
-/* Per-step constants (lgn_step.c sets them). */
+/* Per-step constants (lgn_newmark_step.c sets them). */
 typedef struct {
   sunrealtype h, t1;
   sunrealtype beta_p;  /* beta'  = (1-am)/(h^2 beta (1-af)): d sigma_ddot / d sigma */
@@ -697,6 +697,10 @@ const LGNKinematicsOps *lgnBDFOps(void);
 void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
 void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 
+/* ---- lgn_family_settings.c: settings of one method family only ---- */
+int lgnRefuseOtherFamily(LGNMem mem, int family, sunbooleantype is_default, const char *func);
+int lgnCheckFamilySettings(LGNMem mem, const char *func);
+
 /* ---- lgn_matrix_sparse.c, lgn_matrix.c: the iteration matrix ------------ */
 
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
@@ -740,7 +744,7 @@ int lgnKrylovSetup(LGNMem mem);
 int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b);
 void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c);
 
-/* ---- lgn_ic.c: consistent initial values -------------------------------- */
+/* ---- lgn_consistent_ic.c: consistent initial values ---------------------- */
 
 int lgnInitialConditions(LGNMem mem); /* LGNSolve: the check, then lgnComputeIC */
 int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    */
@@ -778,7 +782,7 @@ int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
  * at hmin: LGN_CONV_FAILURE, LGN_LSETUP_FAIL or LGN_REPTD_CALLBACK_ERR. */
 int lgnHandleNFlag(LGNMem mem, int flag, sunrealtype h, int *ncf);
 
-/* ---- lgn_errtest.c: the local error of a step --------------------------- */
+/* ---- lgn_newmark_errtest.c: the local error of a step --------------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
 int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c);
@@ -787,7 +791,7 @@ int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);
 void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunrealtype *w);
 
-/* ---- lgn_dense.c: output between steps ---------------------------------- */
+/* ---- lgn_dense_output.c: output between steps ---------------------------- */
 
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 /* The BDF family's interpolating polynomials (its table's dense output,
@@ -803,7 +807,7 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky);
  * when off; the slots are kept. */
 int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm);
 
-/* ---- lgn_step.c: one step ----------------------------------------------- */
+/* ---- lgn_newmark_step.c: one step ---------------------------------------- */
 
 LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h);
 int lgnCheckProgress(LGNMem mem, sunrealtype h);
@@ -813,7 +817,7 @@ void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
 void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);
 
-/* ---- lgn_adapt.c: one error-controlled step ----------------------------- */
+/* ---- lgn_newmark_adapt.c: one error-controlled step ---------------------- */
 
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
@@ -846,7 +850,7 @@ typedef struct LGNFamilyOps {
   int (*dense_output)(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
                                /* between t_n and t_{n+1} (NULL, or the BDF
                                   history short of two points: the Hermite
-                                  interpolant of lgn_dense.c)              */
+                                  interpolant of lgn_dense_output.c)              */
   int (*order)(const struct LGNMemRec *mem, sunbooleantype last);
 } LGNFamilyOps;
 
