@@ -200,28 +200,28 @@ static int OneStep(SUNContext ctx, int k, double h, double tn, double tol, LteRe
   /* the state at t_n and the history t_{n-j} = t_n - j h */
   for (j = 0; j < np; j++) {
     const LGNRefHeavyTop *s = &ref[np - 1 - j];
-    mem->bdf_t[j] = s->t;
-    FromRef(s, mem->bdf_q + j * mem->nq, mem->bdf_v + j * mem->nv,
-            mem->bdf_l + j * mem->m);
+    mem->bdf.t[j] = s->t;
+    FromRef(s, mem->bdf.q + j * mem->nq, mem->bdf.v + j * mem->nv,
+            mem->bdf.l + j * mem->m);
   }
   FromRef(&ref[np - 1], lgnData(mem->q), lgnData(mem->v), lgnData(mem->lambda));
   mem->tn          = tn;
-  mem->bdf_nhist   = np;
-  mem->bdf_chart_t = NAN;
-  mem->bdf_order   = k;
+  mem->bdf.nhist   = np;
+  mem->bdf.chart_t = NAN;
+  mem->bdf.order   = k;
   flag = lgnBDFStep(mem, h);
   if (flag) {
     RunFree(&r);
     return flag;
   }
   /* x_{n+1} and the reference in the chart of q_n (bdf_q + nq after the push) */
-  mem->G->ops.compose_log(mem->G, mem->bdf_q + mem->nq, lgnData(mem->q), x1);
+  mem->G->ops.compose_log(mem->G, mem->bdf.q + mem->nq, lgnData(mem->q), x1);
   FromRef(&ref[np], qr, vr, NULL);
-  mem->G->ops.compose_log(mem->G, mem->bdf_q + mem->nq, qr, xr);
+  mem->G->ops.compose_log(mem->G, mem->bdf.q + mem->nq, qr, xr);
   memset(res, 0, sizeof *res);
   for (i = 0; i < 6; i++) {
     e[i]   = x1[i] - xr[i];
-    est[i] = (x1[i] - mem->bdf_xpred[i]) / (mem->bdf_c0 * (k + 1) * h);
+    est[i] = (x1[i] - mem->bdf.xpred[i]) / (mem->bdf.c0 * (k + 1) * h);
     w      = 1.0 / (tol + tol * fabs(x1[i]));
     res->true_x = fmax(res->true_x, fabs(e[i]));
     res->est_x  = fmax(res->est_x, fabs(est[i]));
@@ -237,15 +237,15 @@ static int OneStep(SUNContext ctx, int k, double h, double tn, double tol, LteRe
     sunrealtype nrm;
     memset(&c, 0, sizeof c);
     c.h = h; c.t1 = tn + h;
-    c.gamma_p = mem->bdf_c0; c.beta_p = mem->bdf_c0 * mem->bdf_c0;
-    c.scale = 1.0 / c.beta_p; c.hmat = 1.0 / mem->bdf_c0;
-    memcpy(mem->ele, est, sizeof est);
+    c.gamma_p = mem->bdf.c0; c.beta_p = mem->bdf.c0 * mem->bdf.c0;
+    c.scale = 1.0 / c.beta_p; c.hmat = 1.0 / mem->bdf.c0; c.beta_n = c.scale / (h * h);
+    memcpy(mem->ec.ele, est, sizeof est);
     lgnErrorNorm(mem, &c, x1, SUN_RCONST(1.0), &nrm);
-    memcpy(estp, mem->ele, sizeof estp);
+    memcpy(estp, mem->ec.ele, sizeof estp);
     res->estp_w = nrm;
     /* the velocities' h LTE_k, the same way */
     for (i = 0; i < 6; i++)
-      mem->ele[i] = h * (lgnData(mem->v)[i] - mem->bdf_vpred[i]) / (mem->bdf_c0 * (k + 1) * h);
+      mem->ec.ele[i] = h * (lgnData(mem->v)[i] - mem->bdf.vpred[i]) / (mem->bdf.c0 * (k + 1) * h);
     lgnErrorNorm(mem, &c, x1, SUN_RCONST(1.0), &nrm);
     res->estv_w = nrm;
   }

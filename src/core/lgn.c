@@ -33,9 +33,10 @@ void *LGNCreate(SUNContext sunctx)
   (void)LGNGenAlphaFromRhoInf(LGN_RHO_INF_DEFAULT, &mem->alpha_m,
                               &mem->alpha_f, &mem->beta, &mem->gamma);
   mem->constr_index = LGN_CONSTR_INDEX3;
-  mem->red_mode     = LGN_REDUNDANT_ELIMINATE;
+  mem->red.mode     = LGN_REDUNDANT_ELIMINATE;
   mem->kinematics   = LGN_KINEMATICS_SIMPLIFIED;
   mem->kin          = lgnKinematicsOps(LGN_KINEMATICS_SIMPLIFIED);
+  mem->fam          = lgnFamilyOps(LGN_FAMILY_NEWMARK);
   mem->rtol         = LGN_RTOL_DEFAULT;
   mem->atol         = LGN_ATOL_DEFAULT;
   mem->maxcor       = LGN_MAXCOR_DEFAULT;
@@ -43,16 +44,16 @@ void *LGNCreate(SUNContext sunctx)
   mem->msbp         = LGN_MSBP_DEFAULT;
   mem->mxstep       = LGN_MXSTEP_DEFAULT;
   mem->predictor    = LGN_PREDICTOR_ZERO;
-  mem->bdf_form     = LGN_BDF_VARIABLE_COEFF;
-  mem->own_klu_solves = SUNFALSE;
-  mem->step_control = LGN_STEP_FIXED;
+  mem->bdf.form     = LGN_BDF_VARIABLE_COEFF;
+  mem->klu.own_solves = SUNFALSE;
+  mem->ec.step_control = LGN_STEP_FIXED;
   mem->accept_stalls = SUNTRUE;
-  mem->epcon        = LGN_EPCON_DEFAULT;
-  mem->maxnef       = LGN_MAXNEF_DEFAULT;
-  mem->maxncf       = LGN_MAXNCF_DEFAULT;
-  mem->eplifac      = LGN_EPLIFAC_DEFAULT;
-  mem->out_consistent = SUNTRUE;
-  mem->out_project    = LGN_PROJECT_ALL;
+  mem->ec.epcon        = LGN_EPCON_DEFAULT;
+  mem->ec.maxnef       = LGN_MAXNEF_DEFAULT;
+  mem->ec.maxncf       = LGN_MAXNCF_DEFAULT;
+  mem->kry.eplifac      = LGN_EPLIFAC_DEFAULT;
+  mem->out.consistent = SUNTRUE;
+  mem->out.project    = LGN_PROJECT_ALL;
   lgnErrSinkInit(&mem->err);
   return mem;
 }
@@ -75,18 +76,18 @@ static void ResetCounters(LGNMem mem)
 {
   mem->nst = mem->nni = mem->nncf = mem->nstall = mem->nfails = 0;
   mem->nre = mem->ndq = mem->nje = mem->nlsetup = mem->nlsolve = 0;
-  mem->nreuse = mem->nrestart = mem->netf = 0;
+  mem->nreuse = mem->nrestart = mem->ec.netf = 0;
   mem->stall_warned = SUNFALSE;
-  mem->nge = 0;
-  mem->err_norm = mem->h0_actual = SUN_RCONST(0.0);
-  mem->nklu_fallback = mem->nklu_copy = mem->nklu_values = 0;
-  mem->nklu_refactor = mem->nklu_solve = 0;
-  mem->nklu_newpattern = mem->nklu_nocopy = 0;
-  mem->nli = mem->npe = mem->nps = mem->njtimes = mem->nlcf = 0;
-  mem->lambda_noise = mem->lambda_noise_h = SUN_RCONST(0.0);
+  mem->rt.nge = 0;
+  mem->ec.err_norm = mem->ec.h0_actual = SUN_RCONST(0.0);
+  mem->klu.nfallback = mem->klu.ncopy = mem->klu.nvalues = 0;
+  mem->klu.nrefactor = mem->klu.nsolve = 0;
+  mem->klu.nnewpattern = mem->klu.nnocopy = 0;
+  mem->kry.nli = mem->kry.npe = mem->kry.nps = mem->kry.njtimes = mem->kry.nlcf = 0;
+  mem->nls.lambda_noise = mem->nls.lambda_noise_h = SUN_RCONST(0.0);
   mem->hlast = SUN_RCONST(0.0);
-  mem->last_lin_flag = 0;
-  mem->nout = 0;
+  mem->ls.last_flag = 0;
+  mem->out.n = 0;
 }
 
 /* q0 is an element of the group up to rounding: its normalisation (on a
@@ -174,10 +175,10 @@ int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
     return LGN_ILL_INPUT;
   }
   /* the ranks of q0 and v0 (a collective call on all of them) */
-  lgnParallelFree(&mem->par);
-  flag = lgnParallelCreate(q0, v0, &mem->err, __func__, &mem->par);
+  lgnParallelFree(&mem->ranks.par);
+  flag = lgnParallelCreate(q0, v0, &mem->err, __func__, &mem->ranks.par);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->halo != NULL && mem->par == NULL) {
+  if (mem->ranks.halo != NULL && mem->ranks.par == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "Ghost bodies (LGNSetHalo) need a run across ranks: q0 and v0 must "
               "be N_Vector_Parallel or MPIPlusX vectors.");
@@ -252,14 +253,14 @@ static int CheckSettings(LGNMem mem)
               mem->kin->needs_tangent_inverse ? ", tangent_inverse_apply" : "");
     return LGN_ILL_INPUT;
   }
-  if (mem->step_control == LGN_STEP_FIXED && !(mem->h > SUN_RCONST(0.0))) {
+  if (mem->ec.step_control == LGN_STEP_FIXED && !(mem->h > SUN_RCONST(0.0))) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "No step size: call LGNSetStepSize (or LGNSetStepControl with "
               "LGN_STEP_ADAPTIVE).");
     return LGN_ILL_INPUT;
   }
-  if (mem->step_control == LGN_STEP_ADAPTIVE) {
-    if (!mem->tols_set) {
+  if (mem->ec.step_control == LGN_STEP_ADAPTIVE) {
+    if (!mem->ec.tols_set) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "Error control needs tolerances: call LGNSStolerances or "
                 "LGNSVtolerances.");
@@ -273,7 +274,7 @@ static int CheckSettings(LGNMem mem)
       return LGN_ILL_INPUT;
     }
   }
-  if (mem->step_control == LGN_STEP_ADAPTIVE && mem->lambda_errcon && mem->m > 0 &&
+  if (mem->ec.step_control == LGN_STEP_ADAPTIVE && mem->ec.lambda_errcon && mem->m > 0 &&
       mem->constr_index == LGN_CONSTR_INDEX3) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The multipliers in the error test (LGNSetMultiplierErrorControl) need "
@@ -283,7 +284,7 @@ static int CheckSettings(LGNMem mem)
   }
   flag = lgnCheckIndex3Damping(mem); /* undamped index 3: refused (lgn_newmark_adapt.c) */
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
+  if (mem->ls.LS == NULL || (mem->ls.A == NULL && !mem->kry.on)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;
   }
@@ -310,26 +311,26 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
     "the multipliers in the error test (LGNSetMultiplierErrorControl)",
     "the multipliers' atol (LGNSetMultiplierErrorControl)"};
   const sunrealtype x[] = {
-    (sunrealtype)mem->family, (sunrealtype)mem->bdf_maxord, (sunrealtype)mem->bdf_form,
-    (sunrealtype)mem->step_control,
-    mem->h, mem->rtol, mem->atol_vec != NULL ? -SUN_RCONST(1.0) : mem->atol,
+    (sunrealtype)mem->family, (sunrealtype)mem->bdf.maxord, (sunrealtype)mem->bdf.form,
+    (sunrealtype)mem->ec.step_control,
+    mem->h, mem->rtol, mem->ec.atol_vec != NULL ? -SUN_RCONST(1.0) : mem->atol,
     (sunrealtype)mem->maxcor, (sunrealtype)mem->newton_mode,
     (sunrealtype)mem->msbp, (sunrealtype)mem->mxstep, (sunrealtype)mem->constr_index,
     (sunrealtype)mem->kinematics, (sunrealtype)mem->predictor, mem->alpha_m, mem->alpha_f,
-    mem->beta, mem->gamma, (sunrealtype)mem->pstart_on, (sunrealtype)mem->nrtfn,
-    (sunrealtype)mem->krylov, mem->eplifac, mem->epcon, mem->h0_user, mem->hmin, mem->hmax,
-    (sunrealtype)mem->maxnef, (sunrealtype)mem->maxncf,
+    mem->beta, mem->gamma, (sunrealtype)mem->pstart_on, (sunrealtype)mem->rt.nrtfn,
+    (sunrealtype)mem->kry.on, mem->kry.eplifac, mem->ec.epcon, mem->ec.h0_user, mem->ec.hmin, mem->ec.hmax,
+    (sunrealtype)mem->ec.maxnef, (sunrealtype)mem->ec.maxncf,
     mem->tstop_set ? mem->tstop : -SUN_BIG_REAL, (sunrealtype)mem->accept_stalls,
-    (sunrealtype)mem->tols_set, (sunrealtype)(mem->atol_vec != NULL), tout,
-    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->halo != NULL),
-    (sunrealtype)mem->out_consistent, (sunrealtype)mem->out_project,
-    (sunrealtype)mem->lambda_errcon, mem->lambda_errcon ? mem->lambda_atol : SUN_RCONST(0.0)};
+    (sunrealtype)mem->ec.tols_set, (sunrealtype)(mem->ec.atol_vec != NULL), tout,
+    (sunrealtype)itask, mem->tn, (sunrealtype)(mem->ranks.halo != NULL),
+    (sunrealtype)mem->out.consistent, (sunrealtype)mem->out.project,
+    (sunrealtype)mem->ec.lambda_errcon, mem->ec.lambda_errcon ? mem->ec.lambda_atol : SUN_RCONST(0.0)};
   int first;
   _Static_assert(sizeof names / sizeof names[0] == sizeof x / sizeof x[0],
                  "a name for each setting");
   _Static_assert(sizeof x / sizeof x[0] <= LGN_PARALLEL_MAXSAME,
                  "lgnParallelSame compares them all");
-  if (lgnParallelSame(mem->par, x, (int)(sizeof x / sizeof x[0]), &first))
+  if (lgnParallelSame(mem->ranks.par, x, (int)(sizeof x / sizeof x[0]), &first))
     return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_ILL_INPUT,
             "%s differs between the ranks: the settings of the method must be the "
@@ -342,7 +343,7 @@ static int CompareSettings(LGNMem mem, sunrealtype tout, int itask)
  * with LGN_ILL_INPUT on all, naming the first that differs. */
 static int CheckSameSettings(LGNMem mem, sunrealtype tout, int itask)
 {
-  if (mem->par == NULL) return LGN_SUCCESS; /* one process: nothing to compare */
+  if (mem->ranks.par == NULL) return LGN_SUCCESS; /* one process: nothing to compare */
   return CompareSettings(mem, tout, itask);
 }
 
@@ -355,24 +356,24 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
   int flag = lgnAgree(mem, CheckSettings(mem));
   if (flag == LGN_SUCCESS) flag = CheckSameSettings(mem, tout, itask);
   /* before the model is evaluated (the redundancy analysis below) */
-  if (flag == LGN_SUCCESS && mem->krylov) flag = lgnAgree(mem, lgnKrylovCheckPreconditioner(mem));
+  if (flag == LGN_SUCCESS && mem->kry.on) flag = lgnAgree(mem, lgnKrylovCheckPreconditioner(mem));
   if (flag != LGN_SUCCESS) return flag;
   /* Phi_t on any rank: every rank takes part in its error norm */
-  mem->any_constr_time =
+  mem->ranks.any_constr_time =
       lgnMaxAll(mem, mem->constr_time != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0)) >
       SUN_RCONST(0.0);
   /* a new start: the independent constraint rows at q0 (lgn_redundancy.c;
    * one process only, so no agreement is needed) */
   if (!mem->ic_done) flag = lgnRedundancyAnalyse(mem, "LGNSolve");
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
-  if (flag == LGN_SUCCESS && mem->nrtfn > 0)
+  if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0)
     flag = lgnAgree(mem, lgnAllocRootVectors(mem));
-  if (flag == LGN_SUCCESS && mem->atol_vec != NULL) {
+  if (flag == LGN_SUCCESS && mem->ec.atol_vec != NULL) {
     /* vector tolerances: the multipliers' atol is the mean of all ranks' */
     sunrealtype mean[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)};
     sunindextype i;
-    for (i = 0; i < mem->nv_own; i++) mean[0] += mem->atol_vec[i]; /* not the ghosts */
-    mean[1] = (sunrealtype)mem->nv_own;
+    for (i = 0; i < mem->ranks.nv_own; i++) mean[0] += mem->ec.atol_vec[i]; /* not the ghosts */
+    mean[1] = (sunrealtype)mem->ranks.nv_own;
     lgnSumAll(mem, mean, 2);
     mem->atol = mean[0] / SUNMAX(mean[1], SUN_RCONST(1.0));
   }
@@ -436,11 +437,11 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
 
   /* tout inside the last step (already passed): interpolate */
   if (itask == LGN_NORMAL && tout < mem->tn - troundoff) {
-    if (mem->dense_valid && tout >= mem->tprev - troundoff)
-      return OutputAt(mem, SUNMAX(tout, mem->tprev), tret, q, v);
+    if (mem->dense.valid && tout >= mem->dense.tprev - troundoff)
+      return OutputAt(mem, SUNMAX(tout, mem->dense.tprev), tret, q, v);
     LGN_ERROR(mem, LGN_BAD_TOUT,
               "tout = %.17g is behind the last step [%.17g, %.17g].",
-              (double)tout, (double)(mem->dense_valid ? mem->tprev : mem->tn),
+              (double)tout, (double)(mem->dense.valid ? mem->dense.tprev : mem->tn),
               (double)mem->tn);
     CopyOut(mem, tret, q, v);
     return LGN_BAD_TOUT;
@@ -471,12 +472,11 @@ static int SolveAdaptive(LGNMem mem, sunrealtype tout, sunrealtype *tret,
       flag = LGN_TOO_MUCH_WORK;
       break;
     }
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFAdaptiveStep(mem, tout)
-                                         : lgnAdaptiveStep(mem, tout);
+    flag = mem->fam->adaptive_step(mem, tout);
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     nstloc++;
-    if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
+    if (mem->rt.nrtfn > 0) { /* events in the step (lgn_root.c) */
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
       if (flag != LGN_SUCCESS) break;
@@ -527,21 +527,21 @@ int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
        * as after any failure (q, v may hold a part of the projection) */
       flag = oflag;
       CopyOut(mem, tret, q, v);
-      if (mem->nst != nst0) mem->out_lvalid = SUNFALSE;
-      if (mem->out_lvalid && *tret == mem->out_lt) {
-        N_VScale(SUN_RCONST(1.0), mem->out_lq, q);
-        N_VScale(SUN_RCONST(1.0), mem->out_lv, v);
+      if (mem->nst != nst0) mem->out.lvalid = SUNFALSE;
+      if (mem->out.lvalid && *tret == mem->out.lt) {
+        N_VScale(SUN_RCONST(1.0), mem->out.lq, q);
+        N_VScale(SUN_RCONST(1.0), mem->out.lv, v);
       }
     }
   } else if (mem->nst != nst0) {
-    mem->out_valid  = SUNFALSE; /* steps taken, then a failure: the state at tn */
-    mem->out_lvalid = SUNFALSE;
-  } else if (mem->out_lvalid && tret != NULL && *tret == mem->out_lt && q != NULL &&
-             v != NULL && lgnLocalLength(q) == lgnLocalLength(mem->out_lq) &&
-             lgnLocalLength(v) == lgnLocalLength(mem->out_lv)) {
+    mem->out.valid  = SUNFALSE; /* steps taken, then a failure: the state at tn */
+    mem->out.lvalid = SUNFALSE;
+  } else if (mem->out.lvalid && tret != NULL && *tret == mem->out.lt && q != NULL &&
+             v != NULL && lgnLocalLength(q) == lgnLocalLength(mem->out.lq) &&
+             lgnLocalLength(v) == lgnLocalLength(mem->out.lv)) {
     /* no step taken: the outputs as the last (projected) output returned them */
-    N_VScale(SUN_RCONST(1.0), mem->out_lq, q);
-    N_VScale(SUN_RCONST(1.0), mem->out_lv, v);
+    N_VScale(SUN_RCONST(1.0), mem->out.lq, q);
+    N_VScale(SUN_RCONST(1.0), mem->out.lv, v);
   }
   return flag;
 }
@@ -570,7 +570,7 @@ static int CheckSolveArguments(LGNMem mem, sunrealtype tout, sunrealtype *tret, 
     LGN_ERROR(mem, LGN_ILL_INPUT, "tout is not finite.");
     return LGN_ILL_INPUT;
   }
-  if (tout < (mem->dense_valid ? mem->tprev : mem->tn) -
+  if (tout < (mem->dense.valid ? mem->dense.tprev : mem->tn) -
                  SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(tout))) {
     LGN_ERROR(mem, LGN_BAD_TOUT,
               "tout = %.17g is behind the current time t = %.17g%s.", (double)tout,
@@ -601,7 +601,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     return flag;
   }
   flag = CheckReadyToSolve(mem, tout, itask);
-  if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
+  if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0) {
     /* events: start, or the rest of the last step after a root */
     sunbooleantype done = SUNFALSE;
     flag = lgnRootSolveStart(mem, tout, itask, tret, q, v, &done);
@@ -612,7 +612,7 @@ static int Solve(void *lgn_mem, sunrealtype tout, sunrealtype *tret, N_Vector q,
     return flag;
   }
 
-  if (mem->step_control == LGN_STEP_ADAPTIVE)
+  if (mem->ec.step_control == LGN_STEP_ADAPTIVE)
     return SolveAdaptive(mem, tout, tret, q, v, itask);
 
   return SolveFixed(mem, tout, tret, q, v, itask);
@@ -665,10 +665,10 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
     stop = mem->tstop_set &&
            mem->tn + mem->h * (SUN_RCONST(1.0) + SUN_RCONST(1.0e-6)) >= mem->tstop;
     if (stop) hstep = mem->tstop - mem->tn;
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    flag = mem->fam->step(mem, hstep);
     if (flag == LGN_SUCCESS && stop) mem->tn = mem->tstop; /* exact arrival */
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
-    if (flag == LGN_SUCCESS && mem->nrtfn > 0) {
+    if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0) {
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
     }
@@ -680,7 +680,7 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
   /* LGN_NORMAL: fixed steps; the last one lands exactly on tout (or on a
    * stop time before it). A remainder up to 1e-6 h longer than h is taken
    * as one step, so that roundoff in t never produces a tiny extra step. */
-  if (tout < mem->tn - troundoff && mem->dense_valid && tout >= mem->tprev)
+  if (tout < mem->tn - troundoff && mem->dense.valid && tout >= mem->dense.tprev)
     return OutputAt(mem, tout, tret, q, v); /* inside the last step (after a root) */
   if (tout < mem->tn - troundoff) {
     LGN_ERROR(mem, LGN_BAD_TOUT,
@@ -706,15 +706,15 @@ static int SolveFixed(LGNMem mem, sunrealtype tout, sunrealtype *tret, N_Vector 
     /* BDF keeps its grid (a shortened step would enter its history with
      * an arbitrary step ratio): it steps past tout and interpolates there,
      * but never past a stop time */
-    if (mem->family == LGN_FAMILY_BDF && !stop &&
+    if (mem->fam->keeps_grid && !stop &&
         remaining < mem->h * (SUN_RCONST(1.0) - SUN_RCONST(1.0e-6)))
       hstep = mem->h;
-    flag = mem->family == LGN_FAMILY_BDF ? lgnBDFStep(mem, hstep) : lgnStep(mem, hstep);
+    flag = mem->fam->step(mem, hstep);
     if (flag == LGN_SUCCESS) flag = lgnRedundancyCheck(mem, mem->tn, mem->q, "LGNSolve");
     if (flag != LGN_SUCCESS) break;
     if (hstep == remaining) mem->tn = tend; /* exact arrival */
     nstloc++;
-    if (mem->nrtfn > 0) { /* events in the step (lgn_root.c) */
+    if (mem->rt.nrtfn > 0) { /* events in the step (lgn_root.c) */
       flag = lgnRootAfterStep(mem, tout, itask, tret, q, v);
       if (flag == LGN_ROOT_RETURN) return flag;
       if (flag != LGN_SUCCESS) break;

@@ -31,7 +31,7 @@ static int CheckModel(LGNMem mem, const char *func)
                     "The Lie group lacks compose_exp.");
     return LGN_ILL_INPUT;
   }
-  if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
+  if (mem->ls.LS == NULL || (mem->ls.A == NULL && !mem->kry.on)) {
     lgnProcessError(mem, LGN_NO_LINSOL, __LINE__, func, __FILE__,
                     "No linear solver: call LGNSetLinearSolver first.");
     return LGN_NO_LINSOL;
@@ -87,13 +87,13 @@ int LGNCalcIC(void *lgn_mem, int icopt)
   if (flag != LGN_SUCCESS) return flag;
 
   flag = lgnProjectIC(mem, icopt);
-  if (flag == LGN_SUCCESS && mem->red_nout > 0 && icopt != LGN_IC_PROJECT_V) {
+  if (flag == LGN_SUCCESS && mem->red.nout > 0 && icopt != LGN_IC_PROJECT_V) {
     /* the rows were selected at the q0 given; at the projected one the
      * selection may differ (the q0 given off the constraints can hide
      * their dependence): selected anew, and projected again if it did */
-    const long int nsel = mem->red_nsel;
+    const long int nsel = mem->red.nsel;
     flag = PrepareModel(mem, __func__);
-    if (flag == LGN_SUCCESS && nsel != mem->red_nsel)
+    if (flag == LGN_SUCCESS && nsel != mem->red.nsel)
       flag = lgnProjectIC(mem, icopt);
   }
   /* the state may have changed: a new start at t_n */

@@ -146,8 +146,8 @@ static int SolveIndex1At(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
               MSG_TIME "the consistent initial accelerations could not be "
               "computed: [[M, B^T], [B, 0]] is singular or the solve failed "
               "(check M and B at q0).%s", (double)t,
-              flag == LGN_LSETUP_FAIL || (mem->krylov && flag == LGN_RECOVERABLE)
-                  ? mem->diag_text
+              flag == LGN_LSETUP_FAIL || (mem->kry.on && flag == LGN_RECOVERABLE)
+                  ? mem->diag.text
                   : "");
     return LGN_IC_FAIL;
   }
@@ -469,7 +469,7 @@ int lgnPerturbedStart(LGNMem mem, sunrealtype h)
   }
   if (flag == LGN_SUCCESS && correct_v) {
     /* l = h c0 (h vddot) + h^2 [v0, vdot0] / 12, [v, w] = -2 Tdot(0, v) w */
-    ret = mem->G->ops.tangent_dot_apply(mem->G, mem->zero_nv, v0, vd0, w);
+    ret = mem->G->ops.tangent_dot_apply(mem->G, mem->dense.zero_nv, v0, vd0, w);
     if (ret != 0) flag = lgnCallbackFlag(mem, LGN_CB_GROUP, ret, __func__);
     flag = lgnAgree(mem, flag);
     if (flag == LGN_SUCCESS) {

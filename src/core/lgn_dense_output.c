@@ -16,7 +16,7 @@
  * from its derivatives, with v = T(s) s' / h and
  * vdot = Tdot(s, s'/h) s'/h + T(s) s'' / h^2 (vdot is first order).
  * The BDF family interpolates with its own polynomials instead, of the
- * order of its last step (BDFDenseOutput).
+ * order of its last step (lgnBDFDenseOutput).
  * ---------------------------------------------------------------------------*/
 
 #include <string.h>
@@ -29,23 +29,23 @@
  * (x_{n+1} = sigma, x_n = 0, x_{n-j} = log(q_n^{-1} q_{n-j})) and v:
  *   q(t) = q_n o exp(P_x(t)),  v(t) = P_v(t),  vdot(t) = P_v'(t),
  * of the method's order (doc/theory.md §8). */
-static int BDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
+int lgnBDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
 {
   LGNGroup G = mem->G;
   const sunindextype nv = mem->nv;
-  const int kk = SUNMIN(mem->bdf_last_order, mem->bdf_nhist - 1);
+  const int kk = SUNMIN(mem->bdf.last_order, mem->bdf.nhist - 1);
   sunrealtype tau[LGN_BDF_MAXHIST], l[LGN_BDF_MAXHIST], dl[LGN_BDF_MAXHIST];
-  sunrealtype *x = mem->dense_work;
+  sunrealtype *x = mem->dense.work;
   sunindextype i;
   int j, ret;
 
   tau[0] = mem->tn;
-  for (j = 1; j <= kk; j++) tau[j] = mem->bdf_t[j];
+  for (j = 1; j <= kk; j++) tau[j] = mem->bdf.t[j];
   lgnLagrangeBasis(tau, kk, t, l, dl);
   if (k == 0) {
     for (i = 0; i < nv; i++) {
       sunrealtype s = l[0] * mem->sigma[i];
-      for (j = 2; j <= kk; j++) s += l[j] * mem->bdf_x[(j - 1) * nv + i];
+      for (j = 2; j <= kk; j++) s += l[j] * mem->bdf.x[(j - 1) * nv + i];
       x[i] = s; /* (x_n = 0: the j = 1 term vanishes) */
     }
     ret = G->ops.compose_exp(G, lgnData(mem->q1), x, out);
@@ -54,7 +54,7 @@ static int BDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
   }
   for (i = 0; i < nv; i++) {
     sunrealtype s = SUN_RCONST(0.0);
-    for (j = 0; j <= kk; j++) s += (k == 1 ? l[j] : dl[j]) * mem->bdf_v[j * nv + i];
+    for (j = 0; j <= kk; j++) s += (k == 1 ? l[j] : dl[j]) * mem->bdf.v[j * nv + i];
     out[i] = s;
   }
   return LGN_SUCCESS;
@@ -65,16 +65,16 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
 {
   LGNGroup G = mem->G;
   const sunindextype nv = mem->nv;
-  const sunrealtype h = mem->tn - mem->tprev, th = (t - mem->tprev) / h;
+  const sunrealtype h = mem->tn - mem->dense.tprev, th = (t - mem->dense.tprev) / h;
   const sunrealtype th2 = th * th, th3 = th2 * th;
   const sunrealtype *s1 = mem->kin->increment(mem);
   const sunrealtype *v0 = lgnData(mem->v1); /* the step's start, kept there */
-  sunrealtype *m1 = mem->dense_work, *s = m1 + nv, *sp = s + nv, *spp = sp + nv;
+  sunrealtype *m1 = mem->dense.work, *s = m1 + nv, *sp = s + nv, *spp = sp + nv;
   sunindextype i;
   int ret;
 
   /* the ends: the step's own values */
-  if (t == mem->tn || t == mem->tprev) {
+  if (t == mem->tn || t == mem->dense.tprev) {
     const sunbooleantype end = t == mem->tn;
     N_Vector x = k == 0 ? (end ? mem->q : mem->q1)
                : k == 1 ? (end ? mem->v : mem->v1)
@@ -82,7 +82,9 @@ int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out)
     memcpy(out, lgnData(x), (size_t)(k == 0 ? mem->nq : nv) * sizeof(sunrealtype));
     return LGN_SUCCESS;
   }
-  if (mem->family == LGN_FAMILY_BDF && mem->bdf_nhist >= 2) return BDFDenseOutput(mem, t, k, out);
+  /* the family's own interpolant (BDF: once two points are in its history) */
+  if (mem->fam->dense_output != NULL && mem->bdf.nhist >= 2)
+    return mem->fam->dense_output(mem, t, k, out);
   /* m1 = h T(s_1)^{-1} v_{n+1} */
   ret = G->ops.tangent_inverse_apply(G, s1, lgnData(mem->v), m1);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNGetDky");

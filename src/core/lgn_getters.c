@@ -49,7 +49,7 @@ int LGNGetCurrentStep(void *lgn_mem, sunrealtype *hcur)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, hcur, "hcur", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *hcur = mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h;
+  *hcur = mem->ec.step_control == LGN_STEP_ADAPTIVE ? mem->ec.hnext : mem->h;
   return LGN_SUCCESS;
 }
 
@@ -58,7 +58,7 @@ int LGNGetActualInitStep(void *lgn_mem, sunrealtype *hinused)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, hinused, "hinused", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *hinused = mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h;
+  *hinused = mem->ec.step_control == LGN_STEP_ADAPTIVE ? mem->ec.h0_actual : mem->h;
   return LGN_SUCCESS;
 }
 
@@ -67,7 +67,7 @@ int LGNGetNumErrTestFails(void *lgn_mem, long int *netfails)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, netfails, "netfails", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *netfails = mem->netf;
+  *netfails = mem->ec.netf;
   return LGN_SUCCESS;
 }
 
@@ -112,7 +112,7 @@ int LGNGetStepControl(void *lgn_mem, int *control)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, control, "control", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *control = mem->step_control;
+  *control = mem->ec.step_control;
   return LGN_SUCCESS;
 }
 
@@ -121,7 +121,7 @@ int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, errnorm, "errnorm", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *errnorm = mem->err_norm;
+  *errnorm = mem->ec.err_norm;
   return LGN_SUCCESS;
 }
 
@@ -211,7 +211,7 @@ int LGNGetLastLinFlag(void *lgn_mem, long int *flag)
   LGNMem mem;
   int status = ScalarOut(lgn_mem, __func__, flag, "flag", &mem);
   if (status != LGN_SUCCESS) return status;
-  *flag = mem->last_lin_flag;
+  *flag = mem->ls.last_flag;
   return LGN_SUCCESS;
 }
 
@@ -247,7 +247,7 @@ int LGNGetNumSparsityAnalyses(void *lgn_mem, long int *nanalyses)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, nanalyses, "nanalyses", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nanalyses = mem->sp != NULL ? mem->sp->npattern : 0L;
+  *nanalyses = mem->ls.sp != NULL ? mem->ls.sp->npattern : 0L;
   return LGN_SUCCESS;
 }
 
@@ -265,6 +265,6 @@ int LGNGetNumDQColors(void *lgn_mem, long int *ncolors)
   LGNMem mem;
   int flag = ScalarOut(lgn_mem, __func__, ncolors, "ncolors", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *ncolors = mem->sp != NULL ? (long int)mem->sp->Kcol.ncolors : (long int)mem->nv;
+  *ncolors = mem->ls.sp != NULL ? (long int)mem->ls.sp->Kcol.ncolors : (long int)mem->nv;
   return LGN_SUCCESS;
 }

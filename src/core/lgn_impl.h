@@ -75,10 +75,15 @@ typedef enum {
  * The memory record
  * ===========================================================================*/
 
-typedef struct LGNMemRec {
-  SUNContext sunctx;
+/* The record's sub-records, one per subsystem, as IDA keeps its linear
+ * solver's state in IDALsMem: mem->sub.field. The files that may write a
+ * sub-record's fields are listed with it and in doc/architecture.md's
+ * owners table, which the test arch_check_owners enforces; every other file
+ * reads them. The arrays of the step, the outputs and the BDF history are
+ * cut from the work blocks (lgn_workspace.c). */
 
-  /* ---- a run across MPI ranks (lgn_parallel.h; NULL: one process) ---- */
+/* A run across MPI ranks and its ghost bodies (writers: lgn_mem.c, lgn_ghosts.c) */
+struct LGNRanksRec {
   LGNParallel par;          /* the communicator of q0 and v0              */
   sunrealtype nv_all;       /* nv and m summed over the ranks: the sizes  */
   sunrealtype m_all;        /* of the weighted RMS norms                  */
@@ -92,6 +97,240 @@ typedef struct LGNMemRec {
                                nv_own + m, of the user's type            */
   sunrealtype *hx_ext;      /* nv + m scratch: Krylov products, preconditioner */
   sunrealtype *hx_ext2;     /* nv + m scratch                               */
+};
+
+/* The BDF family: settings, history q_{n-j}, v_{n-j} at t_{n-j}, order control (writers: lgn_bdf.c, lgn_mem.c, lgn_setget.c, lgn.c) */
+struct LGNBDFRec {
+  int maxord;           /* LGNSetBDF: 1 ... 5                          */
+  int form;             /* LGNSetBDFForm: LGN_BDF_VARIABLE_COEFF / ..._FIXED_LEADING */
+  int ns;               /* FLC: consecutive steps at this h and order (IDA's ns) */
+  sunrealtype hused;    /* FLC: the last step's size                   */
+  sunrealtype sigck;    /* FLC: sigma_k / ck of the attempt (IDA)      */
+  sunbooleantype step_flc; /* the attempt used the fixed leading coefficient */
+  int order;            /* the order of the next step                  */
+  int last_order;       /* the order of the last step taken            */
+  int nhist;            /* valid history points (0: start anew)        */
+  int nsteps_order;     /* steps taken at the current order            */
+  sunbooleantype phase0;/* start-up: the order rises every step        */
+  sunrealtype chart_t;  /* t_n of the chart coordinates in bdf_x       */
+  sunrealtype t[LGN_BDF_MAXHIST];
+  sunrealtype vgain[LGN_BDF_MAXHIST]; /* v_{n-j}'s gain on position noise */
+  sunrealtype vgain1;   /* ... of the attempt's v_{n+1}: sum_j |d_j|      */
+  sunrealtype vpgain;   /* ... of its predictor: sum_j |p_j| vgain_j      */
+  sunrealtype *q;       /* LGN_BDF_MAXHIST x nq: q_{n-j}               */
+  sunrealtype *v;       /* LGN_BDF_MAXHIST x nv: v_{n-j}               */
+  sunrealtype *l;       /* LGN_BDF_MAXHIST x m: lambda_{n-j}           */
+  sunrealtype *x;       /* LGN_BDF_MAXHIST x nv: log(q_n^{-1} q_{n-j}) */
+  sunrealtype *rx, *rv; /* the known parts of xdot, vdot (nv each) */
+  sunrealtype *xpred, *vpred; /* the predictor (nv each)           */
+  sunrealtype *dd;      /* divided differences, (LGN_BDF_MAXHIST + 1) nv */
+  sunrealtype *ele_keep; /* nv: the step's estimate (ele) while the order estimates use ele */
+  sunrealtype c0;       /* leading coefficient of the BDF derivative   */
+  long int nord[LGN_BDF_MAXORD + 1]; /* steps taken at each order      */
+};
+
+/* The diagonal blocks of T: the leaves of the group (writers: lgn_mem.c) */
+struct LGNBlocksRec {
+  int n;
+  sunindextype *voff;   /* nblk + 1 offsets in v                       */
+  sunindextype *qoff;   /* nblk + 1 offsets in q                       */
+  sunindextype *toff;   /* nblk + 1 offsets in the packed T storage    */
+  sunindextype *of;     /* block of each velocity component            */
+  LGNGroup *group;      /* the leaf group of each block                */
+  sunindextype max;     /* largest block                               */
+  sunindextype tlen;        /* packed length (identity blocks store none)  */
+};
+
+/* Difference-quotient scratch vectors (writers: lgn_mem.c) */
+struct LGNDQRec {
+  N_Vector q, v, g, r, z;
+};
+
+/* The linear solver (writers: lgn_ls.c, lgn_krylov.c, lgn_mem.c, lgn.c, lgn_newmark_adapt.c, lgn_bdf.c) */
+struct LGNLinSolRec {
+  SUNLinearSolver LS;
+  SUNMatrix A;
+  sunbooleantype sparse;    /* A is a SUNSparseMatrix (KLU)                 */
+  int sparsetype;           /* CSC_MAT or CSR_MAT when sparse               */
+  struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
+  sunbooleantype initialized;
+  sunbooleantype restart; /* the next setup starts clean (lgn_ls.c): the
+                                last one failed, or A's pattern was dropped */
+  sunbooleantype setup_recoverable; /* a singular setup is retried with a
+                                       smaller step: no message          */
+  long int last_flag;       /* the last linear solver flag (lgn_diag.c)  */
+};
+
+/* Krylov solvers and preconditioners (writers: lgn_krylov.c, lgn_ls.c, lgn_matrix.c, lgn_mem.c, lgn.c) */
+struct LGNKrylovRec {
+  sunbooleantype on;    /* LS is a matrix-free iterative solver: A is
+                               Lignum's own CSC matrix (own_A)             */
+  sunbooleantype own_A;     /* A created by Lignum (lgnAllocKrylov)        */
+  int pretype;          /* LS's preconditioning side (PREC_*; -1: unknown) */
+  LGNPrecSetupFn psetup;    /* LGNSetPreconditioner (NULL: none)           */
+  LGNPrecSolveFn psolve;
+  int bp_nblocks;           /* LGNSetBlockPreconditioner (0: off)          */
+  long int *bp_bodies;      /* its partition of the bodies (NULL: equal)   */
+  struct LGNBlockPrecRec *bp; /* the block preconditioner (lgn_blockprec.c) */
+  N_Vector w;           /* the solve's weights (nv + m)                */
+  N_Vector tmp;         /* scratch (nv + m)                            */
+  sunrealtype eplifac;      /* LGNSetEpsLin: linear / Newton tolerance     */
+  sunbooleantype newton;/* the next solve is Newton's: kry_w holds its
+                               correction weights (lgnKrylovNewtonWeights) */
+  sunrealtype asm_t;        /* the time and scalings of the last assembly  */
+  sunrealtype asm_cM, asm_cC, asm_cK; /* (handed to LGNPrecSetupFn)        */
+  long int nli;             /* Krylov iterations                           */
+  long int npe;             /* preconditioner setups                       */
+  long int nps;             /* preconditioner solves                       */
+  long int njtimes;         /* products with the iteration matrix          */
+  long int nlcf;            /* linear solves that missed their tolerance   */
+  int pfail;            /* across ranks: a preconditioner solve's failure
+                               in the current Krylov solve (0: none)      */
+};
+
+/* Lignum's solves with a copy of KLU's factors (writers: lgn_ls.c, lgn_mem.c, lgn_restart.c, lgn.c) */
+struct LGNKluRec {
+  sunbooleantype own_solves; /* LGNSetOwnKLUSolves (default SUNFALSE)  */
+  sunbooleantype valid;      /* klu holds the factors now in LS         */
+  long int ls_nsolve;           /* solves with LS's factors since its setup */
+  struct LGNKluCopyRec *copy;     /* the copy (NULL: none)                   */
+  long int pattern;          /* A's pattern number when KLU last factored */
+  /* its counters (lgn_ls.c, LGNGetNumKLU*, LGNGetNumOwnKLU*; restarted at
+   * the first setup after LGNInit / LGNReInit) */
+  long int nfallback;        /* own refactorisations handed back to KLU:
+                                    a pivot below the rcond threshold      */
+  long int ncopy;            /* whole copies of KLU's factors           */
+  long int nvalues;          /* copies of their values only             */
+  long int nrefactor;        /* Lignum's refactorisations, KLU's stead  */
+  long int nsolve;           /* solves with the copy                    */
+  long int nnewpattern;      /* KLU factored: a new pattern of A        */
+  long int nnocopy;          /* no copy possible (sizes, memory, A)     */
+};
+
+/* Redundant constraints (writers: lgn_redundancy.c, lgn_mem.c, lgn_setget.c, lgn.c) */
+struct LGNRedundancyRec {
+  sunindextype m_user;      /* the user's constraint rows (LGNSetConstraints);
+                               m counts those the integrator keeps         */
+  int mode;             /* LGN_REDUNDANT_ELIMINATE or _REFUSE          */
+  sunindextype nout;    /* rows left out (0: m = m_user, no mapping)   */
+  sunindextype *rows;   /* 2 m_user: the kept rows (m of them, ascending),
+                               then those left out; then scratch           */
+  sunindextype *keep;   /* m_user: the kept index of a user row, or -1 */
+  N_Vector full;        /* m_user: a callback's output, the user's rows */
+  N_Vector lam;         /* m_user: lambda expanded (0 on rows left out) */
+  SUNMatrix B;          /* m_user x nv: the user's B, of A's kind      */
+  sunrealtype viol;     /* the last check: max |Phi| of the rows left out */
+  long int nsel;        /* selections made (a change of the kept rows) */
+  SUNMatrix A;          /* a direct solver for the kept rows, of the   */
+  SUNLinearSolver LS;   /* user's kind (NULL: the user's fits)        */
+  SUNMatrix Auser;      /* the user's, sized for m_user, while red_A   */
+  SUNLinearSolver LSuser; /* and red_LS stand in for them              */
+};
+
+/* The diagnosis of the last singular matrix (writers: lgn_diag.c, lgn_krylov.c, lgn_mem.c) */
+struct LGNDiagRec {
+  sunindextype *red;   /* redundant constraints (m; work space)       */
+  sunindextype nred;   /* their number (0: none found)                */
+  sunindextype pivot;  /* the zero-pivot unknown (-1: none)           */
+  char text[400];       /* the diagnosis of the last singular matrix  */
+};
+
+/* The Newton iteration: tolerances, the reused factorisation (writers: lgn_newton.c, lgn_krylov.c, lgn_mem.c, lgn_restart.c, lgn.c) */
+struct LGNNewtonRec {
+  sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
+  sunrealtype lu_h;         /* the step size it was built with             */
+  long int lu_nst;          /* nst when it was built                       */
+  sunrealtype rate;  /* last contraction rate seen with a reused A  */
+  sunrealtype lambda_noise; /* multiplier part of the last stalled correction */
+  sunrealtype lambda_noise_h; /* ... and its step size (0: none seen)      */
+  sunrealtype rtol;     /* Newton's tolerances in this step            */
+  sunrealtype atol;
+  const sunrealtype *atolv; /* ... per component (NULL: nls_atol)     */
+  sunrealtype vfac;     /* ... nls_atolv's factor (fixed steps: 1)     */
+  sunrealtype lrtol;    /* ... of the multipliers' part               */
+  sunrealtype latol;
+};
+
+/* Error control and step-size selection (writers: lgn_newmark_adapt.c, lgn_newmark_errtest.c, lgn_bdf.c, lgn_newmark_step.c, lgn_output.c, lgn_mem.c, lgn_setget.c, lgn.c) */
+struct LGNErrConRec {
+  int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
+  sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
+  sunrealtype *atol_vec;    /* per-component atol, nv (NULL: the scalar)   */
+  sunrealtype epcon;        /* Newton tolerance / error-test tolerance     */
+  sunrealtype h0_user;      /* LGNSetInitStep (0: estimated)               */
+  sunrealtype hmin, hmax;   /* step size limits (hmax 0: none)             */
+  int maxnef, maxncf;       /* failures per step                           */
+  sunrealtype hnext;        /* the step size to try next (0: none yet)     */
+  sunrealtype h0_actual;    /* the first step size tried                   */
+  sunrealtype err_norm;     /* |e| of the last step attempted              */
+  sunrealtype err_prev;     /* |e| of the last step accepted               */
+  sunrealtype *ele;         /* its local error estimate (nv)               */
+  sunrealtype *ewt;         /* ... and error weights (nv)                  */
+  sunrealtype *a_scaled;    /* a_n rescaled to the step size (nv)          */
+  const sunrealtype *a_step;/* a_n as the step uses it: a or a_scaled      */
+  long int netf;            /* error-test failures                         */
+  sunbooleantype lambda_errcon; /* LGNSetMultiplierErrorControl (default off) */
+  sunrealtype lambda_atol;  /* ... its absolute tolerance of the multipliers */
+  sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
+};
+
+/* The last step, for dense output (writers: lgn_newmark_step.c, lgn_bdf.c, lgn_kinematics.c, lgn_mem.c) */
+struct LGNDenseRec {
+  sunrealtype tprev;        /* its start t_n; it ends at tn                */
+  sunbooleantype valid;     /* q1, v1, vdot1 hold its start, and incr
+                               its chart coordinate                       */
+  sunrealtype *incr;        /* sigma variant: log(q_n^-1 q1), tracked (nv) */
+  sunrealtype *zero_nv;     /* zeros (nv), the algebra's origin            */
+  sunrealtype *work;  /* the dense output's scratch (4 nv)           */
+};
+
+/* What LGNSolve and LGNGetDky return (writers: lgn_output.c, lgn_mem.c, lgn.c) */
+struct LGNOutputRec {
+  sunrealtype *keep;    /* the last output's vdot and lambda kept while
+                               a setter dropped the work space (or NULL) */
+  sunindextype keep_nv, keep_m;
+  sunbooleantype consistent; /* LGNSetConsistentOutputs (default on)  */
+  int project;          /* LGNSetProjectOutputs: LGN_PROJECT_*        */
+  sunbooleantype valid; /* out_vdot, out_lambda hold the last output's */
+  sunrealtype t;        /* ... time                                    */
+  sunrealtype *vdot;    /* consistent vdot at the last output (nv)     */
+  sunrealtype *lambda;  /* ... and lambda (m; NULL when m = 0)         */
+  sunrealtype *save;    /* q1, v1, vdot1, lambda1 kept while an output
+                               is computed (nq + 3 nv + m)                 */
+  N_Vector q, v;    /* LGNGetDky's q and v (clones; NULL until used) */
+  N_Vector lq, lv;  /* the last projected output's q, v (clones)   */
+  sunrealtype lt;       /* ... its time                                */
+  sunbooleantype lvalid; /* ... kept (a failed LGNSolve at that time
+                               returns them: lgn.c)                      */
+  sunrealtype *lwork;   /* the iterate's consistent lambda (m)         */
+  long int n;            /* outputs made consistent or projected        */
+};
+
+/* Root finding (writers: lgn_root.c, lgn_mem.c, lgn.c) */
+struct LGNRootRec {
+  int nrtfn;                /* number of root functions (0: off)           */
+  LGNRootFn gfun;           /* g(t, q, v, gout, user_data)                 */
+  sunrealtype *glo;         /* g at tlo, the last point checked (nrtfn)    */
+  sunrealtype *ghi;         /* g at the right end of the bracket (nrtfn)   */
+  sunrealtype *grout;       /* g at the root returned / the trial point    */
+  int *iroots;              /* +1 / -1: a root found, its direction (nrtfn)*/
+  int *rootdir;             /* LGNSetRootDirection: +1, -1, 0 (nrtfn)      */
+  sunbooleantype *gactive;  /* g_i not exactly zero at tlo (nrtfn)         */
+  N_Vector q, v;      /* q, v handed to g (clones of the state)      */
+  sunrealtype tlo;          /* roots are sought in (tlo, ...]              */
+  sunbooleantype started;/* glo holds g at tlo (dropped by STATE)       */
+  sunbooleantype pending;   /* a root returned before tn (LGN_ONE_STEP:
+                               tn itself is returned next, as IDA does)   */
+  sunbooleantype first;  /* the first check since the start is ahead   */
+  sunbooleantype nowarn; /* LGNSetNoInactiveRootWarn                    */
+  long int nge;             /* root function evaluations                   */
+};
+
+typedef struct LGNMemRec {
+  SUNContext sunctx;
+
+  /* ---- a run across MPI ranks (lgn_parallel.h; NULL: one process) ---- */
+  struct LGNRanksRec ranks; /* a run across MPI ranks and its ghost bodies */
 
   /* ---- model ---- */
   LGNGroup G;               /* configuration space (not owned)            */
@@ -129,36 +368,10 @@ typedef struct LGNMemRec {
   const struct LGNKinematicsOps *kin; /* its operations (lgn_kinematics.c) */
   sunrealtype h;            /* fixed step size (0 = not set)               */
   int family;               /* LGN_FAMILY_NEWMARK or LGN_FAMILY_BDF        */
+  const struct LGNFamilyOps *fam; /* its operations (lgn_family.c)         */
 
   /* ---- BDF (lgn_bdf.c): the history q_{n-j}, v_{n-j} at t_{n-j} ---- */
-  int bdf_maxord;           /* LGNSetBDF: 1 ... 5                          */
-  int bdf_form;             /* LGNSetBDFForm: LGN_BDF_VARIABLE_COEFF / ..._FIXED_LEADING */
-  int bdf_ns;               /* FLC: consecutive steps at this h and order (IDA's ns) */
-  sunrealtype bdf_hused;    /* FLC: the last step's size                   */
-  sunrealtype bdf_sigck;    /* FLC: sigma_k / ck of the attempt (IDA)      */
-  sunbooleantype bdf_step_flc; /* the attempt used the fixed leading coefficient */
-  sunbooleantype lsetup_recoverable; /* a singular setup is retried with a
-                                        smaller step: no message (BDF)     */
-  int bdf_order;            /* the order of the next step                  */
-  int bdf_last_order;       /* the order of the last step taken            */
-  int bdf_nhist;            /* valid history points (0: start anew)        */
-  int bdf_nsteps_order;     /* steps taken at the current order            */
-  sunbooleantype bdf_phase0;/* start-up: the order rises every step        */
-  sunrealtype bdf_chart_t;  /* t_n of the chart coordinates in bdf_x       */
-  sunrealtype bdf_t[LGN_BDF_MAXHIST];
-  sunrealtype bdf_vgain[LGN_BDF_MAXHIST]; /* v_{n-j}'s gain on position noise */
-  sunrealtype bdf_vgain1;   /* ... of the attempt's v_{n+1}: sum_j |d_j|      */
-  sunrealtype bdf_vpgain;   /* ... of its predictor: sum_j |p_j| vgain_j      */
-  sunrealtype *bdf_q;       /* LGN_BDF_MAXHIST x nq: q_{n-j}               */
-  sunrealtype *bdf_v;       /* LGN_BDF_MAXHIST x nv: v_{n-j}               */
-  sunrealtype *bdf_l;       /* LGN_BDF_MAXHIST x m: lambda_{n-j}           */
-  sunrealtype *bdf_x;       /* LGN_BDF_MAXHIST x nv: log(q_n^{-1} q_{n-j}) */
-  sunrealtype *bdf_rx, *bdf_rv; /* the known parts of xdot, vdot (nv each) */
-  sunrealtype *bdf_xpred, *bdf_vpred; /* the predictor (nv each)           */
-  sunrealtype *bdf_dd;      /* divided differences, (LGN_BDF_MAXHIST + 1) nv */
-  sunrealtype *bdf_ele_keep; /* nv: the step's estimate (ele) while the order estimates use ele */
-  sunrealtype bdf_c0;       /* leading coefficient of the BDF derivative   */
-  long int bdf_nord[LGN_BDF_MAXORD + 1]; /* steps taken at each order      */
+  struct LGNBDFRec bdf; /* the BDF family: settings, history, order control */
   sunrealtype rtol, atol;   /* Newton stop test                            */
   int maxcor;               /* max Newton iterations per step              */
   int newton_mode;          /* LGN_NEWTON_FULL or LGN_NEWTON_MODIFIED      */
@@ -175,9 +388,6 @@ typedef struct LGNMemRec {
                                space is dropped (a setter changed sizes):
                                restored when it is made again with this m */
   sunindextype lambda_keep_len;
-  sunrealtype *out_keep;    /* the last output's vdot and lambda kept while
-                               a setter dropped the work space (or NULL) */
-  sunindextype out_keep_nv, out_keep_m;
   sunbooleantype ic_done;   /* vdot, lambda, a consistent at t_n           */
   sunbooleantype user_vdot0;/* vdot0/lambda0 given by the user             */
   sunbooleantype user_a0;   /* a0 given by the user                        */
@@ -213,17 +423,10 @@ typedef struct LGNMemRec {
   N_Vector sol;             /* Newton correction, length nv + nalg         */
 
   /* ---- difference quotient scratch ---- */
-  N_Vector dq_q, dq_v, dq_g, dq_r, dq_z;
+  struct LGNDQRec dq; /* difference-quotient scratch vectors */
 
   /* ---- diagonal blocks of T: the leaves of the group (lgn_tangent.c) ---- */
-  int nblk;
-  sunindextype *blk_voff;   /* nblk + 1 offsets in v                       */
-  sunindextype *blk_qoff;   /* nblk + 1 offsets in q                       */
-  sunindextype *blk_toff;   /* nblk + 1 offsets in the packed T storage    */
-  sunindextype *blk_of;     /* block of each velocity component            */
-  LGNGroup *blk_group;      /* the leaf group of each block                */
-  sunindextype blk_max;     /* largest block                               */
-  sunindextype tlen;        /* packed length (identity blocks store none)  */
+  struct LGNBlocksRec blk; /* the diagonal blocks of T: the leaves of the group */
 
   /* ---- matrices of the model (Lignum-owned, of the type of A) ---- */
   SUNMatrix Mmat;           /* nv x nv                                      */
@@ -234,88 +437,22 @@ typedef struct LGNMemRec {
   SUNMatrix Bdq;            /* m x nv scratch for difference quotients      */
 
   /* ---- linear solver (not owned) ---- */
-  SUNLinearSolver LS;
-  SUNMatrix A;
-  sunbooleantype sparse;    /* A is a SUNSparseMatrix (KLU)                 */
-  int sparsetype;           /* CSC_MAT or CSR_MAT when sparse               */
-  struct LGNSparseWorkRec *sp; /* sparse path work (lgn_sparse.h)           */
-  sunbooleantype ls_initialized;
-  sunbooleantype ls_restart; /* the next setup starts clean (lgn_ls.c): the
-                                last one failed, or A's pattern was dropped */
+  struct LGNLinSolRec ls; /* the linear solver (LS and A not owned) */
 
   /* ---- Krylov solvers (lgn_krylov.c; allocated by lgn_mem.c) ---- */
-  sunbooleantype krylov;    /* LS is a matrix-free iterative solver: A is
-                               Lignum's own CSC matrix (own_A)             */
-  sunbooleantype own_A;     /* A created by Lignum (lgnAllocKrylov)        */
-  int kry_pretype;          /* LS's preconditioning side (PREC_*; -1: unknown) */
-  LGNPrecSetupFn psetup;    /* LGNSetPreconditioner (NULL: none)           */
-  LGNPrecSolveFn psolve;
-  int bp_nblocks;           /* LGNSetBlockPreconditioner (0: off)          */
-  long int *bp_bodies;      /* its partition of the bodies (NULL: equal)   */
-  struct LGNBlockPrecRec *bp; /* the block preconditioner (lgn_blockprec.c) */
-  N_Vector kry_w;           /* the solve's weights (nv + m)                */
-  N_Vector kry_tmp;         /* scratch (nv + m)                            */
-  sunrealtype eplifac;      /* LGNSetEpsLin: linear / Newton tolerance     */
-  sunbooleantype kry_newton;/* the next solve is Newton's: kry_w holds its
-                               correction weights (lgnKrylovNewtonWeights) */
-  sunrealtype asm_t;        /* the time and scalings of the last assembly  */
-  sunrealtype asm_cM, asm_cC, asm_cK; /* (handed to LGNPrecSetupFn)        */
-  long int nli;             /* Krylov iterations                           */
-  long int npe;             /* preconditioner setups                       */
-  long int nps;             /* preconditioner solves                       */
-  long int njtimes;         /* products with the iteration matrix          */
-  long int nlcf;            /* linear solves that missed their tolerance   */
-  int kry_pfail;            /* across ranks: a preconditioner solve's failure
-                               in the current Krylov solve (0: none)      */
+  struct LGNKrylovRec kry; /* Krylov solvers and preconditioners */
 
   /* ---- redundant constraints (lgn_redundancy.c) ---- */
-  sunindextype m_user;      /* the user's constraint rows (LGNSetConstraints);
-                               m counts those the integrator keeps         */
-  int red_mode;             /* LGN_REDUNDANT_ELIMINATE or _REFUSE          */
-  sunindextype red_nout;    /* rows left out (0: m = m_user, no mapping)   */
-  sunindextype *red_rows;   /* 2 m_user: the kept rows (m of them, ascending),
-                               then those left out; then scratch           */
-  sunindextype *red_keep;   /* m_user: the kept index of a user row, or -1 */
-  N_Vector red_full;        /* m_user: a callback's output, the user's rows */
-  N_Vector red_lam;         /* m_user: lambda expanded (0 on rows left out) */
-  SUNMatrix red_B;          /* m_user x nv: the user's B, of A's kind      */
-  sunrealtype red_viol;     /* the last check: max |Phi| of the rows left out */
-  long int red_nsel;        /* selections made (a change of the kept rows) */
-  SUNMatrix red_A;          /* a direct solver for the kept rows, of the   */
-  SUNLinearSolver red_LS;   /* user's kind (NULL: the user's fits)        */
-  SUNMatrix red_Auser;      /* the user's, sized for m_user, while red_A   */
-  SUNLinearSolver red_LSuser; /* and red_LS stand in for them              */
+  struct LGNRedundancyRec red; /* redundant constraints */
 
   /* ---- the diagnosis of the last singular matrix (lgn_diag.c) ---- */
-  sunindextype *diag_red;   /* redundant constraints (m; work space)       */
-  sunindextype diag_nred;   /* their number (0: none found)                */
-  sunindextype diag_pivot;  /* the zero-pivot unknown (-1: none)           */
-  long int last_lin_flag;
+  struct LGNDiagRec diag; /* the diagnosis of the last singular matrix */
 
   /* ---- Lignum's solves with a copy of KLU's factors (lgn_klu_solve.c) ---- */
-  sunbooleantype own_klu_solves; /* LGNSetOwnKLUSolves (default SUNFALSE)  */
-  sunbooleantype klu_valid;      /* klu holds the factors now in LS         */
-  long int klu_nsolve;           /* solves with LS's factors since its setup */
-  struct LGNKluCopyRec *klu;     /* the copy (NULL: none)                   */
-  long int klu_pattern;          /* A's pattern number when KLU last factored */
-  /* its counters (lgn_ls.c, LGNGetNumKLU*, LGNGetNumOwnKLU*; restarted at
-   * the first setup after LGNInit / LGNReInit) */
-  long int nklu_fallback;        /* own refactorisations handed back to KLU:
-                                    a pivot below the rcond threshold      */
-  long int nklu_copy;            /* whole copies of KLU's factors           */
-  long int nklu_values;          /* copies of their values only             */
-  long int nklu_refactor;        /* Lignum's refactorisations, KLU's stead  */
-  long int nklu_solve;           /* solves with the copy                    */
-  long int nklu_newpattern;      /* KLU factored: a new pattern of A        */
-  long int nklu_nocopy;          /* no copy possible (sizes, memory, A)     */
+  struct LGNKluRec klu; /* Lignum's solves with a copy of KLU's factors */
 
   /* ---- the factorised iteration matrix, for modified Newton (lgn_newmark_step.c) ---- */
-  sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
-  sunrealtype lu_h;         /* the step size it was built with             */
-  long int lu_nst;          /* nst when it was built                       */
-  sunrealtype newton_rate;  /* last contraction rate seen with a reused A  */
-  sunrealtype lambda_noise; /* multiplier part of the last stalled correction */
-  sunrealtype lambda_noise_h; /* ... and its step size (0: none seen)      */
+  struct LGNNewtonRec nls; /* the Newton iteration: tolerances, the reused factorisation */
 
   /* ---- bookkeeping ---- */
   sunbooleantype malloc_done; /* LGNInit called                             */
@@ -324,76 +461,18 @@ typedef struct LGNMemRec {
   sunrealtype hlast;
 
   /* ---- error control (LGN_STEP_ADAPTIVE; lgn_newmark_adapt.c, lgn_newmark_errtest.c) ---- */
-  int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
-  sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
-  sunrealtype *atol_vec;    /* per-component atol, nv (NULL: the scalar)   */
-  sunrealtype epcon;        /* Newton tolerance / error-test tolerance     */
-  sunrealtype h0_user;      /* LGNSetInitStep (0: estimated)               */
-  sunrealtype hmin, hmax;   /* step size limits (hmax 0: none)             */
-  int maxnef, maxncf;       /* failures per step                           */
-  sunrealtype hnext;        /* the step size to try next (0: none yet)     */
-  sunrealtype h0_actual;    /* the first step size tried                   */
+  struct LGNErrConRec ec; /* error control and step-size selection (LGN_STEP_ADAPTIVE) */
   sunrealtype tstop;        /* LGNSetStopTime                              */
   sunbooleantype tstop_set;
-  sunrealtype err_norm;     /* |e| of the last step attempted              */
-  sunrealtype err_prev;     /* |e| of the last step accepted               */
-  sunrealtype *ele;         /* its local error estimate (nv)               */
-  sunrealtype *ewt;         /* ... and error weights (nv)                  */
-  sunrealtype *a_scaled;    /* a_n rescaled to the step size (nv)          */
-  const sunrealtype *a_step;/* a_n as the step uses it: a or a_scaled      */
-  sunrealtype nls_rtol;     /* Newton's tolerances in this step            */
-  sunrealtype nls_atol;
-  const sunrealtype *nls_atolv; /* ... per component (NULL: nls_atol)     */
-  sunrealtype nls_vfac;     /* ... nls_atolv's factor (fixed steps: 1)     */
-  sunrealtype nls_lrtol;    /* ... of the multipliers' part               */
-  sunrealtype nls_latol;
-  long int netf;            /* error-test failures                         */
 
   /* ---- the last step, for dense output (lgn_dense_output.c) ---- */
-  sunrealtype tprev;        /* its start t_n; it ends at tn                */
-  sunbooleantype dense_valid; /* q1, v1, vdot1 hold its start, and the    */
-                              /* increment its chart coordinate            */
-  sunrealtype *incr;        /* sigma variant: log(q_n^-1 q1), tracked (nv) */
-  sunrealtype *zero_nv;     /* zeros (nv), the algebra's origin            */
-  sunrealtype *dense_work;  /* the dense output's scratch (4 nv)           */
+  struct LGNDenseRec dense; /* the last step, for dense output */
 
   /* ---- what LGNSolve returns (lgn_output.c) ---- */
-  sunbooleantype out_consistent; /* LGNSetConsistentOutputs (default on)  */
-  int out_project;          /* LGNSetProjectOutputs: LGN_PROJECT_*        */
-  sunbooleantype out_valid; /* out_vdot, out_lambda hold the last output's */
-  sunrealtype out_t;        /* ... time                                    */
-  sunrealtype *out_vdot;    /* consistent vdot at the last output (nv)     */
-  sunrealtype *out_lambda;  /* ... and lambda (m; NULL when m = 0)         */
-  sunrealtype *out_save;    /* q1, v1, vdot1, lambda1 kept while an output
-                               is computed (nq + 3 nv + m)                 */
-  N_Vector out_q, out_v;    /* LGNGetDky's q and v (clones; NULL until used) */
-  N_Vector out_lq, out_lv;  /* the last projected output's q, v (clones)   */
-  sunrealtype out_lt;       /* ... its time                                */
-  sunbooleantype out_lvalid; /* ... kept (a failed LGNSolve at that time
-                               returns them: lgn.c)                      */
-  sunrealtype *out_lwork;   /* the iterate's consistent lambda (m)         */
-  sunbooleantype lambda_errcon; /* LGNSetMultiplierErrorControl (default off) */
-  sunrealtype lambda_atol;  /* ... its absolute tolerance of the multipliers */
-  sunrealtype lambda_err;   /* |e_lambda| of the last attempt (0: off)     */
-  long int nout;            /* outputs made consistent or projected        */
+  struct LGNOutputRec out; /* what LGNSolve and LGNGetDky return */
 
   /* ---- root finding (lgn_root.c; arrays allocated by lgn_mem.c) ---- */
-  int nrtfn;                /* number of root functions (0: off)           */
-  LGNRootFn gfun;           /* g(t, q, v, gout, user_data)                 */
-  sunrealtype *glo;         /* g at tlo, the last point checked (nrtfn)    */
-  sunrealtype *ghi;         /* g at the right end of the bracket (nrtfn)   */
-  sunrealtype *grout;       /* g at the root returned / the trial point    */
-  int *iroots;              /* +1 / -1: a root found, its direction (nrtfn)*/
-  int *rootdir;             /* LGNSetRootDirection: +1, -1, 0 (nrtfn)      */
-  sunbooleantype *gactive;  /* g_i not exactly zero at tlo (nrtfn)         */
-  N_Vector rt_q, rt_v;      /* q, v handed to g (clones of the state)      */
-  sunrealtype tlo;          /* roots are sought in (tlo, ...]              */
-  sunbooleantype rt_started;/* glo holds g at tlo (dropped by STATE)       */
-  sunbooleantype rt_pending;/* a root returned before tn (LGN_ONE_STEP:    */
-                            /* tn itself is returned next, as IDA does)    */
-  sunbooleantype rt_first;  /* the first check since the start is ahead   */
-  sunbooleantype rt_nowarn; /* LGNSetNoInactiveRootWarn                    */
-  long int nge;             /* root function evaluations                   */
+  struct LGNRootRec rt; /* root finding (events) */
 
   /* ---- counters ---- */
   long int nst;      /* steps                                              */
@@ -416,7 +495,6 @@ typedef struct LGNMemRec {
   LGNErrSink err;            /* where messages go (lgn_err.h)              */
   const char *api_func;      /* the public function running (its name in
                                 messages; set by lgnAccessMem)             */
-  char diag_text[400];       /* the diagnosis of the last singular matrix  */
 } *LGNMem;
 
 /* =============================================================================
@@ -477,6 +555,22 @@ void lgnFreeKrylov(LGNMem mem, sunbooleantype settings);
 int lgnAllocRoots(LGNMem mem, int nrtfn);
 int lgnAllocRootVectors(LGNMem mem);
 void lgnFreeRoots(LGNMem mem);
+
+/* ---- lgn_workspace.c: the work blocks, one table of slices each -------- */
+
+/* The blocks: the step's arrays (sigma ... ggl_Bn), T's packed blocks, the
+ * outputs, the BDF history. Each is one allocation; the table that points
+ * its slices also counts it (lgnWorkSpace), so the two cannot drift. */
+#define LGN_WORK_STEP    0
+#define LGN_WORK_TANGENT 1
+#define LGN_WORK_OUTPUT  2
+#define LGN_WORK_BDF     3
+#define LGN_WORK_NBLOCKS 4
+
+int lgnWorkBlockAlloc(LGNMem mem, int block);      /* LGN_MEM_FAIL, no message */
+void lgnWorkBlockFree(LGNMem mem, int block);      /* and its slices NULL      */
+size_t lgnWorkBlockLength(const struct LGNMemRec *mem, int block); /* reals */
+sunbooleantype lgnWorkBlockAllocated(const struct LGNMemRec *mem, int block);
 
 /* Report an error from inside a function: fills in line, function and file. */
 #define LGN_ERROR(mem, code, ...) \
@@ -554,6 +648,8 @@ typedef struct {
   sunrealtype qscale;  /* max(1, |q_n|_max): size of the configuration       */
   sunrealtype hmat;    /* the step the iteration matrix depends on: h (Newmark),
                         * 1/c0 (BDF), compared for its reuse                */
+  sunrealtype beta_n;  /* Newton's beta: scale = beta_n h^2 (the multipliers'
+                        * roundoff floor): beta (Newmark), 1/(c0 h)^2 (BDF) */
 } LGNStepCoeffs;
 
 /* The scaled iteration matrix as a sum of terms (lgn_matrix.c):
@@ -674,7 +770,19 @@ void lgnFixedNewtonTolerances(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
-/* ---- lgn_newmark_errtest.c: the local error of a step -------------------- */
+/* ---- lgn_failure.c: the step-failure policy of the error-controlled loops */
+
+/* The cut of h after a Newton, singular-matrix or recoverable callback
+ * failure (every family; IDA's IDAHandleNFlag cuts by 1/4 as well). */
+#define LGN_CUT_NFAIL SUN_RCONST(0.25)
+
+/* The flag of a failed attempt (LGN_CONV_FAILURE or LGN_RECOVERABLE) at
+ * step size h, the ncf-th of the step: LGN_RECOVERABLE (retry with
+ * h * LGN_CUT_NFAIL) or the final flag, reported, after maxncf failures or
+ * at hmin: LGN_CONV_FAILURE, LGN_LSETUP_FAIL or LGN_REPTD_CALLBACK_ERR. */
+int lgnHandleNFlag(LGNMem mem, int flag, sunrealtype h, int *ncf);
+
+/* ---- lgn_newmark_errtest.c: the local error of a step --------------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
 int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c);
@@ -686,6 +794,9 @@ void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunr
 /* ---- lgn_dense_output.c: output between steps ---------------------------- */
 
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+/* The BDF family's interpolating polynomials (its table's dense output,
+ * used once its history holds two points). */
+int lgnBDFDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 
 /* ---- lgn_output.c: the outputs LGNSolve and LGNGetDky return ------------- */
 
@@ -721,6 +832,33 @@ int lgnCheckIndex3Damping(LGNMem mem);
 int lgnBDFStep(LGNMem mem, sunrealtype h);
 int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout);
 
+/* ---- lgn_family.c: the method families, one table each ----------------- */
+
+/* A method family: what the driver, the getters, the dense output, the
+ * error norm and Newton ask of it. Adding a family is adding its files and
+ * one of these tables (lgnFamilyOps). */
+typedef struct LGNFamilyOps {
+  const char *name;
+  int id;                      /* LGN_FAMILY_*                              */
+  sunbooleantype error_per_step; /* the error test in the units of the step
+                                  (else per unit step, lgnErrorNorm)       */
+  sunbooleantype keeps_grid;   /* fixed steps: step past tout and interpolate
+                                  rather than shorten the last step        */
+  sunbooleantype ggl_at_tn;    /* GGL corrects with B(q_n) (Newton's GGL
+                                  correction, the Jacobian at t_n)         */
+  int (*prepare)(LGNMem mem);  /* its work space before the first step
+                                  (NULL: none beyond lgnAllocWork)         */
+  int (*step)(LGNMem mem, sunrealtype h);               /* a fixed step      */
+  int (*adaptive_step)(LGNMem mem, sunrealtype tout);   /* error-controlled  */
+  int (*dense_output)(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
+                               /* between t_n and t_{n+1} (NULL, or the BDF
+                                  history short of two points: the Hermite
+                                  interpolant of lgn_dense_output.c)              */
+  int (*order)(const struct LGNMemRec *mem, sunbooleantype last);
+} LGNFamilyOps;
+
+const LGNFamilyOps *lgnFamilyOps(int family);
+
 /* ---- lgn_root.c: events (root finding on the dense output) ------------- */
 
 int lgnRootSolveStart(LGNMem mem, sunrealtype tout, int itask,
@@ -733,7 +871,7 @@ int lgnRootAfterStep(LGNMem mem, sunrealtype tout, int itask,
 /* T = I on this block (an R^n leaf): nothing stored, nothing to apply. */
 static inline sunbooleantype lgnBlockIsIdentity(const struct LGNMemRec *mem, int b)
 {
-  return mem->blk_group[b]->kind == LGN_GROUP_RN;
+  return mem->blk.group[b]->kind == LGN_GROUP_RN;
 }
 
 /* The columns k0 <= k < k1 of X whose entries column j of X T combines,
@@ -745,18 +883,18 @@ static inline void lgnTangentColumnRange(const struct LGNMemRec *mem,
                                          sunindextype j, sunindextype *k0,
                                          sunindextype *k1)
 {
-  const int b = (int)mem->blk_of[j];
-  const sunindextype o = mem->blk_voff[b];
+  const int b = (int)mem->blk.of[j];
+  const sunindextype o = mem->blk.voff[b];
   if (lgnBlockIsIdentity(mem, b) ||
-      (mem->blk_group[b]->kind == LGN_GROUP_R3XSO3 && j < o + 3)) {
+      (mem->blk.group[b]->kind == LGN_GROUP_R3XSO3 && j < o + 3)) {
     *k0 = j;
     *k1 = j + 1;
-  } else if (mem->blk_group[b]->kind == LGN_GROUP_R3XSO3) {
+  } else if (mem->blk.group[b]->kind == LGN_GROUP_R3XSO3) {
     *k0 = o + 3;
     *k1 = o + 6;
   } else {
     *k0 = o;
-    *k1 = mem->blk_voff[b + 1];
+    *k1 = mem->blk.voff[b + 1];
   }
 }
 
@@ -772,17 +910,17 @@ static inline sunbooleantype lgnPerturbedStartDue(const struct LGNMemRec *mem)
  * ranks. Inline, so that a run on one process pays one test each. */
 static inline int lgnAgree(struct LGNMemRec *mem, int flag)
 {
-  return mem->par == NULL ? flag : lgnAgreeRanks(mem, flag);
+  return mem->ranks.par == NULL ? flag : lgnAgreeRanks(mem, flag);
 }
 
 static inline void lgnSumAll(const struct LGNMemRec *mem, sunrealtype *x, int n)
 {
-  if (mem->par != NULL) lgnParallelSum(mem->par, x, n);
+  if (mem->ranks.par != NULL) lgnParallelSum(mem->ranks.par, x, n);
 }
 
 static inline sunrealtype lgnMaxAll(const struct LGNMemRec *mem, sunrealtype x)
 {
-  return mem->par == NULL ? x : lgnParallelMax(mem->par, x);
+  return mem->ranks.par == NULL ? x : lgnParallelMax(mem->ranks.par, x);
 }
 
 static inline sunrealtype *lgnData(N_Vector x)

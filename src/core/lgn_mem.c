@@ -65,38 +65,38 @@ void lgnInvalidate(LGNMem mem, unsigned int what)
     lgnFreeWork(mem); /* and the matrices; sizes or blocks are new */
   } else if (what & LGN_CHANGE_LINSOL) {
     lgnFreeMatrices(mem); /* reallocated for A's type at the next solve */
-  } else if ((what & LGN_CHANGE_PATTERN) && mem->sp != NULL) {
-    mem->sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
-    mem->sp->have_dq_patterns = SUNFALSE;
+  } else if ((what & LGN_CHANGE_PATTERN) && mem->ls.sp != NULL) {
+    mem->ls.sp->have_pattern     = SUNFALSE; /* rebuilt, not extended */
+    mem->ls.sp->have_dq_patterns = SUNFALSE;
   }
-  if (what & LGN_CHANGE_LINSOL) mem->ls_initialized = SUNFALSE;
+  if (what & LGN_CHANGE_LINSOL) mem->ls.initialized = SUNFALSE;
   if (what & (LGN_CHANGE_STATE | LGN_CHANGE_METHOD | LGN_CHANGE_MODEL |
               LGN_CHANGE_MASS))
-    mem->bdf_nhist = 0; /* the BDF history belongs to the old problem */
+    mem->bdf.nhist = 0; /* the BDF history belongs to the old problem */
   if (what & LGN_CHANGE_STATE) {
     mem->ic_done     = SUNFALSE;
     mem->h_prev      = SUN_RCONST(0.0);
-    mem->hnext       = SUN_RCONST(0.0); /* error control starts anew */
-    mem->err_prev    = SUN_RCONST(0.0);
-    mem->dense_valid = SUNFALSE;
-    mem->rt_started  = SUNFALSE; /* root finding restarts at the new t0 */
-    mem->rt_pending  = SUNFALSE;
-    mem->out_valid   = SUNFALSE; /* the last output's vdot, lambda */
-    mem->out_lvalid  = SUNFALSE; /* ... and its projected q, v */
+    mem->ec.hnext       = SUN_RCONST(0.0); /* error control starts anew */
+    mem->ec.err_prev    = SUN_RCONST(0.0);
+    mem->dense.valid = SUNFALSE;
+    mem->rt.started  = SUNFALSE; /* root finding restarts at the new t0 */
+    mem->rt.pending  = SUNFALSE;
+    mem->out.valid   = SUNFALSE; /* the last output's vdot, lambda */
+    mem->out.lvalid  = SUNFALSE; /* ... and its projected q, v */
   }
   if (what & (LGN_CHANGE_MASS | LGN_CHANGE_STATE)) mem->mass_current = SUNFALSE;
   if (what & (LGN_CHANGE_STATE | LGN_CHANGE_MODEL | LGN_CHANGE_METHOD))
     mem->ggl_Bn_valid = SUNFALSE; /* GGL's B(q_n) (Newmark family) */
   /* the factorised matrix in A no longer fits the model or method: the next
    * step of a modified Newton iteration rebuilds it */
-  mem->lu_valid  = SUNFALSE;
-  mem->klu_valid = SUNFALSE; /* copied again after the next setup */
+  mem->nls.lu_valid  = SUNFALSE;
+  mem->klu.valid = SUNFALSE; /* copied again after the next setup */
   if (what != LGN_CHANGE_MATRIX) {
     /* contraction rate and multiplier noise were seen with another model,
      * method or matrix */
-    mem->newton_rate    = SUN_RCONST(0.0);
-    mem->lambda_noise   = SUN_RCONST(0.0);
-    mem->lambda_noise_h = SUN_RCONST(0.0);
+    mem->nls.rate    = SUN_RCONST(0.0);
+    mem->nls.lambda_noise   = SUN_RCONST(0.0);
+    mem->nls.lambda_noise_h = SUN_RCONST(0.0);
   }
 }
 
@@ -187,7 +187,7 @@ int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
 {
   int flag;
   if (retval == 0) return LGN_SUCCESS;
-  if (retval > 0 && mem->step_control == LGN_STEP_ADAPTIVE) {
+  if (retval > 0 && mem->ec.step_control == LGN_STEP_ADAPTIVE) {
     return LGN_RECOVERABLE; /* retried with a smaller step (lgn_newmark_adapt.c) */
   }
   if (retval > 0) {
@@ -286,24 +286,24 @@ static int FlattenGroup(LGNGroup G, sunindextype qo, sunindextype vo,
     return nblk;
   }
   if (out != NULL) {
-    out->blk_group[nblk] = G;
-    out->blk_qoff[nblk]  = qo;
-    out->blk_voff[nblk]  = vo;
+    out->blk.group[nblk] = G;
+    out->blk.qoff[nblk]  = qo;
+    out->blk.voff[nblk]  = vo;
   }
   return nblk + 1;
 }
 
 static void BlocksFree(LGNMem mem)
 {
-  free(mem->blk_voff);
-  free(mem->blk_qoff);
-  free(mem->blk_toff);
-  free(mem->blk_of);
-  free(mem->blk_group);
-  mem->blk_voff = mem->blk_qoff = mem->blk_toff = mem->blk_of = NULL;
-  mem->blk_group = NULL;
-  mem->nblk = 0;
-  mem->blk_max = mem->tlen = 0;
+  free(mem->blk.voff);
+  free(mem->blk.qoff);
+  free(mem->blk.toff);
+  free(mem->blk.of);
+  free(mem->blk.group);
+  mem->blk.voff = mem->blk.qoff = mem->blk.toff = mem->blk.of = NULL;
+  mem->blk.group = NULL;
+  mem->blk.n = 0;
+  mem->blk.max = mem->blk.tlen = 0;
 }
 
 static int BlocksBuild(LGNMem mem)
@@ -312,27 +312,27 @@ static int BlocksBuild(LGNMem mem)
   sunindextype i, size;
 
   BlocksFree(mem);
-  mem->blk_voff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_qoff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_toff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
-  mem->blk_of    = (sunindextype *)malloc((size_t)mem->nv * sizeof(sunindextype));
-  mem->blk_group = (LGNGroup *)malloc((size_t)nblk * sizeof(LGNGroup));
-  if (mem->blk_voff == NULL || mem->blk_qoff == NULL || mem->blk_toff == NULL ||
-      mem->blk_of == NULL || mem->blk_group == NULL) {
+  mem->blk.voff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk.qoff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk.toff  = (sunindextype *)malloc((size_t)(nblk + 1) * sizeof(sunindextype));
+  mem->blk.of    = (sunindextype *)malloc((size_t)mem->nv * sizeof(sunindextype));
+  mem->blk.group = (LGNGroup *)malloc((size_t)nblk * sizeof(LGNGroup));
+  if (mem->blk.voff == NULL || mem->blk.qoff == NULL || mem->blk.toff == NULL ||
+      mem->blk.of == NULL || mem->blk.group == NULL) {
     BlocksFree(mem);
     return LGN_MEM_FAIL;
   }
-  mem->nblk = FlattenGroup(mem->G, 0, 0, mem, 0);
-  mem->blk_voff[nblk] = mem->nv;
-  mem->blk_qoff[nblk] = mem->nq;
-  mem->blk_toff[0]    = 0;
+  mem->blk.n = FlattenGroup(mem->G, 0, 0, mem, 0);
+  mem->blk.voff[nblk] = mem->nv;
+  mem->blk.qoff[nblk] = mem->nq;
+  mem->blk.toff[0]    = 0;
   for (b = 0; b < nblk; b++) {
-    size = mem->blk_voff[b + 1] - mem->blk_voff[b];
-    mem->blk_max = SUNMAX(mem->blk_max, size);
-    mem->blk_toff[b + 1] = mem->blk_toff[b] + (lgnBlockIsIdentity(mem, b) ? 0 : size * size);
-    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) mem->blk_of[i] = b;
+    size = mem->blk.voff[b + 1] - mem->blk.voff[b];
+    mem->blk.max = SUNMAX(mem->blk.max, size);
+    mem->blk.toff[b + 1] = mem->blk.toff[b] + (lgnBlockIsIdentity(mem, b) ? 0 : size * size);
+    for (i = mem->blk.voff[b]; i < mem->blk.voff[b + 1]; i++) mem->blk.of[i] = b;
   }
-  mem->tlen = mem->blk_toff[nblk];
+  mem->blk.tlen = mem->blk.toff[nblk];
   return LGN_SUCCESS;
 }
 
@@ -347,7 +347,7 @@ static int BlocksBuild(LGNMem mem)
 int lgnAgreeRanks(LGNMem mem, int flag)
 {
   int rank;
-  const int agreed = lgnParallelAgree(mem->par, flag, &rank);
+  const int agreed = lgnParallelAgree(mem->ranks.par, flag, &rank);
   if (agreed < 0 && flag >= 0 && agreed != LGN_CONV_FAILURE)
     LGN_ERROR(mem, agreed, MSG_TIME "failed on rank %d (flag %d): see its message.",
               (double)mem->tn, rank, agreed);
@@ -380,13 +380,13 @@ void lgnFreeState(LGNMem mem)
   DestroyVector(&mem->q1);
   DestroyVector(&mem->v1);
   DestroyVector(&mem->vdot1);
-  DestroyVector(&mem->dq_q);
-  DestroyVector(&mem->dq_v);
-  DestroyVector(&mem->rt_q);
-  DestroyVector(&mem->rt_v);
-  DestroyVector(&mem->out_lq); /* the last projected output (lgn_output.c) */
-  DestroyVector(&mem->out_lv);
-  mem->out_lvalid  = SUNFALSE;
+  DestroyVector(&mem->dq.q);
+  DestroyVector(&mem->dq.v);
+  DestroyVector(&mem->rt.q);
+  DestroyVector(&mem->rt.v);
+  DestroyVector(&mem->out.lq); /* the last projected output (lgn_output.c) */
+  DestroyVector(&mem->out.lv);
+  mem->out.lvalid  = SUNFALSE;
   mem->malloc_done = SUNFALSE;
 }
 
@@ -401,12 +401,12 @@ void lgnFreeMatrices(LGNMem mem)
   free(mem->Bvq);
   mem->Bvq = NULL;
   lgnSparseWorkFree(mem);
-  lgnKluCopyFree(&mem->klu);
-  mem->klu_valid = SUNFALSE;
+  lgnKluCopyFree(&mem->klu.copy);
+  mem->klu.valid = SUNFALSE;
   mem->mat_done = SUNFALSE;
   /* the pattern of A is built anew and may differ: KLU analyses again
    * (refactoring with the old analysis would write past its factors) */
-  mem->ls_restart = SUNTRUE;
+  mem->ls.restart = SUNTRUE;
 }
 
 /* The last valid multipliers outlive the work space that holds them (a
@@ -416,16 +416,16 @@ void lgnFreeMatrices(LGNMem mem)
 static void KeepMultipliers(LGNMem mem)
 {
   const sunindextype m = mem->lambda != NULL ? lgnLocalLength(mem->lambda) : 0;
-  if (mem->out_valid && mem->out_vdot != NULL) {
+  if (mem->out.valid && mem->out.vdot != NULL) {
     /* the last output's consistent vdot and lambda (LGNGetAcceleration,
      * LGNGetMultipliers report them) */
     const size_t n = (size_t)(mem->nv + mem->m);
-    free(mem->out_keep);
-    mem->out_keep = (sunrealtype *)malloc(n * sizeof(sunrealtype));
-    if (mem->out_keep != NULL) {
-      memcpy(mem->out_keep, mem->out_vdot, n * sizeof(sunrealtype)); /* out_lambda follows */
-      mem->out_keep_nv = mem->nv;
-      mem->out_keep_m  = mem->m;
+    free(mem->out.keep);
+    mem->out.keep = (sunrealtype *)malloc(n * sizeof(sunrealtype));
+    if (mem->out.keep != NULL) {
+      memcpy(mem->out.keep, mem->out.vdot, n * sizeof(sunrealtype)); /* out_lambda follows */
+      mem->out.keep_nv = mem->nv;
+      mem->out.keep_m  = mem->m;
     }
   }
   if (!mem->lambda_valid || m == 0) return;
@@ -440,17 +440,17 @@ static void KeepMultipliers(LGNMem mem)
 /* The kept output's vdot and lambda (KeepMultipliers) freed. */
 static void FreeKeptOutput(LGNMem mem)
 {
-  free(mem->out_keep);
-  mem->out_keep    = NULL;
-  mem->out_keep_nv = mem->out_keep_m = 0;
+  free(mem->out.keep);
+  mem->out.keep    = NULL;
+  mem->out.keep_nv = mem->out.keep_m = 0;
 }
 
 static void RestoreMultipliers(LGNMem mem)
 {
-  if (mem->out_keep != NULL && mem->out_keep_nv == mem->nv && mem->out_keep_m == mem->m &&
-      mem->out_vdot != NULL) {
-    memcpy(mem->out_vdot, mem->out_keep, (size_t)(mem->nv + mem->m) * sizeof(sunrealtype));
-    mem->out_valid = SUNTRUE;
+  if (mem->out.keep != NULL && mem->out.keep_nv == mem->nv && mem->out.keep_m == mem->m &&
+      mem->out.vdot != NULL) {
+    memcpy(mem->out.vdot, mem->out.keep, (size_t)(mem->nv + mem->m) * sizeof(sunrealtype));
+    mem->out.valid = SUNTRUE;
   }
   FreeKeptOutput(mem);
   if (mem->lambda != NULL && mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m) {
@@ -473,40 +473,30 @@ void lgnFreeWork(LGNMem mem)
   DestroyVector(&mem->phi);
   DestroyVector(&mem->rhs);
   DestroyVector(&mem->sol);
-  DestroyVector(&mem->dq_g);
-  DestroyVector(&mem->dq_r);
-  DestroyVector(&mem->dq_z);
+  DestroyVector(&mem->dq.g);
+  DestroyVector(&mem->dq.r);
+  DestroyVector(&mem->dq.z);
   DestroyVector(&mem->phit);
-  DestroyVector(&mem->hx_b);
-  DestroyVector(&mem->hx_x);
-  free(mem->hx_ext);
-  mem->hx_ext = mem->hx_ext2 = NULL;
-  free(mem->sigma);
-  mem->sigma = NULL;
-  mem->sigma_dot = mem->sigma_ddot = mem->a_pred = mem->work_nv = NULL;
-  mem->work2_nv = mem->vdot_prev = mem->mass_diag = mem->lambda_prev = mem->work_m = NULL;
-  mem->ele = mem->ewt = mem->a_scaled = mem->incr = mem->zero_nv = NULL;
-  mem->ggl_mu = mem->ggl_Bn = NULL;
+  DestroyVector(&mem->ranks.hx_b);
+  DestroyVector(&mem->ranks.hx_x);
+  free(mem->ranks.hx_ext);
+  mem->ranks.hx_ext = mem->ranks.hx_ext2 = NULL;
+  lgnWorkBlockFree(mem, LGN_WORK_STEP);
   mem->ggl_Bn_valid = SUNFALSE;
-  free(mem->out_vdot); /* the outputs' block (lgn_output.c) */
-  mem->out_vdot = mem->out_lambda = mem->out_save = mem->out_lwork = NULL;
-  mem->out_valid = SUNFALSE;
-  DestroyVector(&mem->out_q);
-  DestroyVector(&mem->out_v);
-  free(mem->diag_red);
-  mem->diag_red  = NULL;
-  mem->diag_nred = 0;
-  mem->diag_pivot = -1;
-  mem->dense_work = NULL;
-  mem->a_step = NULL;
-  mem->dense_valid = SUNFALSE;
+  lgnWorkBlockFree(mem, LGN_WORK_OUTPUT); /* the outputs' block (lgn_output.c) */
+  mem->out.valid = SUNFALSE;
+  DestroyVector(&mem->out.q);
+  DestroyVector(&mem->out.v);
+  free(mem->diag.red);
+  mem->diag.red  = NULL;
+  mem->diag.nred = 0;
+  mem->diag.pivot = -1;
+  mem->ec.a_step = NULL;
+  mem->dense.valid = SUNFALSE;
   mem->h_prev = SUN_RCONST(0.0);
-  free(mem->Tm);
-  mem->Tm = mem->Tv = mem->Ta = mem->blk_work = NULL;
-  free(mem->bdf_q);
-  mem->bdf_q = mem->bdf_v = mem->bdf_x = mem->bdf_rx = mem->bdf_rv = mem->bdf_l = NULL;
-  mem->bdf_xpred = mem->bdf_vpred = mem->bdf_dd = mem->bdf_ele_keep = NULL;
-  mem->bdf_nhist = 0;
+  lgnWorkBlockFree(mem, LGN_WORK_TANGENT);
+  lgnWorkBlockFree(mem, LGN_WORK_BDF);
+  mem->bdf.nhist = 0;
   BlocksFree(mem);
   mem->work_done = SUNFALSE;
   mem->ic_done = SUNFALSE;
@@ -520,25 +510,25 @@ void lgnFreeWork(LGNMem mem)
  * solver, as lgnAllocMatrices decides), kept while those stay the same. */
 int lgnAllocRedundancy(LGNMem mem)
 {
-  const sunindextype mu = mem->m_user, nv = mem->nv;
-  const sunbooleantype sparse = mem->krylov || (mem->A != NULL && lgnMatIsSparse(mem->A));
-  const int type = mem->A != NULL && lgnMatIsSparse(mem->A)
-                       ? (int)SUNSparseMatrix_SparseType(mem->A) : CSC_MAT;
-  if (mem->red_B != NULL && N_VGetLength(mem->red_full) == mu &&
-      lgnMatIsSparse(mem->red_B) == sparse &&
-      (sparse ? SUNSparseMatrix_Columns(mem->red_B) == nv &&
-                    (int)SUNSparseMatrix_SparseType(mem->red_B) == type
-              : SUNDenseMatrix_Columns(mem->red_B) == nv))
+  const sunindextype mu = mem->red.m_user, nv = mem->nv;
+  const sunbooleantype sparse = mem->kry.on || (mem->ls.A != NULL && lgnMatIsSparse(mem->ls.A));
+  const int type = mem->ls.A != NULL && lgnMatIsSparse(mem->ls.A)
+                       ? (int)SUNSparseMatrix_SparseType(mem->ls.A) : CSC_MAT;
+  if (mem->red.B != NULL && N_VGetLength(mem->red.full) == mu &&
+      lgnMatIsSparse(mem->red.B) == sparse &&
+      (sparse ? SUNSparseMatrix_Columns(mem->red.B) == nv &&
+                    (int)SUNSparseMatrix_SparseType(mem->red.B) == type
+              : SUNDenseMatrix_Columns(mem->red.B) == nv))
     return LGN_SUCCESS;
   lgnFreeRedundancy(mem);
-  mem->red_rows = (sunindextype *)malloc((size_t)(3 * mu) * sizeof(sunindextype));
-  mem->red_keep = mem->red_rows != NULL ? mem->red_rows + 2 * mu : NULL;
-  mem->red_full = N_VNew_Serial(mu, mem->sunctx);
-  mem->red_lam  = N_VNew_Serial(mu, mem->sunctx);
-  mem->red_B    = sparse ? SUNSparseMatrix(mu, nv, SUNMAX(12 * mu, 1), type, mem->sunctx)
+  mem->red.rows = (sunindextype *)malloc((size_t)(3 * mu) * sizeof(sunindextype));
+  mem->red.keep = mem->red.rows != NULL ? mem->red.rows + 2 * mu : NULL;
+  mem->red.full = N_VNew_Serial(mu, mem->sunctx);
+  mem->red.lam  = N_VNew_Serial(mu, mem->sunctx);
+  mem->red.B    = sparse ? SUNSparseMatrix(mu, nv, SUNMAX(12 * mu, 1), type, mem->sunctx)
                          : SUNDenseMatrix(mu, nv, mem->sunctx);
-  if (mem->red_rows == NULL || mem->red_full == NULL || mem->red_lam == NULL ||
-      mem->red_B == NULL) {
+  if (mem->red.rows == NULL || mem->red.full == NULL || mem->red.lam == NULL ||
+      mem->red.B == NULL) {
     lgnFreeRedundancy(mem);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -554,16 +544,16 @@ int lgnAllocRedundancySolver(LGNMem mem, sunindextype n)
   SUNLinearSolver LS = NULL;
   SUNMatrix A = NULL;
   N_Vector y  = N_VNew_Serial(n, mem->sunctx);
-  if (y != NULL && lgnDenseLUSize(mem->LS) >= 0) {
+  if (y != NULL && lgnDenseLUSize(mem->ls.LS) >= 0) {
     A  = SUNDenseMatrix(n, n, mem->sunctx);
     LS = A != NULL ? LGNLinSol_Dense(y, A, mem->sunctx) : NULL;
-  } else if (y != NULL && SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_DENSE) {
+  } else if (y != NULL && SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_DENSE) {
     A  = SUNDenseMatrix(n, n, mem->sunctx);
     LS = A != NULL ? SUNLinSol_Dense(y, A, mem->sunctx) : NULL;
 #if defined(LGN_HAVE_KLU)
-  } else if (y != NULL && SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) {
-    A  = SUNSparseMatrix(n, n, SUNMAX(SUNSparseMatrix_NNZ(mem->A), 1),
-                         SUNSparseMatrix_SparseType(mem->A), mem->sunctx);
+  } else if (y != NULL && SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_KLU) {
+    A  = SUNSparseMatrix(n, n, SUNMAX(SUNSparseMatrix_NNZ(mem->ls.A), 1),
+                         SUNSparseMatrix_SparseType(mem->ls.A), mem->sunctx);
     LS = A != NULL ? SUNLinSol_KLU(y, A, mem->sunctx) : NULL;
 #endif
   } else if (y != NULL) {
@@ -573,7 +563,7 @@ int lgnAllocRedundancySolver(LGNMem mem, sunindextype n)
               "has %lld unknowns, and this linear solver cannot be remade for them by "
               "Lignum; size A for the kept rows, or use SUNLinSol_Dense, "
               "LGNLinSol_Dense or SUNLinSol_KLU.",
-              (long long)mem->m, (long long)mem->m_user, (long long)n);
+              (long long)mem->m, (long long)mem->red.m_user, (long long)n);
     return LGN_LS_MISMATCH;
   }
   if (y != NULL) N_VDestroy(y);
@@ -582,10 +572,10 @@ int lgnAllocRedundancySolver(LGNMem mem, sunindextype n)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->red_Auser  = mem->A;
-  mem->red_LSuser = mem->LS;
-  mem->red_A = mem->A = A;
-  mem->red_LS = mem->LS = LS;
+  mem->red.Auser  = mem->ls.A;
+  mem->red.LSuser = mem->ls.LS;
+  mem->red.A = mem->ls.A = A;
+  mem->red.LS = mem->ls.LS = LS;
   lgnInvalidate(mem, LGN_CHANGE_LINSOL);
   return LGN_SUCCESS;
 }
@@ -593,30 +583,30 @@ int lgnAllocRedundancySolver(LGNMem mem, sunindextype n)
 /* The user's solver back in place of the stand-in (if any). */
 void lgnFreeRedundancySolver(LGNMem mem)
 {
-  if (mem->red_LS == NULL) return;
-  mem->A  = mem->red_Auser;
-  mem->LS = mem->red_LSuser;
-  SUNLinSolFree(mem->red_LS);
-  SUNMatDestroy(mem->red_A);
-  mem->red_A = NULL;
-  mem->red_LS = NULL;
-  mem->red_Auser = NULL;
-  mem->red_LSuser = NULL;
+  if (mem->red.LS == NULL) return;
+  mem->ls.A  = mem->red.Auser;
+  mem->ls.LS = mem->red.LSuser;
+  SUNLinSolFree(mem->red.LS);
+  SUNMatDestroy(mem->red.A);
+  mem->red.A = NULL;
+  mem->red.LS = NULL;
+  mem->red.Auser = NULL;
+  mem->red.LSuser = NULL;
   lgnInvalidate(mem, LGN_CHANGE_LINSOL);
 }
 
 void lgnFreeRedundancy(LGNMem mem)
 {
   lgnFreeRedundancySolver(mem);
-  free(mem->red_rows);
-  mem->red_rows = mem->red_keep = NULL;
-  DestroyVector(&mem->red_full);
-  DestroyVector(&mem->red_lam);
-  if (mem->red_B != NULL) SUNMatDestroy(mem->red_B);
-  mem->red_B = NULL;
-  if (mem->red_nout > 0) { /* the work space was made for the kept rows */
-    mem->red_nout = 0;
-    mem->m        = mem->m_user;
+  free(mem->red.rows);
+  mem->red.rows = mem->red.keep = NULL;
+  DestroyVector(&mem->red.full);
+  DestroyVector(&mem->red.lam);
+  if (mem->red.B != NULL) SUNMatDestroy(mem->red.B);
+  mem->red.B = NULL;
+  if (mem->red.nout > 0) { /* the work space was made for the kept rows */
+    mem->red.nout = 0;
+    mem->m        = mem->red.m_user;
     lgnInvalidate(mem, LGN_CHANGE_SIZES);
   }
 }
@@ -627,10 +617,10 @@ void lgnFreeAll(LGNMem mem)
   lgnFreeWork(mem);
   lgnFreeKrylov(mem, SUNTRUE);
   lgnFreeState(mem);
-  free(mem->atol_vec);
-  mem->atol_vec = NULL;
+  free(mem->ec.atol_vec);
+  mem->ec.atol_vec = NULL;
   lgnFreeRoots(mem);
-  lgnParallelFree(&mem->par);
+  lgnParallelFree(&mem->ranks.par);
   free(mem->lambda_keep); /* (kept by lgnFreeWork above) */
   mem->lambda_keep     = NULL;
   mem->lambda_keep_len = 0;
@@ -649,27 +639,27 @@ int lgnAllocKrylov(LGNMem mem)
 {
   const sunindextype n = mem->nv + mem->m;
   /* the Krylov solver's vectors: the owned unknowns (all but the ghosts) */
-  const sunindextype nk = mem->nv_own + mem->m;
-  if (mem->own_A && mem->A != NULL && SUNSparseMatrix_Rows(mem->A) != n) {
+  const sunindextype nk = mem->ranks.nv_own + mem->m;
+  if (mem->kry.own_A && mem->ls.A != NULL && SUNSparseMatrix_Rows(mem->ls.A) != n) {
     lgnFreeMatrices(mem);
-    DestroyMatrix(&mem->A);
+    DestroyMatrix(&mem->ls.A);
   }
   /* remade on every rank when one needs it (making them is collective) */
-  if (lgnMaxAll(mem, mem->kry_w != NULL && lgnLocalLength(mem->kry_w) != nk
+  if (lgnMaxAll(mem, mem->kry.w != NULL && lgnLocalLength(mem->kry.w) != nk
                          ? SUN_RCONST(1.0)
                          : SUN_RCONST(0.0)) > SUN_RCONST(0.0)) {
-    DestroyVector(&mem->kry_w);
-    DestroyVector(&mem->kry_tmp);
+    DestroyVector(&mem->kry.w);
+    DestroyVector(&mem->kry.tmp);
   }
-  if (mem->A == NULL) {
+  if (mem->ls.A == NULL) {
     lgnFreeMatrices(mem);
-    lgnBlockPrecFree(&mem->bp);
-    mem->A     = SUNSparseMatrix(n, n, SUNMAX(10 * n, 1), CSC_MAT, mem->sunctx);
-    mem->own_A = mem->A != NULL ? SUNTRUE : SUNFALSE;
+    lgnBlockPrecFree(&mem->kry.bp);
+    mem->ls.A     = SUNSparseMatrix(n, n, SUNMAX(10 * n, 1), CSC_MAT, mem->sunctx);
+    mem->kry.own_A = mem->ls.A != NULL ? SUNTRUE : SUNFALSE;
   }
-  if (mem->kry_w == NULL) mem->kry_w = lgnParallelNewVector(mem->par, nk, mem->sunctx);
-  if (mem->kry_tmp == NULL) mem->kry_tmp = lgnParallelNewVector(mem->par, nk, mem->sunctx);
-  if (lgnAgree(mem, mem->A == NULL || mem->kry_w == NULL || mem->kry_tmp == NULL
+  if (mem->kry.w == NULL) mem->kry.w = lgnParallelNewVector(mem->ranks.par, nk, mem->sunctx);
+  if (mem->kry.tmp == NULL) mem->kry.tmp = lgnParallelNewVector(mem->ranks.par, nk, mem->sunctx);
+  if (lgnAgree(mem, mem->ls.A == NULL || mem->kry.w == NULL || mem->kry.tmp == NULL
                         ? LGN_MEM_FAIL
                         : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeKrylov(mem, SUNFALSE);
@@ -683,17 +673,17 @@ int lgnAllocKrylov(LGNMem mem)
  * block preconditioner; settings: its partition as well (LGNFree). */
 void lgnFreeKrylov(LGNMem mem, sunbooleantype settings)
 {
-  if (mem->own_A) {
+  if (mem->kry.own_A) {
     lgnFreeMatrices(mem);
-    DestroyMatrix(&mem->A);
-    mem->own_A = SUNFALSE;
+    DestroyMatrix(&mem->ls.A);
+    mem->kry.own_A = SUNFALSE;
   }
-  DestroyVector(&mem->kry_w);
-  DestroyVector(&mem->kry_tmp);
-  lgnBlockPrecFree(&mem->bp);
+  DestroyVector(&mem->kry.w);
+  DestroyVector(&mem->kry.tmp);
+  lgnBlockPrecFree(&mem->kry.bp);
   if (settings) {
-    free(mem->bp_bodies);
-    mem->bp_bodies = NULL;
+    free(mem->kry.bp_bodies);
+    mem->kry.bp_bodies = NULL;
   }
 }
 
@@ -704,35 +694,35 @@ void lgnFreeKrylov(LGNMem mem, sunbooleantype settings)
 /* Root finding off: its arrays and scratch vectors released, nrtfn = 0. */
 void lgnFreeRoots(LGNMem mem)
 {
-  free(mem->glo);
-  free(mem->iroots);
-  free(mem->gactive);
-  mem->glo = mem->ghi = mem->grout = NULL;
-  mem->iroots = mem->rootdir = NULL;
-  mem->gactive = NULL;
-  DestroyVector(&mem->rt_q);
-  DestroyVector(&mem->rt_v);
-  mem->nrtfn      = 0;
-  mem->gfun       = NULL;
-  mem->rt_started = SUNFALSE;
-  mem->rt_pending = SUNFALSE;
+  free(mem->rt.glo);
+  free(mem->rt.iroots);
+  free(mem->rt.gactive);
+  mem->rt.glo = mem->rt.ghi = mem->rt.grout = NULL;
+  mem->rt.iroots = mem->rt.rootdir = NULL;
+  mem->rt.gactive = NULL;
+  DestroyVector(&mem->rt.q);
+  DestroyVector(&mem->rt.v);
+  mem->rt.nrtfn      = 0;
+  mem->rt.gfun       = NULL;
+  mem->rt.started = SUNFALSE;
+  mem->rt.pending = SUNFALSE;
 }
 
 /* The scratch q and v handed to g: clones of the state (LGNInit done). */
 int lgnAllocRootVectors(LGNMem mem)
 {
   /* made again on every rank when one lacks them (collective clones) */
-  if (lgnMaxAll(mem, mem->rt_q == NULL || mem->rt_v == NULL ? SUN_RCONST(1.0)
+  if (lgnMaxAll(mem, mem->rt.q == NULL || mem->rt.v == NULL ? SUN_RCONST(1.0)
                                                             : SUN_RCONST(0.0)) ==
       SUN_RCONST(0.0))
     return LGN_SUCCESS;
-  DestroyVector(&mem->rt_q);
-  DestroyVector(&mem->rt_v);
-  mem->rt_q = N_VClone(mem->q);
-  mem->rt_v = N_VClone(mem->v);
-  if (mem->rt_q == NULL || mem->rt_v == NULL) {
-    DestroyVector(&mem->rt_q);
-    DestroyVector(&mem->rt_v);
+  DestroyVector(&mem->rt.q);
+  DestroyVector(&mem->rt.v);
+  mem->rt.q = N_VClone(mem->q);
+  mem->rt.v = N_VClone(mem->v);
+  if (mem->rt.q == NULL || mem->rt.v == NULL) {
+    DestroyVector(&mem->rt.q);
+    DestroyVector(&mem->rt.v);
     return LGN_MEM_FAIL;
   }
   return LGN_SUCCESS;
@@ -759,14 +749,14 @@ int lgnAllocRoots(LGNMem mem, int nrtfn)
     return LGN_MEM_FAIL;
   }
   lgnFreeRoots(mem);
-  mem->glo     = glo;
-  mem->iroots  = iroots;
-  mem->gactive = gactive;
-  mem->ghi     = mem->glo + nrtfn;
-  mem->grout   = mem->glo + 2 * nrtfn;
-  mem->rootdir = mem->iroots + nrtfn;
-  for (i = 0; i < nrtfn; i++) mem->gactive[i] = SUNTRUE;
-  mem->nrtfn = nrtfn;
+  mem->rt.glo     = glo;
+  mem->rt.iroots  = iroots;
+  mem->rt.gactive = gactive;
+  mem->rt.ghi     = mem->rt.glo + nrtfn;
+  mem->rt.grout   = mem->rt.glo + 2 * nrtfn;
+  mem->rt.rootdir = mem->rt.iroots + nrtfn;
+  for (i = 0; i < nrtfn; i++) mem->rt.gactive[i] = SUNTRUE;
+  mem->rt.nrtfn = nrtfn;
   return LGN_SUCCESS;
 }
 
@@ -781,21 +771,21 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
   FreeKeptOutput(mem);
   mem->nq    = mem->G->nq;
   mem->nv    = mem->G->nv;
-  mem->nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
-  mem->nv_own = mem->nv;
+  mem->ranks.nq_own = mem->nq; /* without ghosts (lgnAllocWork sets them) */
+  mem->ranks.nv_own = mem->nv;
   mem->q     = N_VClone(q0);
   mem->q1    = N_VClone(q0);
-  mem->dq_q  = N_VClone(q0);
+  mem->dq.q  = N_VClone(q0);
   mem->v     = N_VClone(v0);
   mem->vdot  = N_VClone(v0);
   mem->a     = N_VClone(v0);
   mem->v1    = N_VClone(v0);
   mem->vdot1 = N_VClone(v0);
-  mem->dq_v  = N_VClone(v0);
+  mem->dq.v  = N_VClone(v0);
   /* every rank clones every vector (cloning an MPI vector is collective) */
-  if (mem->q == NULL || mem->q1 == NULL || mem->dq_q == NULL ||
+  if (mem->q == NULL || mem->q1 == NULL || mem->dq.q == NULL ||
       mem->v == NULL || mem->vdot == NULL || mem->a == NULL ||
-      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq_v == NULL) {
+      mem->v1 == NULL || mem->vdot1 == NULL || mem->dq.v == NULL) {
     lgnFreeState(mem);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
@@ -826,17 +816,17 @@ int lgnAllocWork(LGNMem mem)
   if (!fail) {
     /* the sizes of the weighted RMS norms: nv and m of all ranks */
     sunrealtype sizes[3];
-    mem->nv_own = nv;
-    mem->nq_own = mem->nq;
+    mem->ranks.nv_own = nv;
+    mem->ranks.nq_own = mem->nq;
 #if defined(LGN_HAVE_MPI)
-    if (mem->halo != NULL) lgnHaloOwnedLengths(mem->halo, &mem->nq_own, &mem->nv_own);
+    if (mem->ranks.halo != NULL) lgnHaloOwnedLengths(mem->ranks.halo, &mem->ranks.nq_own, &mem->ranks.nv_own);
 #endif
-    sizes[0] = (sunrealtype)mem->nv_own;
+    sizes[0] = (sunrealtype)mem->ranks.nv_own;
     sizes[1] = (sunrealtype)m;
     sizes[2] = m == 0 ? SUN_RCONST(1.0) : SUN_RCONST(0.0);
-    if (mem->par != NULL) { /* ghost bodies on every rank or on none */
-      const sunrealtype any = lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
-      const sunrealtype all = -lgnMaxAll(mem, mem->halo != NULL ? SUN_RCONST(-1.0) : SUN_RCONST(0.0));
+    if (mem->ranks.par != NULL) { /* ghost bodies on every rank or on none */
+      const sunrealtype any = lgnMaxAll(mem, mem->ranks.halo != NULL ? SUN_RCONST(1.0) : SUN_RCONST(0.0));
+      const sunrealtype all = -lgnMaxAll(mem, mem->ranks.halo != NULL ? SUN_RCONST(-1.0) : SUN_RCONST(0.0));
       if (any != all) {
         LGN_ERROR(mem, LGN_ILL_INPUT,
                   "Ghost bodies (LGNSetHalo) are set on some ranks only: set them on "
@@ -846,14 +836,14 @@ int lgnAllocWork(LGNMem mem)
       }
     }
     lgnSumAll(mem, sizes, 3);
-    mem->nv_all = sizes[0];
-    mem->m_all  = sizes[1];
+    mem->ranks.nv_all = sizes[0];
+    mem->ranks.m_all  = sizes[1];
     if (sizes[1] > SUN_RCONST(0.0) && sizes[2] > SUN_RCONST(0.0)) {
       /* the step takes the constrained path on every rank or on none */
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "%g of %d ranks have no constraints (m = 0) while others have: "
                 "give every rank constraints, or none.",
-                (double)sizes[2], lgnParallelSize(mem->par));
+                (double)sizes[2], lgnParallelSize(mem->ranks.par));
       lgnFreeWork(mem);
       return LGN_ILL_INPUT;
     }
@@ -862,80 +852,46 @@ int lgnAllocWork(LGNMem mem)
     /* every rank makes every vector, whatever failed (collective types) */
     mem->g    = N_VClone(mem->v);
     mem->rdyn = N_VClone(mem->v);
-    mem->dq_g = N_VClone(mem->v);
-    mem->dq_r = N_VClone(mem->v);
-    mem->rhs  = lgnParallelNewVector(mem->par, nv + mem->nalg, ctx);
-    mem->sol  = lgnParallelNewVector(mem->par, nv + mem->nalg, ctx);
-    fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq_g == NULL ||
-            mem->dq_r == NULL || mem->rhs == NULL ||
+    mem->dq.g = N_VClone(mem->v);
+    mem->dq.r = N_VClone(mem->v);
+    mem->rhs  = lgnParallelNewVector(mem->ranks.par, nv + mem->nalg, ctx);
+    mem->sol  = lgnParallelNewVector(mem->ranks.par, nv + mem->nalg, ctx);
+    fail = (mem->g == NULL || mem->rdyn == NULL || mem->dq.g == NULL ||
+            mem->dq.r == NULL || mem->rhs == NULL ||
             mem->sol == NULL);
-    if (mem->halo != NULL) { /* the owned unknowns of a solve (lgn_ghosts.c) */
-      mem->hx_b   = lgnParallelNewVector(mem->par, mem->nv_own + m, ctx);
-      mem->hx_x   = lgnParallelNewVector(mem->par, mem->nv_own + m, ctx);
-      mem->hx_ext = (sunrealtype *)malloc((size_t)(2 * (nv + m)) * sizeof(sunrealtype));
-      fail = fail || mem->hx_b == NULL || mem->hx_x == NULL || mem->hx_ext == NULL;
-      if (mem->hx_ext != NULL) mem->hx_ext2 = mem->hx_ext + nv + m;
+    if (mem->ranks.halo != NULL) { /* the owned unknowns of a solve (lgn_ghosts.c) */
+      mem->ranks.hx_b   = lgnParallelNewVector(mem->ranks.par, mem->ranks.nv_own + m, ctx);
+      mem->ranks.hx_x   = lgnParallelNewVector(mem->ranks.par, mem->ranks.nv_own + m, ctx);
+      mem->ranks.hx_ext = (sunrealtype *)malloc((size_t)(2 * (nv + m)) * sizeof(sunrealtype));
+      fail = fail || mem->ranks.hx_b == NULL || mem->ranks.hx_x == NULL || mem->ranks.hx_ext == NULL;
+      if (mem->ranks.hx_ext != NULL) mem->ranks.hx_ext2 = mem->ranks.hx_ext + nv + m;
     }
     if (m > 0) {
-      mem->lambda  = lgnParallelNewVector(mem->par, m, ctx);
-      mem->lambda1 = lgnParallelNewVector(mem->par, m, ctx);
-      mem->phi     = lgnParallelNewVector(mem->par, m, ctx);
-      mem->dq_z    = lgnParallelNewVector(mem->par, m, ctx);
-      mem->phit    = lgnParallelNewVector(mem->par, m, ctx);
+      mem->lambda  = lgnParallelNewVector(mem->ranks.par, m, ctx);
+      mem->lambda1 = lgnParallelNewVector(mem->ranks.par, m, ctx);
+      mem->phi     = lgnParallelNewVector(mem->ranks.par, m, ctx);
+      mem->dq.z    = lgnParallelNewVector(mem->ranks.par, m, ctx);
+      mem->phit    = lgnParallelNewVector(mem->ranks.par, m, ctx);
       fail = fail || mem->lambda == NULL || mem->lambda1 == NULL || mem->phi == NULL ||
-             mem->dq_z == NULL || mem->phit == NULL;
+             mem->dq.z == NULL || mem->phit == NULL;
     }
   }
   if (!fail) {
-    /* sigma, sigma_dot and sigma_ddot of the exact variant
-     * (lgn_kinematics.c), a_pred, work_nv, work2_nv, vdot_prev, mass_diag,
-     * ele, ewt, a_scaled, incr, zero_nv (nv each), the dense output's
-     * scratch (4 nv), lambda_prev, work_m and GGL's mu (m each) and GGL's
-     * B(q_n) (m nv, the Newmark family) in one block */
-    const sunindextype nbn = mem->constr_index == LGN_CONSTR_GGL ? m * nv : 0;
-    mem->sigma = (sunrealtype *)calloc((size_t)(17 * nv + 3 * m + nbn), sizeof(sunrealtype));
-    /* Tm, Tv, Ta (packed diagonal blocks) and the block scratch */
-    mem->Tm    = (sunrealtype *)calloc((size_t)(3 * mem->tlen + 3 * mem->blk_max),
-                                       sizeof(sunrealtype));
+    /* the step's arrays, T's blocks, the outputs (lgn_workspace.c) */
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_STEP) != LGN_SUCCESS;
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_TANGENT) != LGN_SUCCESS || fail;
+    fail = lgnWorkBlockAlloc(mem, LGN_WORK_OUTPUT) != LGN_SUCCESS || fail;
     /* the redundant constraints of a singular matrix (lgn_diag.c) */
-    mem->diag_red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
-    /* the outputs (lgn_output.c): vdot, lambda, the kept slots */
-    mem->out_vdot = (sunrealtype *)calloc((size_t)(mem->nq + 4 * nv + 3 * m),
-                                          sizeof(sunrealtype));
-    fail       = (mem->sigma == NULL || mem->Tm == NULL || mem->diag_red == NULL ||
-                  mem->out_vdot == NULL);
+    mem->diag.red = (sunindextype *)malloc((size_t)SUNMAX(m, 1) * sizeof(sunindextype));
+    fail          = fail || mem->diag.red == NULL;
   }
   if (lgnAgree(mem, fail ? LGN_MEM_FAIL : LGN_SUCCESS) != LGN_SUCCESS) {
     lgnFreeWork(mem);
     if (fail) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->Tv         = mem->Tm + mem->tlen;
-  mem->Ta         = mem->Tm + 2 * mem->tlen;
-  mem->blk_work   = mem->Tm + 3 * mem->tlen;
-  mem->sigma_dot  = mem->sigma + nv;
-  mem->sigma_ddot = mem->sigma + 2 * nv;
-  mem->a_pred     = mem->sigma + 3 * nv;
-  mem->work_nv    = mem->sigma + 4 * nv;
-  mem->work2_nv   = mem->sigma + 5 * nv;
-  mem->vdot_prev  = mem->sigma + 6 * nv;
-  mem->mass_diag  = mem->sigma + 7 * nv;
-  mem->ele        = mem->sigma + 8 * nv;
-  mem->ewt        = mem->sigma + 9 * nv;
-  mem->a_scaled   = mem->sigma + 10 * nv;
-  mem->incr       = mem->sigma + 11 * nv;
-  mem->zero_nv    = mem->sigma + 12 * nv;
-  mem->dense_work = mem->sigma + 13 * nv;
-  mem->lambda_prev = m > 0 ? mem->sigma + 17 * nv : NULL;
-  mem->work_m      = m > 0 ? mem->sigma + 17 * nv + m : NULL;
-  mem->ggl_mu      = m > 0 && mem->constr_index == LGN_CONSTR_GGL ? mem->sigma + 17 * nv + 2 * m
-                                                                  : NULL;
-  mem->ggl_Bn      = mem->ggl_mu != NULL ? mem->ggl_mu + m : NULL;
   mem->ggl_Bn_valid = SUNFALSE;
-  mem->out_lambda  = m > 0 ? mem->out_vdot + nv : NULL;
-  mem->out_save    = mem->out_vdot + nv + m;
-  mem->out_lwork   = m > 0 ? mem->out_save + mem->nq + 3 * nv + m : NULL;
-  mem->out_valid   = SUNFALSE;
+  mem->out.valid   = SUNFALSE;
   if (m > 0) N_VConst(SUN_RCONST(0.0), mem->lambda);
   mem->lambda_valid = SUNFALSE;
   RestoreMultipliers(mem); /* the last valid ones, if m is the same */
@@ -958,37 +914,16 @@ int lgnEnsureWork(LGNMem mem)
   return flag;
 }
 
-/* The length of the BDF history and work arrays (lgn_bdf.c), allocated
- * once in one block (lgnAllocBDF) and counted by lgnWorkSpace:
- * LGN_BDF_MAXHIST points of q (nq) and v, x (nv), r_x, r_v, the predictor
- * (4 nv), the divided differences ((LGN_BDF_MAXHIST + 1) nv), the
- * multipliers (LGN_BDF_MAXHIST m) and a copy of the step's estimate (nv). */
-static size_t BDFBlockLength(const LGNMem mem)
-{
-  const size_t H = LGN_BDF_MAXHIST;
-  return H * ((size_t)mem->nq + (size_t)mem->m) + (3 * H + 6) * (size_t)mem->nv;
-}
-
+/* The BDF history and work arrays (lgn_bdf.c), allocated once in one
+ * block (lgn_workspace.c's BDF table) and counted by lgnWorkSpace. */
 int lgnAllocBDF(LGNMem mem)
 {
-  const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
-  const size_t H = LGN_BDF_MAXHIST;
-  if (mem->bdf_q != NULL) return LGN_SUCCESS;
-  mem->bdf_q = (sunrealtype *)calloc(BDFBlockLength(mem), sizeof(sunrealtype));
-  if (mem->bdf_q == NULL) {
+  if (mem->bdf.q != NULL) return LGN_SUCCESS;
+  if (lgnWorkBlockAlloc(mem, LGN_WORK_BDF) != LGN_SUCCESS) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->bdf_v     = mem->bdf_q + H * nq;
-  mem->bdf_x     = mem->bdf_v + H * nv;
-  mem->bdf_rx    = mem->bdf_x + H * nv;
-  mem->bdf_rv    = mem->bdf_rx + nv;
-  mem->bdf_xpred = mem->bdf_rv + nv;
-  mem->bdf_vpred = mem->bdf_xpred + nv;
-  mem->bdf_dd    = mem->bdf_vpred + nv;
-  mem->bdf_l     = mem->bdf_dd + (H + 1) * nv;
-  mem->bdf_ele_keep = mem->bdf_l + H * m;
-  mem->bdf_nhist = 0;
+  mem->bdf.nhist = 0;
   return LGN_SUCCESS;
 }
 
@@ -999,9 +934,9 @@ static SUNMatrix NewModelMatrix(LGNMem mem, sunindextype rows,
                                 sunindextype cols, sunindextype nnz)
 {
   SUNMatrix S;
-  if (!mem->sparse) return SUNDenseMatrix(rows, cols, mem->sunctx);
+  if (!mem->ls.sparse) return SUNDenseMatrix(rows, cols, mem->sunctx);
   S = SUNSparseMatrix(rows, cols, SUNMAX(SUNMIN(nnz, rows * cols), 1),
-                      mem->sparsetype, mem->sunctx);
+                      mem->ls.sparsetype, mem->sunctx);
   if (S != NULL) SUNMatZero(S);
   return S;
 }
@@ -1016,10 +951,10 @@ int lgnAllocMatrices(LGNMem mem)
 
   lgnFreeMatrices(mem);
   mem->mass_current = SUNFALSE;
-  mem->sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
-  if (mem->sparse) mem->sparsetype = (int)SUNSparseMatrix_SparseType(mem->A);
-  for (b = 0; b < mem->nblk; b++) {
-    sunindextype size = mem->blk_voff[b + 1] - mem->blk_voff[b];
+  mem->ls.sparse = lgnMatID(mem->ls.A) == SUNMATRIX_SPARSE;
+  if (mem->ls.sparse) mem->ls.sparsetype = (int)SUNSparseMatrix_SparseType(mem->ls.A);
+  for (b = 0; b < mem->blk.n; b++) {
+    sunindextype size = mem->blk.voff[b + 1] - mem->blk.voff[b];
     nnzM += lgnBlockIsIdentity(mem, b) ? size : size * size;
   }
   mem->Mmat = NewModelMatrix(mem, nv, nv, nnzM);
@@ -1031,10 +966,10 @@ int lgnAllocMatrices(LGNMem mem)
   if (m > 0 && !fail) {
     mem->Bmat = NewModelMatrix(mem, m, nv, 12 * m);
     mem->Bdq  = NewModelMatrix(mem, m, nv, 12 * m);
-    if (!mem->sparse) mem->Bvq = (sunrealtype *)calloc((size_t)(m * nv), sizeof(sunrealtype));
-    fail = (mem->Bmat == NULL || mem->Bdq == NULL || (!mem->sparse && mem->Bvq == NULL));
+    if (!mem->ls.sparse) mem->Bvq = (sunrealtype *)calloc((size_t)(m * nv), sizeof(sunrealtype));
+    fail = (mem->Bmat == NULL || mem->Bdq == NULL || (!mem->ls.sparse && mem->Bvq == NULL));
   }
-  if (!fail && mem->sparse) fail = lgnSparseWorkCreate(mem) != LGN_SUCCESS;
+  if (!fail && mem->ls.sparse) fail = lgnSparseWorkCreate(mem) != LGN_SUCCESS;
   if (fail) {
     lgnFreeMatrices(mem);
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
@@ -1048,7 +983,7 @@ long int lgnIterationMatrixNnz(LGNMem mem)
 {
   const long int n = (long int)(mem->nv + (mem->constr_index == LGN_CONSTR_GGL ? 2 * mem->m
                                                                                : mem->m));
-  if (mem->sp != NULL) return mem->sp->have_pattern ? (long int)mem->sp->A.colptr[n] : 0L;
+  if (mem->ls.sp != NULL) return mem->ls.sp->have_pattern ? (long int)mem->ls.sp->A.colptr[n] : 0L;
   /* dense: n^2, saturated rather than overflowing */
   return n > 0 && n > LONG_MAX / n ? LONG_MAX : n * n;
 }
@@ -1068,18 +1003,18 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
   const long int nq = (long int)mem->nq, nv = (long int)mem->nv, m = (long int)mem->m;
   long int rw = 0, iw = 0;
   if (mem->malloc_done) rw += 3 * nq + 6 * nv;           /* q, q1, dq_q; v ...  */
-  if (mem->nrtfn > 0) {                                   /* root finding        */
-    rw += 3L * mem->nrtfn + nq + nv;
-    iw += 3L * mem->nrtfn;
+  if (mem->rt.nrtfn > 0) {                                   /* root finding        */
+    rw += 3L * mem->rt.nrtfn + nq + nv;
+    iw += 3L * mem->rt.nrtfn;
   }
   if (mem->work_done) {
     rw += 4 * nv + 2 * (nv + (long int)mem->nalg) + 4 * m; /* g ... sol; lambda ... */
-    rw += 17 * nv + 3 * m + 3 * (long int)(mem->tlen + mem->blk_max);
-    if (mem->ggl_Bn != NULL) rw += m * nv;                /* GGL's B(q_n)        */
-    rw += nq + 4 * nv + 3 * m;                            /* the outputs' block  */
-    if (mem->out_q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
-    if (mem->out_lq != NULL) rw += nq + nv;               /* the last output's   */
-    iw += 3 * (mem->nblk + 1) + nv + mem->nblk;           /* block tables        */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_STEP);    /* the work blocks */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_TANGENT); /* (lgn_workspace.c) */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_OUTPUT);
+    if (mem->out.q != NULL) rw += nq + nv;                /* LGNGetDky's q, v    */
+    if (mem->out.lq != NULL) rw += nq + nv;               /* the last output's   */
+    iw += 3 * (mem->blk.n + 1) + nv + mem->blk.n;           /* block tables        */
   }
   if (mem->mat_done) {
     MatrixSpace(mem->Mmat, &rw, &iw);
@@ -1090,19 +1025,19 @@ void lgnWorkSpace(LGNMem mem, long int *lenrw, long int *leniw)
     MatrixSpace(mem->Bdq, &rw, &iw);
     if (mem->Bvq != NULL) rw += m * nv;
     lgnSparseWorkSpace(mem, &rw, &iw);
-    lgnKluCopySpace(mem->klu, &rw, &iw);
+    lgnKluCopySpace(mem->klu.copy, &rw, &iw);
   }
-  if (mem->bdf_q != NULL) /* the BDF history and work arrays (lgnAllocBDF) */
-    rw += (long int)BDFBlockLength(mem);
-  if (mem->own_A) MatrixSpace(mem->A, &rw, &iw); /* Krylov: Lignum's A */
-  if (mem->red_B != NULL) { /* redundant rows: the user's B, 2 vectors, the maps */
-    MatrixSpace(mem->red_B, &rw, &iw);
-    rw += 2L * (long int)mem->m_user;
-    iw += 3L * (long int)mem->m_user;
+  if (lgnWorkBlockAllocated(mem, LGN_WORK_BDF)) /* the BDF history (lgnAllocBDF) */
+    rw += (long int)lgnWorkBlockLength(mem, LGN_WORK_BDF);
+  if (mem->kry.own_A) MatrixSpace(mem->ls.A, &rw, &iw); /* Krylov: Lignum's A */
+  if (mem->red.B != NULL) { /* redundant rows: the user's B, 2 vectors, the maps */
+    MatrixSpace(mem->red.B, &rw, &iw);
+    rw += 2L * (long int)mem->red.m_user;
+    iw += 3L * (long int)mem->red.m_user;
   }
-  if (mem->red_A != NULL) MatrixSpace(mem->red_A, &rw, &iw); /* the stand-in's matrix */
-  if (mem->kry_w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry_w);
-  lgnBlockPrecSpace(mem->bp, &rw, &iw);
+  if (mem->red.A != NULL) MatrixSpace(mem->red.A, &rw, &iw); /* the stand-in's matrix */
+  if (mem->kry.w != NULL) rw += 2 * (long int)lgnLocalLength(mem->kry.w);
+  lgnBlockPrecSpace(mem->kry.bp, &rw, &iw);
   *lenrw = rw;
   *leniw = iw;
 }
@@ -1117,7 +1052,7 @@ int lgnSparseWorkCreate(LGNMem mem)
   sunindextype i;
   struct LGNSparseWorkRec *sp = (struct LGNSparseWorkRec *)calloc(1, sizeof *sp);
   if (sp == NULL) return LGN_MEM_FAIL;
-  mem->sp  = sp;
+  mem->ls.sp  = sp;
   sp->mark = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
   sp->list = (sunindextype *)malloc((size_t)n * sizeof(sunindextype));
   if (sp->mark == NULL || sp->list == NULL) {
@@ -1130,7 +1065,7 @@ int lgnSparseWorkCreate(LGNMem mem)
 
 void lgnSparseWorkFree(LGNMem mem)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   int k;
   if (sp == NULL) return;
   for (k = 0; k < LGN_NMAPS; k++) free(sp->map[k].off);
@@ -1153,13 +1088,13 @@ void lgnSparseWorkFree(LGNMem mem)
   free(sp->mark);
   free(sp->list);
   free(sp);
-  mem->sp = NULL;
+  mem->ls.sp = NULL;
 }
 
 /* Reals and indices held by the sparse work space. */
 void lgnSparseWorkSpace(const LGNMem mem, long int *rw, long int *iw)
 {
-  const struct LGNSparseWorkRec *sp = mem->sp;
+  const struct LGNSparseWorkRec *sp = mem->ls.sp;
   const LGNCsc *all[8];
   const LGNPatternMemo *seen[4];
   int k;

@@ -112,8 +112,8 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
                            const sunrealtype *delta, const sunrealtype *dmu,
                            NewtonTest *t)
 {
-  const sunindextype nv = mem->nv_own, m = mem->m; /* owned: not the ghosts */
-  const sunrealtype h = c->h, rtol = mem->nls_rtol, atol = mem->nls_atol;
+  const sunindextype nv = mem->ranks.nv_own, m = mem->m; /* owned: not the ghosts */
+  const sunrealtype h = c->h, rtol = mem->nls.rtol, atol = mem->nls.atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;
   /* w_i = (delta_i / h) / (atol + rtol |sigma_i / h| + roundoff / h) and
@@ -121,18 +121,17 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
    * each with one division */
   const sunrealtype sigma_atol  = atol * h + roundoff;
   const sunrealtype lambda_unit = c->scale / h;
-  /* beta h^2 = scale for the Newmark family; BDF's scale is 1/c0^2 */
-  const sunrealtype beta = mem->family == LGN_FAMILY_BDF ? c->scale / (h * h) : mem->beta;
-  const sunrealtype lambda_atol = mem->nls_latol + roundoff / (beta * h);
+  /* the family's beta (c->beta_n: scale = beta_n h^2) */
+  const sunrealtype lambda_atol = mem->nls.latol + roundoff / (c->beta_n * h);
   const sunbooleantype ggl = m > 0 && mem->constr_index == LGN_CONSTR_GGL;
-  const sunrealtype n = mem->nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->m_all;
+  const sunrealtype n = mem->ranks.nv_all + (ggl ? SUN_RCONST(2.0) : SUN_RCONST(1.0)) * mem->ranks.m_all;
   sunrealtype sum[2]; /* the configuration and multiplier parts */
 
   /* per-component tolerances (error control): the same weights with
    * atol_i h in place of atol h */
-  sum[0] = mem->nls_atolv != NULL
-               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls_atolv,
-                                    h * mem->nls_vfac, roundoff, rtol)
+  sum[0] = mem->nls.atolv != NULL
+               ? SumOfSquaresRatioV(nv, delta, mem->sigma, mem->nls.atolv,
+                                    h * mem->nls.vfac, roundoff, rtol)
                : SumOfSquaresRatio(nv, delta, mem->sigma, SUN_RCONST(1.0), sigma_atol,
                                    rtol);
   /* GGL: the unknown nu = mu / gamma' moves the configuration by T^{-1} B^T
@@ -140,7 +139,7 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
   if (ggl) sum[0] += SumOfSquaresRatio(m, dmu + m, mem->ggl_mu, SUN_RCONST(0.0), sigma_atol,
                                        rtol);
   sum[1] = SumOfSquaresRatio(m, dmu, lambda1, h, lambda_unit * lambda_atol,
-                             lambda_unit * mem->nls_lrtol);
+                             lambda_unit * mem->nls.lrtol);
   lgnSumAll(mem, sum, 2); /* over the ranks: every rank takes the same decision */
   t->norm_sigma  = sqrt(sum[0] / n);
   t->norm_lambda = sqrt(sum[1] / n);
@@ -154,12 +153,12 @@ static void CorrectionNorm(LGNMem mem, const LGNStepCoeffs *c,
 /* Newton's tolerances in the fixed-step mode: the user's (LGNSStolerances). */
 void lgnFixedNewtonTolerances(LGNMem mem)
 {
-  mem->nls_rtol  = mem->rtol;
-  mem->nls_atol  = mem->atol;
-  mem->nls_atolv = NULL;
-  mem->nls_vfac  = SUN_RCONST(1.0);
-  mem->nls_lrtol = mem->rtol;
-  mem->nls_latol = mem->atol;
+  mem->nls.rtol  = mem->rtol;
+  mem->nls.atol  = mem->atol;
+  mem->nls.atolv = NULL;
+  mem->nls.vfac  = SUN_RCONST(1.0);
+  mem->nls.lrtol = mem->rtol;
+  mem->nls.latol = mem->atol;
 }
 
 /* Newton's tolerances under the BDF family's error test (a configuration
@@ -167,12 +166,12 @@ void lgnFixedNewtonTolerances(LGNMem mem)
  * tolerances, on sigma / h, multipliers alike. */
 void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share)
 {
-  mem->nls_rtol  = share * mem->epcon * mem->rtol;
-  mem->nls_atol  = share * mem->epcon * mem->atol / h;
-  mem->nls_atolv = mem->atol_vec;
-  mem->nls_vfac  = share * mem->epcon / h;
-  mem->nls_lrtol = mem->nls_rtol;
-  mem->nls_latol = mem->nls_atol;
+  mem->nls.rtol  = share * mem->ec.epcon * mem->rtol;
+  mem->nls.atol  = share * mem->ec.epcon * mem->atol / h;
+  mem->nls.atolv = mem->ec.atol_vec;
+  mem->nls.vfac  = share * mem->ec.epcon / h;
+  mem->nls.lrtol = mem->nls.rtol;
+  mem->nls.latol = mem->nls.atol;
 }
 
 /* Newton's tolerances under the Newmark family's error test (error per
@@ -187,15 +186,15 @@ void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share)
  * (their roundoff floor is in CorrectionNorm). */
 void lgnNewtonTolerances(LGNMem mem, const LGNStepCoeffs *c)
 {
-  const sunrealtype f = mem->epcon / (c->gamma_p * c->h);
-  mem->nls_rtol  = f * mem->rtol;
-  mem->nls_atol  = f * mem->atol;
-  mem->nls_vfac  = f;
+  const sunrealtype f = mem->ec.epcon / (c->gamma_p * c->h);
+  mem->nls.rtol  = f * mem->rtol;
+  mem->nls.atol  = f * mem->atol;
+  mem->nls.vfac  = f;
   /* per component in the configuration part; the multipliers with the
    * mean (LGNSVtolerances keeps it in atol) */
-  mem->nls_atolv = mem->atol_vec;
-  mem->nls_lrtol = mem->epcon * mem->rtol;
-  mem->nls_latol = mem->epcon * mem->atol / c->h;
+  mem->nls.atolv = mem->ec.atol_vec;
+  mem->nls.lrtol = mem->ec.epcon * mem->rtol;
+  mem->nls.latol = mem->ec.epcon * mem->atol / c->h;
 }
 
 /* =============================================================================
@@ -238,16 +237,16 @@ static sunbooleantype StalledMultipliers(LGNMem mem, const LGNStepCoeffs *c,
                            t->norm > SUN_RCONST(1.0) &&
                            t->norm > SUN_RCONST(0.5) * t->norm_prev;
   if (stalled) {
-    mem->lambda_noise   = t->norm_lambda;
-    mem->lambda_noise_h = c->h;
+    mem->nls.lambda_noise   = t->norm_lambda;
+    mem->nls.lambda_noise_h = c->h;
   } else if (t->iter >= 1) {
     const sunrealtype r = t->norm / t->norm_prev;
     const sunrealtype left = t->fresh ? t->norm_lambda
                            : (r < SUN_RCONST(1.0) ? r / (SUN_RCONST(1.0) - r) * t->norm_lambda
                                                   : SUN_BIG_REAL);
     stalled = t->norm_sigma <= SUN_RCONST(1.0) && t->norm > SUN_RCONST(1.0) &&
-              fabs(c->h - mem->lambda_noise_h) <= REUSE_H_TOL * c->h &&
-              left <= mem->lambda_noise;
+              fabs(c->h - mem->nls.lambda_noise_h) <= REUSE_H_TOL * c->h &&
+              left <= mem->nls.lambda_noise;
   }
   return stalled;
 }
@@ -270,8 +269,8 @@ static NewtonVerdict TestCorrection(LGNMem mem, const LGNStepCoeffs *c,
                                                       : NEWTON_CONTINUE;
   }
   /* a reused matrix: judged by its contraction rate */
-  rate = t->iter > 0 ? t->norm / t->norm_prev : mem->newton_rate;
-  if (t->iter > 0) mem->newton_rate = rate;
+  rate = t->iter > 0 ? t->norm / t->norm_prev : mem->nls.rate;
+  if (t->iter > 0) mem->nls.rate = rate;
   if (!t->stalled && t->iter > 0 &&
       (rate > NEWTON_RATE_MAX || !WithinBudget(mem, t->iter, t->norm, rate))) {
     *rebuild = SUNTRUE;
@@ -292,8 +291,8 @@ static NewtonVerdict TestCorrection(LGNMem mem, const LGNStepCoeffs *c,
 /* Can the step start with the factorised matrix already in A? */
 static sunbooleantype MatrixReusable(LGNMem mem, const LGNStepCoeffs *c)
 {
-  return mem->lu_valid && fabs(c->hmat - mem->lu_h) <= REUSE_H_TOL * mem->lu_h &&
-         (mem->msbp < 0 || mem->nst - mem->lu_nst < mem->msbp);
+  return mem->nls.lu_valid && fabs(c->hmat - mem->nls.lu_h) <= REUSE_H_TOL * mem->nls.lu_h &&
+         (mem->msbp < 0 || mem->nst - mem->nls.lu_nst < mem->msbp);
 }
 
 /* The correction at the current iterate into mem->sol: the variant's state
@@ -315,12 +314,12 @@ static int NewtonSolve(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype setup)
     if (flag == LGN_SUCCESS) flag = lgnLsSetup(mem);
     flag = lgnAgree(mem, flag);
     if (flag == LGN_SUCCESS) {
-      mem->lu_valid = SUNTRUE;
-      mem->lu_h     = c->hmat;
-      mem->lu_nst   = mem->nst;
+      mem->nls.lu_valid = SUNTRUE;
+      mem->nls.lu_h     = c->hmat;
+      mem->nls.lu_nst   = mem->nst;
     }
   }
-  if (flag == LGN_SUCCESS && mem->krylov) lgnKrylovNewtonWeights(mem, c);
+  if (flag == LGN_SUCCESS && mem->kry.on) lgnKrylovNewtonWeights(mem, c);
   if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnLsSolve(mem, mem->sol, mem->rhs));
   return flag;
 }
@@ -335,7 +334,7 @@ static void GGLCorrection(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype 
   sunindextype i, k, nv = mem->nv, m = mem->m;
   const sunrealtype *Bn = mem->ggl_Bn;
   sunrealtype w;
-  if (mem->family == LGN_FAMILY_BDF) {
+  if (!mem->fam->ggl_at_tn) { /* BDF: mu at the iterate */
     for (i = 0; i < m; i++) mem->ggl_mu[i] += c->gamma_p * dnu[i];
     return;
   }

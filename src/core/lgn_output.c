@@ -42,7 +42,7 @@
 static void KeepSlots(LGNMem mem, sunbooleantype restore)
 {
   const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
-  sunrealtype *s = mem->out_save;
+  sunrealtype *s = mem->out.save;
   sunrealtype *slot[4];
   size_t len[4], k;
   slot[0] = lgnData(mem->q1);    len[0] = nq;
@@ -80,7 +80,7 @@ static int FactorAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
               MSG_TIME "the output's accelerations and multipliers: [[M, B^T], "
               "[B, 0]] is singular or its factorisation failed (check M and B "
               "at the output).%s", (double)t,
-              flag == LGN_LSETUP_FAIL ? mem->diag_text : "");
+              flag == LGN_LSETUP_FAIL ? mem->diag.text : "");
     return LGN_IC_FAIL;
   }
   return LGN_SUCCESS;
@@ -170,7 +170,7 @@ static int ComputeKept(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
   KeepSlots(mem, SUNFALSE);
   flag = Compute(mem, t, q, v, project, vdot, lambda);
   KeepSlots(mem, SUNTRUE);
-  mem->nout++;
+  mem->out.n++;
   if (flag == LGN_RECOVERABLE) {
     LGN_ERROR(mem, LGN_REPTD_CALLBACK_ERR,
               MSG_TIME "a callback failed recoverably at the output.", (double)t);
@@ -183,15 +183,15 @@ static int ComputeKept(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
  * any t with LGN_PROJECT_ALL), with constraints. */
 static sunbooleantype Projects(LGNMem mem, sunrealtype t)
 {
-  const sunbooleantype end = t == mem->tn || (mem->dense_valid && t == mem->tprev);
-  return (sunbooleantype)(mem->m > 0 && (mem->out_project == LGN_PROJECT_ALL ||
-                                         (mem->out_project == LGN_PROJECT_INTERPOLATED && !end)));
+  const sunbooleantype end = t == mem->tn || (mem->dense.valid && t == mem->dense.tprev);
+  return (sunbooleantype)(mem->m > 0 && (mem->out.project == LGN_PROJECT_ALL ||
+                                         (mem->out.project == LGN_PROJECT_INTERPOLATED && !end)));
 }
 
 /* The work space and matrices an output needs (made by LGNSolve). */
 static sunbooleantype Ready(LGNMem mem)
 {
-  return (sunbooleantype)(mem->work_done && mem->mat_done && mem->out_save != NULL);
+  return (sunbooleantype)(mem->work_done && mem->mat_done && mem->out.save != NULL);
 }
 
 /* The output (t, q, v) that LGNSolve returns: projected in place (when
@@ -201,27 +201,27 @@ int lgnOutputAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 {
   const sunbooleantype project = Projects(mem, t);
   int flag;
-  if (!Ready(mem) || !(project || mem->out_consistent)) {
-    mem->out_valid = mem->out_lvalid = SUNFALSE;
+  if (!Ready(mem) || !(project || mem->out.consistent)) {
+    mem->out.valid = mem->out.lvalid = SUNFALSE;
     return LGN_SUCCESS;
   }
   /* out_vdot, out_lambda are written only when all went well: on a
    * failure the getters keep the last output's values */
-  flag = ComputeKept(mem, t, q, v, project, mem->out_consistent ? mem->out_vdot : NULL,
-                     mem->out_lambda);
+  flag = ComputeKept(mem, t, q, v, project, mem->out.consistent ? mem->out.vdot : NULL,
+                     mem->out.lambda);
   if (flag != LGN_SUCCESS) return flag;
-  mem->out_valid = mem->out_consistent;
-  if (mem->out_consistent) mem->out_t = t;
-  mem->out_lvalid = SUNFALSE;
+  mem->out.valid = mem->out.consistent;
+  if (mem->out.consistent) mem->out.t = t;
+  mem->out.lvalid = SUNFALSE;
   if (project) {
     /* kept: a failed LGNSolve that takes no step returns them again */
-    if (mem->out_lq == NULL) mem->out_lq = N_VClone(q);
-    if (mem->out_lv == NULL) mem->out_lv = N_VClone(v);
-    if (mem->out_lq != NULL && mem->out_lv != NULL) {
-      N_VScale(SUN_RCONST(1.0), q, mem->out_lq);
-      N_VScale(SUN_RCONST(1.0), v, mem->out_lv);
-      mem->out_lt     = t;
-      mem->out_lvalid = SUNTRUE;
+    if (mem->out.lq == NULL) mem->out.lq = N_VClone(q);
+    if (mem->out.lv == NULL) mem->out.lv = N_VClone(v);
+    if (mem->out.lq != NULL && mem->out.lv != NULL) {
+      N_VScale(SUN_RCONST(1.0), q, mem->out.lq);
+      N_VScale(SUN_RCONST(1.0), v, mem->out.lv);
+      mem->out.lt     = t;
+      mem->out.lvalid = SUNTRUE;
     }
   }
   return flag;
@@ -235,33 +235,33 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky)
 {
   const sunbooleantype project = Projects(mem, t);
   int flag;
-  if (!Ready(mem) || !(k == 2 ? mem->out_consistent : project))
+  if (!Ready(mem) || !(k == 2 ? mem->out.consistent : project))
     return lgnDenseOutput(mem, t, k, lgnData(dky));
-  if (mem->out_q == NULL) mem->out_q = N_VClone(mem->q);
-  if (mem->out_v == NULL) mem->out_v = N_VClone(mem->v);
-  flag = mem->out_q == NULL || mem->out_v == NULL ? LGN_MEM_FAIL : LGN_SUCCESS;
+  if (mem->out.q == NULL) mem->out.q = N_VClone(mem->q);
+  if (mem->out.v == NULL) mem->out.v = N_VClone(mem->v);
+  flag = mem->out.q == NULL || mem->out.v == NULL ? LGN_MEM_FAIL : LGN_SUCCESS;
   if (flag != LGN_SUCCESS) LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
   flag = lgnAgree(mem, flag);
-  if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 0, lgnData(mem->out_q));
-  if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 1, lgnData(mem->out_v));
+  if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 0, lgnData(mem->out.q));
+  if (flag == LGN_SUCCESS) flag = lgnDenseOutput(mem, t, 1, lgnData(mem->out.v));
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
   {
     /* a getter: its evaluations and solves are not the steps' statistics
      * (LGNGetNum* and LGNGetDky in any order give the same numbers) */
     const long int nre = mem->nre, nje = mem->nje, ndq = mem->ndq, nlsetup = mem->nlsetup,
-                   nlsolve = mem->nlsolve, nout = mem->nout;
-    flag = ComputeKept(mem, t, mem->out_q, mem->out_v, project, k == 2 ? lgnData(dky) : NULL,
+                   nlsolve = mem->nlsolve, nout = mem->out.n;
+    flag = ComputeKept(mem, t, mem->out.q, mem->out.v, project, k == 2 ? lgnData(dky) : NULL,
                        NULL);
     mem->nre     = nre;
     mem->nje     = nje;
     mem->ndq     = ndq;
     mem->nlsetup = nlsetup;
     mem->nlsolve = nlsolve;
-    mem->nout    = nout;
+    mem->out.n    = nout;
   }
   if (flag == LGN_SUCCESS && k < 2)
-    N_VScale(SUN_RCONST(1.0), k == 0 ? mem->out_q : mem->out_v, dky);
+    N_VScale(SUN_RCONST(1.0), k == 0 ? mem->out.q : mem->out.v, dky);
   return flag;
 }
 
@@ -285,22 +285,22 @@ int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm)
   sunindextype i;
   int flag;
   *norm = SUN_RCONST(0.0);
-  mem->lambda_err = SUN_RCONST(0.0);
-  if (!mem->lambda_errcon || m == 0 || mem->out_save == NULL) return LGN_SUCCESS;
+  mem->ec.lambda_err = SUN_RCONST(0.0);
+  if (!mem->ec.lambda_errcon || m == 0 || mem->out.save == NULL) return LGN_SUCCESS;
   KeepSlots(mem, SUNFALSE); /* the iterate itself, not projected */
-  flag = Compute(mem, t1, mem->q1, mem->v1, SUNFALSE, mem->dense_work, mem->out_lwork);
+  flag = Compute(mem, t1, mem->q1, mem->v1, SUNFALSE, mem->dense.work, mem->out.lwork);
   KeepSlots(mem, SUNTRUE);
   if (flag != LGN_SUCCESS) return flag;
   l1 = lgnData(mem->lambda1);
   for (i = 0; i < m; i++) {
-    const sunrealtype e = (l1[i] - mem->out_lwork[i]) /
-                          (mem->lambda_atol + mem->rtol * fabs(mem->out_lwork[i]));
+    const sunrealtype e = (l1[i] - mem->out.lwork[i]) /
+                          (mem->ec.lambda_atol + mem->rtol * fabs(mem->out.lwork[i]));
     sum[0] += e * e;
   }
   sum[1] = (sunrealtype)m;
   lgnSumAll(mem, sum, 2);
   *norm = sqrt(sum[0] / SUNMAX(sum[1], SUN_RCONST(1.0)));
-  mem->lambda_err = *norm;
+  mem->ec.lambda_err = *norm;
   return LGN_SUCCESS;
 }
 
@@ -326,9 +326,9 @@ int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on)
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  flag = SetSwitch(mem, on, __func__, &mem->out_consistent);
+  flag = SetSwitch(mem, on, __func__, &mem->out.consistent);
   /* the last output's values belong to the old setting */
-  if (flag == LGN_SUCCESS) mem->out_valid = SUNFALSE;
+  if (flag == LGN_SUCCESS) mem->out.valid = SUNFALSE;
   return flag;
 }
 
@@ -344,7 +344,7 @@ int LGNSetProjectOutputs(void *lgn_mem, int which)
               "LGN_PROJECT_ALL.", which);
     return LGN_ILL_INPUT;
   }
-  mem->out_project = which;
+  mem->out.project = which;
   return LGN_SUCCESS;
 }
 
@@ -363,8 +363,8 @@ int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on, sunrealtype a
               "be > 0 and finite (in their units: forces, torques).", (double)atol_lambda);
     return LGN_ILL_INPUT;
   }
-  mem->lambda_errcon = on;
-  if (on) mem->lambda_atol = atol_lambda;
+  mem->ec.lambda_errcon = on;
+  if (on) mem->ec.lambda_atol = atol_lambda;
   return LGN_SUCCESS;
 }
 
@@ -377,6 +377,6 @@ int LGNGetNumOutputSolves(void *lgn_mem, long int *nout)
     LGN_ERROR(mem, LGN_ILL_INPUT, "nout = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *nout = mem->nout;
+  *nout = mem->out.n;
   return LGN_SUCCESS;
 }

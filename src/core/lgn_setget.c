@@ -122,10 +122,10 @@ int LGNSetConstraints(void *lgn_mem, sunindextype m, LGNConstrFn phi,
   }
   /* a new m: the work space is reallocated at the next LGNSolve (and the
    * redundant rows are selected anew there, lgn_redundancy.c) */
-  lgnInvalidate(mem, m != mem->m || mem->red_nout > 0 ? LGN_CHANGE_SIZES : LGN_CHANGE_MODEL);
+  lgnInvalidate(mem, m != mem->m || mem->red.nout > 0 ? LGN_CHANGE_SIZES : LGN_CHANGE_MODEL);
   mem->m          = m;
-  mem->m_user     = m;
-  mem->red_nout   = 0;
+  mem->red.m_user     = m;
+  mem->red.nout   = 0;
   mem->constr     = phi;
   mem->constr_jac = B;
   return LGN_SUCCESS;
@@ -141,7 +141,7 @@ int LGNSetRedundantConstraints(void *lgn_mem, int mode)
               mode);
     return LGN_ILL_INPUT;
   }
-  mem->red_mode = mode; /* acts at the next start (lgnRedundancyAnalyse) */
+  mem->red.mode = mode; /* acts at the next start (lgnRedundancyAnalyse) */
   return LGN_SUCCESS;
 }
 
@@ -236,6 +236,7 @@ static int SetParams(LGNMem mem, sunrealtype am, sunrealtype af,
   mem->beta    = beta;
   mem->gamma   = gamma;
   mem->family  = LGN_FAMILY_NEWMARK; /* (back) to the Newmark family */
+  mem->fam     = lgnFamilyOps(LGN_FAMILY_NEWMARK);
   mem->kin     = lgnKinematicsOps(mem->kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
@@ -251,7 +252,8 @@ int LGNSetBDF(void *lgn_mem, int maxord)
     return LGN_ILL_INPUT;
   }
   mem->family     = LGN_FAMILY_BDF;
-  mem->bdf_maxord = maxord;
+  mem->fam        = lgnFamilyOps(LGN_FAMILY_BDF);
+  mem->bdf.maxord = maxord;
   mem->kin        = lgnBDFOps();
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
@@ -270,7 +272,7 @@ int LGNSetBDFForm(void *lgn_mem, int form)
   if (lgnRefuseOtherFamily(mem, LGN_FAMILY_BDF, form == LGN_BDF_VARIABLE_COEFF, __func__) !=
       LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  mem->bdf_form = form;
+  mem->bdf.form = form;
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
 }
@@ -283,7 +285,7 @@ int LGNGetCurrentOrder(void *lgn_mem, int *order)
     LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf_order : 2;
+  *order = mem->fam->order(mem, SUNFALSE);
   return LGN_SUCCESS;
 }
 
@@ -295,7 +297,7 @@ int LGNGetLastOrder(void *lgn_mem, int *order)
     LGN_ERROR(mem, LGN_ILL_INPUT, "order = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *order = mem->family == LGN_FAMILY_BDF ? mem->bdf_last_order : 2;
+  *order = mem->fam->order(mem, SUNTRUE);
   return LGN_SUCCESS;
 }
 
@@ -308,7 +310,7 @@ int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[LGN_BDF_MAX_ORDER + 1])
     LGN_ERROR(mem, LGN_ILL_INPUT, "nsteps = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  for (k = 0; k <= LGN_BDF_MAXORD; k++) nsteps[k] = mem->bdf_nord[k];
+  for (k = 0; k <= LGN_BDF_MAXORD; k++) nsteps[k] = mem->bdf.nord[k];
   return LGN_SUCCESS;
 }
 
@@ -438,10 +440,10 @@ int LGNSStolerances(void *lgn_mem, sunrealtype rtol, sunrealtype atol)
     return LGN_ILL_INPUT;
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
   mem->atol     = atol == SUN_RCONST(0.0) ? LGN_ATOL_DEFAULT : atol;
-  mem->tols_set = SUNTRUE;
-  if (mem->atol_vec != NULL) {
-    free(mem->atol_vec); /* the scalar replaces the vector */
-    mem->atol_vec = NULL;
+  mem->ec.tols_set = SUNTRUE;
+  if (mem->ec.atol_vec != NULL) {
+    free(mem->ec.atol_vec); /* the scalar replaces the vector */
+    mem->ec.atol_vec = NULL;
   }
   return LGN_SUCCESS;
 }
@@ -473,9 +475,9 @@ int LGNSetStepControl(void *lgn_mem, int control)
               control);
     return LGN_ILL_INPUT;
   }
-  if (control != mem->step_control) {
-    mem->step_control = control;
-    mem->hnext = SUN_RCONST(0.0); /* error control starts anew */
+  if (control != mem->ec.step_control) {
+    mem->ec.step_control = control;
+    mem->ec.hnext = SUN_RCONST(0.0); /* error control starts anew */
   }
   return LGN_SUCCESS;
 }
@@ -506,17 +508,17 @@ int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol)
     }
     sum += a[i];
   }
-  if (mem->atol_vec == NULL) {
-    mem->atol_vec = (sunrealtype *)malloc((size_t)SUNMAX(mem->nv, 1) * sizeof(sunrealtype));
-    if (mem->atol_vec == NULL) {
+  if (mem->ec.atol_vec == NULL) {
+    mem->ec.atol_vec = (sunrealtype *)malloc((size_t)SUNMAX(mem->nv, 1) * sizeof(sunrealtype));
+    if (mem->ec.atol_vec == NULL) {
       LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
       return LGN_MEM_FAIL;
     }
   }
-  memcpy(mem->atol_vec, a, (size_t)mem->nv * sizeof(sunrealtype));
+  memcpy(mem->ec.atol_vec, a, (size_t)mem->nv * sizeof(sunrealtype));
   mem->rtol     = rtol == SUN_RCONST(0.0) ? LGN_RTOL_DEFAULT : rtol;
   mem->atol     = sum / (sunrealtype)SUNMAX(nv_own, 1); /* this rank's mean */
-  mem->tols_set = SUNTRUE;
+  mem->ec.tols_set = SUNTRUE;
   return LGN_SUCCESS;
 }
 
@@ -538,10 +540,10 @@ int LGNSetInitStep(void *lgn_mem, sunrealtype h0)
   ACCESS_MEM(lgn_mem, mem);
   flag = CheckStepArg(mem, h0, "h0", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  mem->h0_user = h0;
+  mem->ec.h0_user = h0;
   /* after steps (error control): the size of the next step, e.g. to go on
    * after a failure that left h tiny (0: estimated anew) */
-  if (mem->malloc_done && mem->nst > 0) mem->hnext = h0;
+  if (mem->malloc_done && mem->nst > 0) mem->ec.hnext = h0;
   return LGN_SUCCESS;
 }
 
@@ -552,12 +554,12 @@ int LGNSetMinStep(void *lgn_mem, sunrealtype hmin)
   ACCESS_MEM(lgn_mem, mem);
   flag = CheckStepArg(mem, hmin, "hmin", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->hmax > SUN_RCONST(0.0) && hmin > mem->hmax) {
+  if (mem->ec.hmax > SUN_RCONST(0.0) && hmin > mem->ec.hmax) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "hmin = %g illegal: above hmax = %g.",
-              (double)hmin, (double)mem->hmax);
+              (double)hmin, (double)mem->ec.hmax);
     return LGN_ILL_INPUT;
   }
-  mem->hmin = hmin;
+  mem->ec.hmin = hmin;
   return LGN_SUCCESS;
 }
 
@@ -568,12 +570,12 @@ int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax)
   ACCESS_MEM(lgn_mem, mem);
   flag = CheckStepArg(mem, hmax, "hmax", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (hmax > SUN_RCONST(0.0) && hmax < mem->hmin) {
+  if (hmax > SUN_RCONST(0.0) && hmax < mem->ec.hmin) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "hmax = %g illegal: below hmin = %g.",
-              (double)hmax, (double)mem->hmin);
+              (double)hmax, (double)mem->ec.hmin);
     return LGN_ILL_INPUT;
   }
-  mem->hmax = hmax;
+  mem->ec.hmax = hmax;
   return LGN_SUCCESS;
 }
 
@@ -595,14 +597,14 @@ int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  return SetLimit(mem, maxnef, LGN_MAXNEF_DEFAULT, "maxnef", __func__, &mem->maxnef);
+  return SetLimit(mem, maxnef, LGN_MAXNEF_DEFAULT, "maxnef", __func__, &mem->ec.maxnef);
 }
 
 int LGNSetMaxConvFails(void *lgn_mem, int maxncf)
 {
   LGNMem mem;
   ACCESS_MEM(lgn_mem, mem);
-  return SetLimit(mem, maxncf, LGN_MAXNCF_DEFAULT, "maxncf", __func__, &mem->maxncf);
+  return SetLimit(mem, maxncf, LGN_MAXNCF_DEFAULT, "maxncf", __func__, &mem->ec.maxncf);
 }
 
 int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon)
@@ -614,7 +616,7 @@ int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon)
               (double)epcon);
     return LGN_ILL_INPUT;
   }
-  mem->epcon = epcon == SUN_RCONST(0.0) ? LGN_EPCON_DEFAULT : epcon;
+  mem->ec.epcon = epcon == SUN_RCONST(0.0) ? LGN_EPCON_DEFAULT : epcon;
   return LGN_SUCCESS;
 }
 
@@ -657,18 +659,18 @@ int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky)
   }
   flag = lgnCheckVector(mem, dky, k == 0 ? mem->nq : mem->nv, "dky", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->dense_valid || !mem->work_done) {
+  if (!mem->dense.valid || !mem->work_done) {
     LGN_ERROR(mem, LGN_BAD_T, "No step to interpolate: take a step first.");
     return LGN_BAD_T;
   }
-  fuzz = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(mem->tprev));
-  if (!(t >= mem->tprev - fuzz && t <= mem->tn + fuzz)) {
+  fuzz = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * SUNMAX(fabs(mem->tn), fabs(mem->dense.tprev));
+  if (!(t >= mem->dense.tprev - fuzz && t <= mem->tn + fuzz)) {
     LGN_ERROR(mem, LGN_BAD_T,
               "t = %.17g illegal: outside the last step [%.17g, %.17g].",
-              (double)t, (double)mem->tprev, (double)mem->tn);
+              (double)t, (double)mem->dense.tprev, (double)mem->tn);
     return LGN_BAD_T;
   }
-  t = SUNMIN(SUNMAX(t, mem->tprev), mem->tn);
+  t = SUNMIN(SUNMAX(t, mem->dense.tprev), mem->tn);
   return lgnOutputDky(mem, t, k, dky); /* projected, consistent (lgn_output.c) */
 }
 
@@ -695,15 +697,15 @@ int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred, sunindextype *
     LGN_ERROR(mem, LGN_ILL_INPUT, "nred = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  if (mem->red_nout > 0) { /* left out at the start (lgn_redundancy.c) */
-    *nred = mem->red_nout;
+  if (mem->red.nout > 0) { /* left out at the start (lgn_redundancy.c) */
+    *nred = mem->red.nout;
     if (rows != NULL)
-      for (i = 0; i < *nred; i++) rows[i] = mem->red_rows[mem->m + i];
+      for (i = 0; i < *nred; i++) rows[i] = mem->red.rows[mem->m + i];
     return LGN_SUCCESS;
   }
-  *nred = mem->work_done ? mem->diag_nred : 0;
+  *nred = mem->work_done ? mem->diag.nred : 0;
   if (rows != NULL)
-    for (i = 0; i < *nred; i++) rows[i] = mem->diag_red[i];
+    for (i = 0; i < *nred; i++) rows[i] = mem->diag.red[i];
   return LGN_SUCCESS;
 }
 
@@ -715,7 +717,7 @@ int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown)
     LGN_ERROR(mem, LGN_ILL_INPUT, "unknown = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *unknown = mem->work_done ? mem->diag_pivot : -1;
+  *unknown = mem->work_done ? mem->diag.pivot : -1;
   return LGN_SUCCESS;
 }
 
@@ -723,14 +725,14 @@ int LGNGetEstLocalErrors(void *lgn_mem, N_Vector ele)
 {
   LGNMem mem;
   ACCESS_MALLOC(lgn_mem, mem);
-  return CopyNv(mem, mem->work_done ? mem->ele : NULL, ele, "ele", __func__);
+  return CopyNv(mem, mem->work_done ? mem->ec.ele : NULL, ele, "ele", __func__);
 }
 
 int LGNGetErrWeights(void *lgn_mem, N_Vector eweight)
 {
   LGNMem mem;
   ACCESS_MALLOC(lgn_mem, mem);
-  return CopyNv(mem, mem->work_done ? mem->ewt : NULL, eweight, "eweight", __func__);
+  return CopyNv(mem, mem->work_done ? mem->ec.ewt : NULL, eweight, "eweight", __func__);
 }
 
 int LGNSetMaxNewtonIters(void *lgn_mem, int maxiters)
@@ -778,8 +780,8 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, vdot0, mem->nv, "vdot0", __func__);
-  if (flag == LGN_SUCCESS && mem->m_user > 0)
-    flag = lgnCheckVector(mem, lambda0, mem->m_user, "lambda0", __func__);
+  if (flag == LGN_SUCCESS && mem->red.m_user > 0)
+    flag = lgnCheckVector(mem, lambda0, mem->red.m_user, "lambda0", __func__);
   if (flag == LGN_SUCCESS && mem->nst > 0) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "vdot0 and lambda0 can only be set before the first step "
@@ -789,24 +791,24 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   lgnGhostsOwnedLengths(mem, &nq_own, &nv_own); /* ghosts' entries: not read */
   if (flag == LGN_SUCCESS &&
       (!lgnAllFinite(N_VGetArrayPointer(vdot0), nv_own) ||
-       (mem->m_user > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->m_user)))) {
+       (mem->red.m_user > 0 && !lgnAllFinite(N_VGetArrayPointer(lambda0), mem->red.m_user)))) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "vdot0 or lambda0 has a NaN or Inf entry.");
     flag = LGN_ILL_INPUT;
   }
   /* redundant rows: selected now (with a linear solver: B is of its kind),
    * and lambda0 must be 0 on the rows left out, as LGNGetMultipliers gives */
-  if (flag == LGN_SUCCESS && mem->LS != NULL && mem->nst == 0)
+  if (flag == LGN_SUCCESS && mem->ls.LS != NULL && mem->nst == 0)
     flag = lgnRedundancyAnalyse(mem, __func__);
-  if (flag == LGN_SUCCESS && mem->red_nout > 0) {
+  if (flag == LGN_SUCCESS && mem->red.nout > 0) {
     const sunrealtype *l0 = N_VGetArrayPointer(lambda0);
     sunindextype i;
-    for (i = mem->m; i < mem->m_user; i++)
-      if (l0[mem->red_rows[i]] != SUN_RCONST(0.0)) {
+    for (i = mem->m; i < mem->red.m_user; i++)
+      if (l0[mem->red.rows[i]] != SUN_RCONST(0.0)) {
         LGN_ERROR(mem, LGN_ILL_INPUT,
                   "lambda0[%lld] = %g: constraint %lld is left out as redundant, its "
                   "multiplier must be 0 (the kept rows carry the constraint force).",
-                  (long long)mem->red_rows[i], (double)l0[mem->red_rows[i]],
-                  (long long)mem->red_rows[i]);
+                  (long long)mem->red.rows[i], (double)l0[mem->red.rows[i]],
+                  (long long)mem->red.rows[i]);
         flag = LGN_ILL_INPUT;
         break;
       }
@@ -816,11 +818,11 @@ int LGNSetInitialAcceleration(void *lgn_mem, N_Vector vdot0, N_Vector lambda0)
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag != LGN_SUCCESS) return flag;
   N_VScale(SUN_RCONST(1.0), vdot0, mem->vdot);
-  if (mem->m > 0 && mem->red_nout == 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
-  if (mem->m > 0 && mem->red_nout > 0) {
+  if (mem->m > 0 && mem->red.nout == 0) N_VScale(SUN_RCONST(1.0), lambda0, mem->lambda);
+  if (mem->m > 0 && mem->red.nout > 0) {
     const sunrealtype *l0 = N_VGetArrayPointer(lambda0);
     sunindextype i;
-    for (i = 0; i < mem->m; i++) lgnData(mem->lambda)[i] = l0[mem->red_rows[i]];
+    for (i = 0; i < mem->m; i++) lgnData(mem->lambda)[i] = l0[mem->red.rows[i]];
   }
   mem->lambda_valid = SUNTRUE;
   lgnInvalidate(mem, LGN_CHANGE_STATE); /* initial values from these */
@@ -879,10 +881,10 @@ int LGNGetAcceleration(void *lgn_mem, N_Vector vdot)
   ACCESS_MALLOC(lgn_mem, mem);
   flag = lgnCheckVector(mem, vdot, mem->nv, "vdot", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->out_valid) /* the last output's consistent value (lgn_output.c) */
-    memcpy(N_VGetArrayPointer(vdot), mem->out_vdot, (size_t)mem->nv * sizeof(sunrealtype));
-  else if (mem->out_keep != NULL && mem->out_keep_nv == mem->nv) /* kept (lgn_mem.c) */
-    memcpy(N_VGetArrayPointer(vdot), mem->out_keep, (size_t)mem->nv * sizeof(sunrealtype));
+  if (mem->out.valid) /* the last output's consistent value (lgn_output.c) */
+    memcpy(N_VGetArrayPointer(vdot), mem->out.vdot, (size_t)mem->nv * sizeof(sunrealtype));
+  else if (mem->out.keep != NULL && mem->out.keep_nv == mem->nv) /* kept (lgn_mem.c) */
+    memcpy(N_VGetArrayPointer(vdot), mem->out.keep, (size_t)mem->nv * sizeof(sunrealtype));
   else
     N_VScale(SUN_RCONST(1.0), mem->vdot, vdot);
   return LGN_SUCCESS;
@@ -893,18 +895,18 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
   LGNMem mem;
   int flag;
   ACCESS_MALLOC(lgn_mem, mem);
-  flag = lgnCheckVector(mem, lambda, mem->m_user, "lambda", __func__);
+  flag = lgnCheckVector(mem, lambda, mem->red.m_user, "lambda", __func__);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->m_user > 0) {
+  if (mem->red.m_user > 0) {
     /* the last output's consistent value (lgn_output.c); else the last
      * valid multipliers: in the work space, or kept while a setter
      * dropped it (never the zeros of a new work space); 0 on the rows
      * left out as redundant (lgn_redundancy.c) */
     const sunrealtype *kept = NULL;
-    if (mem->out_valid && mem->out_lambda != NULL)
-      kept = mem->out_lambda;
-    else if (mem->out_keep != NULL && mem->out_keep_m == mem->m && mem->m > 0)
-      kept = mem->out_keep + mem->out_keep_nv;
+    if (mem->out.valid && mem->out.lambda != NULL)
+      kept = mem->out.lambda;
+    else if (mem->out.keep != NULL && mem->out.keep_m == mem->m && mem->m > 0)
+      kept = mem->out.keep + mem->out.keep_nv;
     else if (mem->lambda != NULL && mem->lambda_valid)
       kept = lgnData(mem->lambda);
     else if (mem->lambda_keep != NULL && mem->lambda_keep_len == mem->m)
@@ -913,7 +915,7 @@ int LGNGetMultipliers(void *lgn_mem, N_Vector lambda)
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "No multipliers yet for the %lld constraints: they are computed "
                 "at the start of the next LGNSolve that gets that far.",
-                (long long)mem->m_user);
+                (long long)mem->red.m_user);
       return LGN_ILL_INPUT;
     }
     lgnRedundancyExpand(mem, kept, N_VGetArrayPointer(lambda));
@@ -965,10 +967,10 @@ int LGNGetIntegratorStats(void *lgn_mem, long int *nsteps, long int *nrevals,
   *nsteps     = mem->nst;
   *nrevals    = mem->nre;
   *nlinsetups = mem->nlsetup;
-  *netfails   = mem->netf;
-  *hinused    = mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h;
+  *netfails   = mem->ec.netf;
+  *hinused    = mem->ec.step_control == LGN_STEP_ADAPTIVE ? mem->ec.h0_actual : mem->h;
   *hlast      = mem->hlast;
-  *hcur       = mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h;
+  *hcur       = mem->ec.step_control == LGN_STEP_ADAPTIVE ? mem->ec.hnext : mem->h;
   *tcur       = mem->tn;
   return LGN_SUCCESS;
 }
@@ -1058,40 +1060,40 @@ int LGNPrintAllStats(void *lgn_mem, FILE *outfile, SUNOutputFormat fmt)
   fprintf(outfile, fmt_l, "Linear solves", mem->nlsolve);
   fprintf(outfile, fmt_l, "Iterations w. reused matrix", mem->nreuse);
   fprintf(outfile, fmt_l, "Newton restarts", mem->nrestart);
-  fprintf(outfile, fmt_l, "Last linear solver flag", mem->last_lin_flag);
-  if (mem->krylov) { /* a matrix-free Krylov solver (lgn_krylov.c) */
-    fprintf(outfile, fmt_l, "Krylov iterations", mem->nli);
+  fprintf(outfile, fmt_l, "Last linear solver flag", mem->ls.last_flag);
+  if (mem->kry.on) { /* a matrix-free Krylov solver (lgn_krylov.c) */
+    fprintf(outfile, fmt_l, "Krylov iterations", mem->kry.nli);
     fprintf(outfile, fmt_r, "Krylov iters per Newton iter",
-            mem->nni > 0 ? (double)mem->nli / (double)mem->nni : 0.0);
-    fprintf(outfile, fmt_l, "Linear convergence fails", mem->nlcf);
-    fprintf(outfile, fmt_l, "Preconditioner setups", mem->npe);
-    fprintf(outfile, fmt_l, "Preconditioner solves", mem->nps);
-    fprintf(outfile, fmt_l, "Jac-times evals", mem->njtimes);
+            mem->nni > 0 ? (double)mem->kry.nli / (double)mem->nni : 0.0);
+    fprintf(outfile, fmt_l, "Linear convergence fails", mem->kry.nlcf);
+    fprintf(outfile, fmt_l, "Preconditioner setups", mem->kry.npe);
+    fprintf(outfile, fmt_l, "Preconditioner solves", mem->kry.nps);
+    fprintf(outfile, fmt_l, "Jac-times evals", mem->kry.njtimes);
   }
-  if (mem->step_control == LGN_STEP_ADAPTIVE) {
-    fprintf(outfile, fmt_l, "Error test fails", mem->netf);
-    fprintf(outfile, fmt_r, "Initial step size", (double)mem->h0_actual);
-    fprintf(outfile, fmt_r, "Current step size", (double)mem->hnext);
-    fprintf(outfile, fmt_r, "Last error norm", (double)mem->err_norm);
+  if (mem->ec.step_control == LGN_STEP_ADAPTIVE) {
+    fprintf(outfile, fmt_l, "Error test fails", mem->ec.netf);
+    fprintf(outfile, fmt_r, "Initial step size", (double)mem->ec.h0_actual);
+    fprintf(outfile, fmt_r, "Current step size", (double)mem->ec.hnext);
+    fprintf(outfile, fmt_r, "Last error norm", (double)mem->ec.err_norm);
   }
   if (mem->family == LGN_FAMILY_BDF) {
     int k;
-    fprintf(outfile, fmt_l, "BDF maximum order", (long int)mem->bdf_maxord);
-    fprintf(outfile, fmt_l, "BDF last order", (long int)mem->bdf_last_order);
-    fprintf(outfile, fmt_l, "BDF current order", (long int)mem->bdf_order);
+    fprintf(outfile, fmt_l, "BDF maximum order", (long int)mem->bdf.maxord);
+    fprintf(outfile, fmt_l, "BDF last order", (long int)mem->bdf.last_order);
+    fprintf(outfile, fmt_l, "BDF current order", (long int)mem->bdf.order);
     for (k = 1; k <= LGN_BDF_MAXORD; k++) {
       char label[32];
       snprintf(label, sizeof label, "BDF steps at order %d", k);
-      fprintf(outfile, fmt_l, label, mem->bdf_nord[k]);
+      fprintf(outfile, fmt_l, label, mem->bdf.nord[k]);
     }
   }
-  if (mem->nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->nge);
-  if (mem->sp != NULL) {
-    fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->sp->npattern);
+  if (mem->rt.nrtfn > 0) fprintf(outfile, fmt_l, "Root fn evals", mem->rt.nge);
+  if (mem->ls.sp != NULL) {
+    fprintf(outfile, fmt_l, "Sparse pattern analyses", mem->ls.sp->npattern);
     fprintf(outfile, fmt_l, "Iteration matrix nonzeros", lgnIterationMatrixNnz(mem));
-    fprintf(outfile, fmt_l, "DQ column colours", (long int)mem->sp->Kcol.ncolors);
+    fprintf(outfile, fmt_l, "DQ column colours", (long int)mem->ls.sp->Kcol.ncolors);
   }
-  if (mem->own_klu_solves) { /* LGNSetOwnKLUSolves: the getters of lgn_ls.c */
+  if (mem->klu.own_solves) { /* LGNSetOwnKLUSolves: the getters of lgn_ls.c */
     long int ncopy, nvalue, nrefactor, nsolve, npivot, npattern, nnocopy;
     (void)LGNGetNumKLUFactorCopies(mem, &ncopy);
     (void)LGNGetNumKLUValueCopies(mem, &nvalue);

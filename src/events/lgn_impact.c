@@ -187,7 +187,7 @@ static int CheckImpactArgs(LGNMem mem, sunindextype nc, LGNContactJacFn G, sunre
               "LGNCalcIC (at a root: LGNReInit at the root's state first).");
     return LGN_ILL_INPUT;
   }
-  if (mem->par != NULL || mem->halo != NULL) {
+  if (mem->ranks.par != NULL || mem->ranks.halo != NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT, "LGNApplyImpact runs on one process only.");
     return LGN_ILL_INPUT;
   }
@@ -229,7 +229,7 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
   memset(&K, 0, sizeof K);
   K.n = n;
 #if defined(LGN_HAVE_KLU)
-  if (!mem->sparse || n <= 200) { /* small or dense: LAPACK; else KLU */
+  if (!mem->ls.sparse || n <= 200) { /* small or dense: LAPACK; else KLU */
 #else
   { /* LAPACK (no KLU in this build) */
 #endif
@@ -243,9 +243,9 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
   }
   rhs = (sunrealtype *)calloc((size_t)n, sizeof(sunrealtype));
   gv  = (sunrealtype *)calloc((size_t)nc, sizeof(sunrealtype));
-  Gm  = mem->sparse ? SUNSparseMatrix(nc, nv, 12 * nc, mem->sparsetype, mem->sunctx)
+  Gm  = mem->ls.sparse ? SUNSparseMatrix(nc, nv, 12 * nc, mem->ls.sparsetype, mem->sunctx)
                     : SUNDenseMatrix(nc, nv, mem->sunctx);
-  if (rhs == NULL || gv == NULL || Gm == NULL || (K.dense == NULL && !mem->sparse)) {
+  if (rhs == NULL || gv == NULL || Gm == NULL || (K.dense == NULL && !mem->ls.sparse)) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     flag = LGN_MEM_FAIL;
     goto done;
@@ -263,7 +263,7 @@ int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G, sunrealtyp
                 (double)mem->tn, ret);
   }
   if (flag == LGN_SUCCESS &&
-      !(mem->sparse ? lgnAllFinite(SUNSparseMatrix_Data(Gm),
+      !(mem->ls.sparse ? lgnAllFinite(SUNSparseMatrix_Data(Gm),
                                    SUNSparseMatrix_IndexPointers(Gm)[SUNSparseMatrix_NP(Gm)])
                     : lgnAllFinite(SM_DATA_D(Gm), nc * nv))) {
     LGN_ERROR(mem, LGN_NONFINITE, MSG_TIME "the contact Jacobian G has a NaN or Inf entry.",

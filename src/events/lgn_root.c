@@ -41,8 +41,8 @@
 static sunrealtype RootTol(LGNMem mem)
 {
   sunrealtype h;
-  if (mem->dense_valid) h = mem->tn - mem->tprev;
-  else h = mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h;
+  if (mem->dense.valid) h = mem->tn - mem->dense.tprev;
+  else h = mem->ec.step_control == LGN_STEP_ADAPTIVE ? mem->ec.hnext : mem->h;
   return SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * (fabs(mem->tn) + fabs(h));
 }
 
@@ -50,7 +50,7 @@ static sunrealtype RootTol(LGNMem mem)
 static int StateAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
 {
   int flag;
-  if (t == mem->tn || !mem->dense_valid) {
+  if (t == mem->tn || !mem->dense.valid) {
     N_VScale(SUN_RCONST(1.0), mem->q, q);
     N_VScale(SUN_RCONST(1.0), mem->v, v);
     return LGN_SUCCESS;
@@ -66,17 +66,17 @@ static int StateAt(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v)
  * that every rank finds the same roots. */
 static int EvalG(LGNMem mem, sunrealtype t, sunrealtype *gout)
 {
-  int i, ret, flag = lgnAgree(mem, StateAt(mem, t, mem->rt_q, mem->rt_v));
+  int i, ret, flag = lgnAgree(mem, StateAt(mem, t, mem->rt.q, mem->rt.v));
   if (flag != LGN_SUCCESS) return flag;
-  ret = mem->gfun(t, mem->rt_q, mem->rt_v, gout, mem->user_data);
-  mem->nge++;
+  ret = mem->rt.gfun(t, mem->rt.q, mem->rt.v, gout, mem->user_data);
+  mem->rt.nge++;
   if (ret != 0) {
     lgnProcessError(mem, LGN_RTFUNC_FAIL, __LINE__, FUNC_SOLVE, __FILE__,
                     MSG_TIME "the root function failed (returned %d).",
                     (double)t, ret);
     flag = LGN_RTFUNC_FAIL;
   }
-  for (i = 0; i < mem->nrtfn && flag == LGN_SUCCESS; i++) {
+  for (i = 0; i < mem->rt.nrtfn && flag == LGN_SUCCESS; i++) {
     if (!isfinite(gout[i])) {
       lgnProcessError(mem, LGN_RTFUNC_FAIL, __LINE__, FUNC_SOLVE, __FILE__,
                       MSG_TIME "the root function returned g[%d] = %g, not "
@@ -85,7 +85,7 @@ static int EvalG(LGNMem mem, sunrealtype t, sunrealtype *gout)
     }
   }
   flag = lgnAgree(mem, flag);
-  if (flag == LGN_SUCCESS) lgnSumAll(mem, gout, mem->nrtfn);
+  if (flag == LGN_SUCCESS) lgnSumAll(mem, gout, mem->rt.nrtfn);
   return flag;
 }
 
@@ -110,12 +110,12 @@ static sunbooleantype SignChange(LGNMem mem, const sunrealtype *gx, int *imax,
   sunbooleantype sgnchg = SUNFALSE;
   int i;
   *zroot = SUNFALSE;
-  for (i = 0; i < mem->nrtfn; i++) {
-    if (!mem->gactive[i] || !DirectionOk(mem->rootdir[i], mem->glo[i])) continue;
+  for (i = 0; i < mem->rt.nrtfn; i++) {
+    if (!mem->rt.gactive[i] || !DirectionOk(mem->rt.rootdir[i], mem->rt.glo[i])) continue;
     if (gx[i] == SUN_RCONST(0.0)) {
       *zroot = SUNTRUE;
-    } else if (mem->glo[i] * gx[i] < SUN_RCONST(0.0)) {
-      gfrac = fabs(gx[i] / (gx[i] - mem->glo[i]));
+    } else if (mem->rt.glo[i] * gx[i] < SUN_RCONST(0.0)) {
+      gfrac = fabs(gx[i] / (gx[i] - mem->rt.glo[i]));
       if (gfrac > maxfrac) {
         sgnchg  = SUNTRUE;
         maxfrac = gfrac;
@@ -133,12 +133,12 @@ static sunbooleantype SignChange(LGNMem mem, const sunrealtype *gx, int *imax,
 static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
                     sunrealtype *trout, sunbooleantype *found)
 {
-  const int n = mem->nrtfn;
-  sunrealtype tlo = mem->tlo, tmid, alph = SUN_RCONST(1.0), fracint, fracsub;
+  const int n = mem->rt.nrtfn;
+  sunrealtype tlo = mem->rt.tlo, tmid, alph = SUN_RCONST(1.0), fracint, fracsub;
   sunbooleantype zroot, sgnchg;
   int i, imax = 0, side = 0, sideprev = -1, flag;
 
-  sgnchg = SignChange(mem, mem->ghi, &imax, &zroot);
+  sgnchg = SignChange(mem, mem->rt.ghi, &imax, &zroot);
   *found = sgnchg || zroot;
   if (sgnchg) {
     /* narrow the bracket [tlo, thi] of the sign change of g_imax */
@@ -149,8 +149,8 @@ static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
         alph = side == 2 ? alph * SUN_RCONST(2.0) : alph * SUN_RCONST(0.5);
       else
         alph = SUN_RCONST(1.0);
-      tmid = thi - (thi - tlo) * mem->ghi[imax] /
-                       (mem->ghi[imax] - alph * mem->glo[imax]);
+      tmid = thi - (thi - tlo) * mem->rt.ghi[imax] /
+                       (mem->rt.ghi[imax] - alph * mem->rt.glo[imax]);
       /* not closer than ttol / 2 to either end */
       if (fabs(tmid - tlo) < SUN_RCONST(0.5) * ttol) {
         fracint = fabs(thi - tlo) / ttol;
@@ -162,36 +162,36 @@ static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
         fracsub = fracint > SUN_RCONST(5.0) ? SUN_RCONST(0.1) : SUN_RCONST(0.5) / fracint;
         tmid    = thi - fracsub * (thi - tlo);
       }
-      flag = EvalG(mem, tmid, mem->grout);
+      flag = EvalG(mem, tmid, mem->rt.grout);
       if (flag != LGN_SUCCESS) return flag;
       sideprev = side;
-      sgnchg   = SignChange(mem, mem->grout, &imax, &zroot);
+      sgnchg   = SignChange(mem, mem->rt.grout, &imax, &zroot);
       if (sgnchg) {
         /* a sign change in (tlo, tmid) */
         thi = tmid;
-        memcpy(mem->ghi, mem->grout, (size_t)n * sizeof(sunrealtype));
+        memcpy(mem->rt.ghi, mem->rt.grout, (size_t)n * sizeof(sunrealtype));
         side = 1;
       } else if (zroot) {
         /* none in (tlo, tmid), but g_i = 0 at tmid: the root */
         thi = tmid;
-        memcpy(mem->ghi, mem->grout, (size_t)n * sizeof(sunrealtype));
+        memcpy(mem->rt.ghi, mem->rt.grout, (size_t)n * sizeof(sunrealtype));
         break;
       } else {
         /* the sign change is in (tmid, thi) */
         tlo = tmid;
-        memcpy(mem->glo, mem->grout, (size_t)n * sizeof(sunrealtype));
+        memcpy(mem->rt.glo, mem->rt.grout, (size_t)n * sizeof(sunrealtype));
         side = 2;
       }
     }
   }
   *trout = thi;
-  memcpy(mem->grout, mem->ghi, (size_t)n * sizeof(sunrealtype));
+  memcpy(mem->rt.grout, mem->rt.ghi, (size_t)n * sizeof(sunrealtype));
   for (i = 0; i < n; i++) {
-    mem->iroots[i] = 0;
-    if (!*found || !mem->gactive[i] || !DirectionOk(mem->rootdir[i], mem->glo[i]))
+    mem->rt.iroots[i] = 0;
+    if (!*found || !mem->rt.gactive[i] || !DirectionOk(mem->rt.rootdir[i], mem->rt.glo[i]))
       continue;
-    if (mem->ghi[i] == SUN_RCONST(0.0) || mem->glo[i] * mem->ghi[i] < SUN_RCONST(0.0))
-      mem->iroots[i] = mem->glo[i] > SUN_RCONST(0.0) ? -1 : 1;
+    if (mem->rt.ghi[i] == SUN_RCONST(0.0) || mem->rt.glo[i] * mem->rt.ghi[i] < SUN_RCONST(0.0))
+      mem->rt.iroots[i] = mem->rt.glo[i] > SUN_RCONST(0.0) ? -1 : 1;
   }
   return LGN_SUCCESS;
 }
@@ -205,16 +205,16 @@ static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
 static int Start(LGNMem mem)
 {
   int i, flag;
-  mem->tlo = mem->tn;
-  flag = EvalG(mem, mem->tn, mem->glo);
+  mem->rt.tlo = mem->tn;
+  flag = EvalG(mem, mem->tn, mem->rt.glo);
   if (flag != LGN_SUCCESS) return flag;
-  for (i = 0; i < mem->nrtfn; i++) {
-    mem->gactive[i] = mem->glo[i] != SUN_RCONST(0.0);
-    mem->iroots[i]  = 0;
+  for (i = 0; i < mem->rt.nrtfn; i++) {
+    mem->rt.gactive[i] = mem->rt.glo[i] != SUN_RCONST(0.0);
+    mem->rt.iroots[i]  = 0;
   }
-  mem->rt_started = SUNTRUE;
-  mem->rt_pending = SUNFALSE;
-  mem->rt_first   = SUNTRUE;
+  mem->rt.started = SUNTRUE;
+  mem->rt.pending = SUNFALSE;
+  mem->rt.first   = SUNTRUE;
   return LGN_SUCCESS;
 }
 
@@ -228,39 +228,39 @@ static int Check(LGNMem mem, sunrealtype thi, sunbooleantype *found)
   int i, flag;
 
   *found = SUNFALSE;
-  for (i = 0; i < mem->nrtfn; i++) inactive = inactive || !mem->gactive[i];
+  for (i = 0; i < mem->rt.nrtfn; i++) inactive = inactive || !mem->rt.gactive[i];
   /* g_i zero at tlo: look a little later, and take it up if nonzero there */
-  tplus = mem->tlo + ttol;
+  tplus = mem->rt.tlo + ttol;
   if (inactive && tplus < thi) {
-    flag = EvalG(mem, tplus, mem->ghi);
+    flag = EvalG(mem, tplus, mem->rt.ghi);
     if (flag != LGN_SUCCESS) return flag;
-    for (i = 0; i < mem->nrtfn; i++) {
-      if (!mem->gactive[i] && mem->ghi[i] != SUN_RCONST(0.0)) {
-        mem->gactive[i] = SUNTRUE;
-        mem->glo[i]     = mem->ghi[i];
+    for (i = 0; i < mem->rt.nrtfn; i++) {
+      if (!mem->rt.gactive[i] && mem->rt.ghi[i] != SUN_RCONST(0.0)) {
+        mem->rt.gactive[i] = SUNTRUE;
+        mem->rt.glo[i]     = mem->rt.ghi[i];
       }
     }
   }
-  flag = EvalG(mem, thi, mem->ghi);
+  flag = EvalG(mem, thi, mem->rt.ghi);
   if (flag == LGN_SUCCESS) flag = Rootfind(mem, thi, ttol, &trout, found);
   if (flag != LGN_SUCCESS) return flag;
 
   /* go on from the root (or thi); a g_i exactly 0 there waits */
-  mem->tlo = trout;
-  memcpy(mem->glo, mem->grout, (size_t)mem->nrtfn * sizeof(sunrealtype));
+  mem->rt.tlo = trout;
+  memcpy(mem->rt.glo, mem->rt.grout, (size_t)mem->rt.nrtfn * sizeof(sunrealtype));
   inactive = SUNFALSE;
-  for (i = 0; i < mem->nrtfn; i++) {
-    mem->gactive[i] = mem->glo[i] != SUN_RCONST(0.0);
-    inactive        = inactive || !mem->gactive[i];
+  for (i = 0; i < mem->rt.nrtfn; i++) {
+    mem->rt.gactive[i] = mem->rt.glo[i] != SUN_RCONST(0.0);
+    inactive        = inactive || !mem->rt.gactive[i];
   }
-  if (mem->rt_first && inactive && !*found && !mem->rt_nowarn) {
+  if (mem->rt.first && inactive && !*found && !mem->rt.nowarn) {
     lgnProcessError(mem, LGN_WARNING, __LINE__, FUNC_SOLVE, __FILE__,
                     MSG_TIME "some root functions are still exactly 0 at the "
                     "end of the first step; they are ignored until they move "
                     "away from 0 (this warning is not repeated; "
                     "LGNSetNoInactiveRootWarn turns it off).", (double)thi);
   }
-  mem->rt_first = SUNFALSE;
+  mem->rt.first = SUNFALSE;
   return LGN_SUCCESS;
 }
 
@@ -271,10 +271,10 @@ static int CheckAndReturn(LGNMem mem, sunrealtype thi, sunrealtype *tret,
   sunbooleantype found = SUNFALSE;
   int flag = Check(mem, thi, &found);
   if (flag != LGN_SUCCESS || !found) return flag;
-  flag = lgnAgree(mem, StateAt(mem, mem->tlo, q, v));
+  flag = lgnAgree(mem, StateAt(mem, mem->rt.tlo, q, v));
   if (flag != LGN_SUCCESS) return flag;
-  *tret           = mem->tlo;
-  mem->rt_pending = mem->tlo < mem->tn;
+  *tret           = mem->rt.tlo;
+  mem->rt.pending = mem->rt.tlo < mem->tn;
   return LGN_ROOT_RETURN;
 }
 
@@ -294,15 +294,15 @@ int lgnRootSolveStart(LGNMem mem, sunrealtype tout, int itask,
                       sunrealtype *tret, N_Vector q, N_Vector v,
                       sunbooleantype *done)
 {
-  const sunbooleantype pending = mem->rt_pending;
+  const sunbooleantype pending = mem->rt.pending;
   sunrealtype thi;
   int flag = LGN_SUCCESS;
 
   *done = SUNFALSE;
-  if (!mem->rt_started) return Start(mem);
-  mem->rt_pending = SUNFALSE;
+  if (!mem->rt.started) return Start(mem);
+  mem->rt.pending = SUNFALSE;
   thi = CheckEnd(mem, tout, itask);
-  if (mem->dense_valid && thi > mem->tlo && mem->tlo >= mem->tprev) {
+  if (mem->dense.valid && thi > mem->rt.tlo && mem->rt.tlo >= mem->dense.tprev) {
     flag = CheckAndReturn(mem, thi, tret, q, v);
     if (flag != LGN_SUCCESS) return flag;
   }
@@ -322,14 +322,14 @@ int lgnRootAfterStep(LGNMem mem, sunrealtype tout, int itask,
                      sunrealtype *tret, N_Vector q, N_Vector v)
 {
   sunrealtype thi;
-  if (!mem->rt_started) {
+  if (!mem->rt.started) {
     /* not started at this step's start (cannot happen through LGNSolve):
      * start at its end */
     return Start(mem);
   }
   thi = CheckEnd(mem, tout, itask);
-  if (!(thi > mem->tlo)) return LGN_SUCCESS;
-  if (mem->tlo < mem->tprev) mem->tlo = mem->tprev; /* never outside the step */
+  if (!(thi > mem->rt.tlo)) return LGN_SUCCESS;
+  if (mem->rt.tlo < mem->dense.tprev) mem->rt.tlo = mem->dense.tprev; /* never outside the step */
   return CheckAndReturn(mem, thi, tret, q, v);
 }
 
@@ -364,7 +364,7 @@ int LGNRootInit(void *lgn_mem, int nrtfn, LGNRootFn g)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  mem->gfun = g; /* root finding starts at the next LGNSolve */
+  mem->rt.gfun = g; /* root finding starts at the next LGNSolve */
   return LGN_SUCCESS;
 }
 
@@ -377,7 +377,7 @@ int LGNSetRootDirection(void *lgn_mem, int *rootdir)
     LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
     return LGN_NO_MALLOC;
   }
-  if (mem->nrtfn == 0) {
+  if (mem->rt.nrtfn == 0) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "Root finding is not initialised: call LGNRootInit with nrtfn > 0 first.");
     return LGN_ILL_INPUT;
@@ -386,7 +386,7 @@ int LGNSetRootDirection(void *lgn_mem, int *rootdir)
     LGN_ERROR(mem, LGN_ILL_INPUT, "rootdir = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  for (i = 0; i < mem->nrtfn; i++) {
+  for (i = 0; i < mem->rt.nrtfn; i++) {
     if (rootdir[i] < -1 || rootdir[i] > 1) {
       LGN_ERROR(mem, LGN_ILL_INPUT,
                 "rootdir[%d] = %d illegal: use +1 (increasing), -1 "
@@ -394,7 +394,7 @@ int LGNSetRootDirection(void *lgn_mem, int *rootdir)
       return LGN_ILL_INPUT;
     }
   }
-  memcpy(mem->rootdir, rootdir, (size_t)mem->nrtfn * sizeof(int));
+  memcpy(mem->rt.rootdir, rootdir, (size_t)mem->rt.nrtfn * sizeof(int));
   return LGN_SUCCESS;
 }
 
@@ -403,7 +403,7 @@ int LGNSetNoInactiveRootWarn(void *lgn_mem)
   LGNMem mem;
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
-  mem->rt_nowarn = SUNTRUE;
+  mem->rt.nowarn = SUNTRUE;
   return LGN_SUCCESS;
 }
 
@@ -416,8 +416,8 @@ int LGNGetRootInfo(void *lgn_mem, int *rootsfound)
     LGN_ERROR(mem, LGN_ILL_INPUT, "rootsfound = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  if (mem->nrtfn > 0)
-    memcpy(rootsfound, mem->iroots, (size_t)mem->nrtfn * sizeof(int));
+  if (mem->rt.nrtfn > 0)
+    memcpy(rootsfound, mem->rt.iroots, (size_t)mem->rt.nrtfn * sizeof(int));
   return LGN_SUCCESS;
 }
 
@@ -430,6 +430,6 @@ int LGNGetNumGEvals(void *lgn_mem, long int *ngevals)
     LGN_ERROR(mem, LGN_ILL_INPUT, "ngevals = NULL illegal.");
     return LGN_ILL_INPUT;
   }
-  *ngevals = mem->nge;
+  *ngevals = mem->rt.nge;
   return LGN_SUCCESS;
 }

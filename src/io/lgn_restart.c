@@ -73,30 +73,35 @@ typedef struct {
 #define SCALAR(f, kind)       {#f, OFF(f), kind, LEN_1, SUNFALSE}
 #define INLINE(f, kind, len)  {#f, OFF(f), kind, len, SUNTRUE}
 #define ARRAY(f, kind, len)   {#f, OFF(f), kind, len, SUNFALSE}
+/* ... of a field of a sub-record, stored under its name of the flat record
+ * (the file format names fields as before the record's split) */
+#define SCALARN(name, f, kind)      {#name, OFF(f), kind, LEN_1, SUNFALSE}
+#define INLINEN(name, f, kind, len) {#name, OFF(f), kind, len, SUNTRUE}
+#define ARRAYN(name, f, kind, len)  {#name, OFF(f), kind, len, SUNFALSE}
 
 /* The settings that decide the steps: the reading integrator must have the
  * same (set by the user's program as for the run that wrote the file);
  * compared bit for bit, a difference refused naming the setting. */
 static const RsField SettingFields[] = {
-  SCALAR(family, RS_INT),          SCALAR(bdf_maxord, RS_INT),
-  SCALAR(bdf_form, RS_INT),        SCALAR(step_control, RS_INT),
+  SCALAR(family, RS_INT),          SCALARN(bdf_maxord, bdf.maxord, RS_INT),
+  SCALARN(bdf_form, bdf.form, RS_INT),        SCALARN(step_control, ec.step_control, RS_INT),
   SCALAR(h, RS_REAL),              SCALAR(rtol, RS_REAL),
-  SCALAR(atol, RS_REAL),           ARRAY(atol_vec, RS_REALS, LEN_NV),
-  SCALAR(tols_set, RS_BOOL),       SCALAR(maxcor, RS_INT),
+  SCALAR(atol, RS_REAL),           ARRAYN(atol_vec, ec.atol_vec, RS_REALS, LEN_NV),
+  SCALARN(tols_set, ec.tols_set, RS_BOOL),       SCALAR(maxcor, RS_INT),
   SCALAR(newton_mode, RS_INT),     SCALAR(msbp, RS_LONG),
   SCALAR(mxstep, RS_LONG),         SCALAR(constr_index, RS_INT),
   SCALAR(kinematics, RS_INT),      SCALAR(predictor, RS_INT),
   SCALAR(alpha_m, RS_REAL),        SCALAR(alpha_f, RS_REAL),
   SCALAR(beta, RS_REAL),           SCALAR(gamma, RS_REAL),
   SCALAR(pstart_on, RS_BOOL),      SCALAR(mass_constant, RS_BOOL),
-  SCALAR(krylov, RS_BOOL),
-  SCALAR(own_klu_solves, RS_BOOL), SCALAR(eplifac, RS_REAL),
-  SCALAR(epcon, RS_REAL),          SCALAR(h0_user, RS_REAL),
-  SCALAR(hmin, RS_REAL),           SCALAR(hmax, RS_REAL),
-  SCALAR(maxnef, RS_INT),          SCALAR(maxncf, RS_INT),
-  SCALAR(accept_stalls, RS_BOOL),  ARRAY(rootdir, RS_INTS, LEN_NRTFN),
-  SCALAR(out_consistent, RS_BOOL), SCALAR(out_project, RS_INT),
-  SCALAR(lambda_errcon, RS_BOOL),  SCALAR(lambda_atol, RS_REAL),
+  SCALARN(krylov, kry.on, RS_BOOL),
+  SCALARN(own_klu_solves, klu.own_solves, RS_BOOL), SCALARN(eplifac, kry.eplifac, RS_REAL),
+  SCALARN(epcon, ec.epcon, RS_REAL),          SCALARN(h0_user, ec.h0_user, RS_REAL),
+  SCALARN(hmin, ec.hmin, RS_REAL),           SCALARN(hmax, ec.hmax, RS_REAL),
+  SCALARN(maxnef, ec.maxnef, RS_INT),          SCALARN(maxncf, ec.maxncf, RS_INT),
+  SCALAR(accept_stalls, RS_BOOL),  ARRAYN(rootdir, rt.rootdir, RS_INTS, LEN_NRTFN),
+  SCALARN(out_consistent, out.consistent, RS_BOOL), SCALARN(out_project, out.project, RS_INT),
+  SCALARN(lambda_errcon, ec.lambda_errcon, RS_BOOL),  SCALARN(lambda_atol, ec.lambda_atol, RS_REAL),
 };
 
 /* The state at t_n and everything of the past steps the next ones read:
@@ -110,63 +115,63 @@ static const RsField StateFields[] = {
   ARRAY(vdot1, RS_NVECTOR, LEN_NV), ARRAY(lambda1, RS_NVECTOR, LEN_M),
   SCALAR(ic_done, RS_BOOL),         SCALAR(user_vdot0, RS_BOOL),
   SCALAR(user_a0, RS_BOOL),         SCALAR(pstart_done, RS_BOOL),
-  SCALAR(pstart_pending, RS_BOOL),  SCALAR(tprev, RS_REAL),
-  SCALAR(dense_valid, RS_BOOL),
+  SCALAR(pstart_pending, RS_BOOL),  SCALARN(tprev, dense.tprev, RS_REAL),
+  SCALARN(dense_valid, dense.valid, RS_BOOL),
   /* the Newmark family's increments, predictor and error control */
   ARRAY(sigma, RS_REALS, LEN_NV),   ARRAY(sigma_dot, RS_REALS, LEN_NV),
   ARRAY(sigma_ddot, RS_REALS, LEN_NV), ARRAY(a_pred, RS_REALS, LEN_NV),
   ARRAY(vdot_prev, RS_REALS, LEN_NV), ARRAY(lambda_prev, RS_REALS, LEN_M),
-  ARRAY(incr, RS_REALS, LEN_NV),    ARRAY(Tm, RS_REALS, LEN_T3),
-  ARRAY(ele, RS_REALS, LEN_NV),     ARRAY(ewt, RS_REALS, LEN_NV),
-  ARRAY(a_scaled, RS_REALS, LEN_NV),
+  ARRAYN(incr, dense.incr, RS_REALS, LEN_NV),    ARRAY(Tm, RS_REALS, LEN_T3),
+  ARRAYN(ele, ec.ele, RS_REALS, LEN_NV),     ARRAYN(ewt, ec.ewt, RS_REALS, LEN_NV),
+  ARRAYN(a_scaled, ec.a_scaled, RS_REALS, LEN_NV),
   SCALAR(h_prev, RS_REAL),          SCALAR(hlast, RS_REAL),
-  SCALAR(hnext, RS_REAL),           SCALAR(h0_actual, RS_REAL),
-  SCALAR(err_norm, RS_REAL),        SCALAR(err_prev, RS_REAL),
-  SCALAR(nls_rtol, RS_REAL),        SCALAR(nls_atol, RS_REAL),
+  SCALARN(hnext, ec.hnext, RS_REAL),           SCALARN(h0_actual, ec.h0_actual, RS_REAL),
+  SCALARN(err_norm, ec.err_norm, RS_REAL),        SCALARN(err_prev, ec.err_prev, RS_REAL),
+  SCALARN(nls_rtol, nls.rtol, RS_REAL),        SCALARN(nls_atol, nls.atol, RS_REAL),
   SCALAR(tstop, RS_REAL),           SCALAR(tstop_set, RS_BOOL),
-  SCALAR(nls_vfac, RS_REAL),        SCALAR(nls_lrtol, RS_REAL),
-  SCALAR(nls_latol, RS_REAL),       SCALAR(lambda_err, RS_REAL),
+  SCALARN(nls_vfac, nls.vfac, RS_REAL),        SCALARN(nls_lrtol, nls.lrtol, RS_REAL),
+  SCALARN(nls_latol, nls.latol, RS_REAL),       SCALARN(lambda_err, ec.lambda_err, RS_REAL),
   /* the last output's consistent vdot and lambda (LGNGetAcceleration ...) */
-  SCALAR(out_valid, RS_BOOL),       SCALAR(out_t, RS_REAL),
-  ARRAY(out_vdot, RS_REALS, LEN_NV), ARRAY(out_lambda, RS_REALS, LEN_M),
+  SCALARN(out_valid, out.valid, RS_BOOL),       SCALARN(out_t, out.t, RS_REAL),
+  ARRAYN(out_vdot, out.vdot, RS_REALS, LEN_NV), ARRAYN(out_lambda, out.lambda, RS_REALS, LEN_M),
   /* GGL */
   ARRAY(ggl_mu, RS_REALS, LEN_M),   ARRAY(ggl_Bn, RS_REALS, LEN_GGL_MNV),
   SCALAR(ggl_Bn_valid, RS_BOOL),    SCALAR(ggl_t1, RS_REAL),
   /* Newton's memory of past iterations */
-  SCALAR(newton_rate, RS_REAL),     SCALAR(lambda_noise, RS_REAL),
-  SCALAR(lambda_noise_h, RS_REAL),  SCALAR(stall_warned, RS_BOOL),
+  SCALARN(newton_rate, nls.rate, RS_REAL),     SCALARN(lambda_noise, nls.lambda_noise, RS_REAL),
+  SCALARN(lambda_noise_h, nls.lambda_noise_h, RS_REAL),  SCALAR(stall_warned, RS_BOOL),
   /* BDF: history, order and controller */
-  SCALAR(bdf_ns, RS_INT),           SCALAR(bdf_hused, RS_REAL),
-  SCALAR(bdf_sigck, RS_REAL),       SCALAR(bdf_step_flc, RS_BOOL),
-  SCALAR(bdf_order, RS_INT),        SCALAR(bdf_last_order, RS_INT),
-  SCALAR(bdf_nhist, RS_INT),        SCALAR(bdf_nsteps_order, RS_INT),
-  SCALAR(bdf_phase0, RS_BOOL),      SCALAR(bdf_chart_t, RS_REAL),
-  INLINE(bdf_t, RS_REALS, LEN_HIST), INLINE(bdf_vgain, RS_REALS, LEN_HIST),
-  SCALAR(bdf_vgain1, RS_REAL),      SCALAR(bdf_vpgain, RS_REAL),
-  SCALAR(bdf_c0, RS_REAL),          INLINE(bdf_nord, RS_LONG, LEN_ORDERS),
-  ARRAY(bdf_q, RS_REALS, LEN_HIST_NQ), ARRAY(bdf_v, RS_REALS, LEN_HIST_NV),
-  ARRAY(bdf_l, RS_REALS, LEN_HIST_M),  ARRAY(bdf_x, RS_REALS, LEN_HIST_NV),
-  ARRAY(bdf_rx, RS_REALS, LEN_NV),  ARRAY(bdf_rv, RS_REALS, LEN_NV),
-  ARRAY(bdf_xpred, RS_REALS, LEN_NV), ARRAY(bdf_vpred, RS_REALS, LEN_NV),
-  ARRAY(bdf_dd, RS_REALS, LEN_DD_NV), ARRAY(bdf_ele_keep, RS_REALS, LEN_NV),
+  SCALARN(bdf_ns, bdf.ns, RS_INT),           SCALARN(bdf_hused, bdf.hused, RS_REAL),
+  SCALARN(bdf_sigck, bdf.sigck, RS_REAL),       SCALARN(bdf_step_flc, bdf.step_flc, RS_BOOL),
+  SCALARN(bdf_order, bdf.order, RS_INT),        SCALARN(bdf_last_order, bdf.last_order, RS_INT),
+  SCALARN(bdf_nhist, bdf.nhist, RS_INT),        SCALARN(bdf_nsteps_order, bdf.nsteps_order, RS_INT),
+  SCALARN(bdf_phase0, bdf.phase0, RS_BOOL),      SCALARN(bdf_chart_t, bdf.chart_t, RS_REAL),
+  INLINEN(bdf_t, bdf.t, RS_REALS, LEN_HIST), INLINEN(bdf_vgain, bdf.vgain, RS_REALS, LEN_HIST),
+  SCALARN(bdf_vgain1, bdf.vgain1, RS_REAL),      SCALARN(bdf_vpgain, bdf.vpgain, RS_REAL),
+  SCALARN(bdf_c0, bdf.c0, RS_REAL),          INLINEN(bdf_nord, bdf.nord, RS_LONG, LEN_ORDERS),
+  ARRAYN(bdf_q, bdf.q, RS_REALS, LEN_HIST_NQ), ARRAYN(bdf_v, bdf.v, RS_REALS, LEN_HIST_NV),
+  ARRAYN(bdf_l, bdf.l, RS_REALS, LEN_HIST_M),  ARRAYN(bdf_x, bdf.x, RS_REALS, LEN_HIST_NV),
+  ARRAYN(bdf_rx, bdf.rx, RS_REALS, LEN_NV),  ARRAYN(bdf_rv, bdf.rv, RS_REALS, LEN_NV),
+  ARRAYN(bdf_xpred, bdf.xpred, RS_REALS, LEN_NV), ARRAYN(bdf_vpred, bdf.vpred, RS_REALS, LEN_NV),
+  ARRAYN(bdf_dd, bdf.dd, RS_REALS, LEN_DD_NV), ARRAYN(bdf_ele_keep, bdf.ele_keep, RS_REALS, LEN_NV),
   /* root finding */
-  ARRAY(glo, RS_REALS, LEN_NRTFN),  ARRAY(ghi, RS_REALS, LEN_NRTFN),
-  ARRAY(grout, RS_REALS, LEN_NRTFN), ARRAY(iroots, RS_INTS, LEN_NRTFN),
-  ARRAY(gactive, RS_BOOLS, LEN_NRTFN), SCALAR(tlo, RS_REAL),
-  SCALAR(rt_started, RS_BOOL),      SCALAR(rt_pending, RS_BOOL),
-  SCALAR(rt_first, RS_BOOL),
+  ARRAYN(glo, rt.glo, RS_REALS, LEN_NRTFN),  ARRAYN(ghi, rt.ghi, RS_REALS, LEN_NRTFN),
+  ARRAYN(grout, rt.grout, RS_REALS, LEN_NRTFN), ARRAYN(iroots, rt.iroots, RS_INTS, LEN_NRTFN),
+  ARRAYN(gactive, rt.gactive, RS_BOOLS, LEN_NRTFN), SCALARN(tlo, rt.tlo, RS_REAL),
+  SCALARN(rt_started, rt.started, RS_BOOL),      SCALARN(rt_pending, rt.pending, RS_BOOL),
+  SCALARN(rt_first, rt.first, RS_BOOL),
   /* counters */
   SCALAR(nst, RS_LONG),   SCALAR(nni, RS_LONG),    SCALAR(nncf, RS_LONG),
   SCALAR(nstall, RS_LONG), SCALAR(nfails, RS_LONG), SCALAR(nre, RS_LONG),
   SCALAR(ndq, RS_LONG),   SCALAR(nje, RS_LONG),    SCALAR(nlsetup, RS_LONG),
   SCALAR(nlsolve, RS_LONG), SCALAR(nreuse, RS_LONG), SCALAR(nrestart, RS_LONG),
-  SCALAR(netf, RS_LONG),  SCALAR(nge, RS_LONG),    SCALAR(nli, RS_LONG),
-  SCALAR(npe, RS_LONG),   SCALAR(nps, RS_LONG),    SCALAR(njtimes, RS_LONG),
-  SCALAR(nlcf, RS_LONG),  SCALAR(nklu_fallback, RS_LONG),
-  SCALAR(nklu_copy, RS_LONG), SCALAR(nklu_values, RS_LONG),
-  SCALAR(nklu_refactor, RS_LONG), SCALAR(nklu_solve, RS_LONG),
-  SCALAR(nklu_newpattern, RS_LONG), SCALAR(nklu_nocopy, RS_LONG),
-  SCALAR(last_lin_flag, RS_LONG), SCALAR(nout, RS_LONG),
+  SCALARN(netf, ec.netf, RS_LONG),  SCALARN(nge, rt.nge, RS_LONG),    SCALARN(nli, kry.nli, RS_LONG),
+  SCALARN(npe, kry.npe, RS_LONG),   SCALARN(nps, kry.nps, RS_LONG),    SCALARN(njtimes, kry.njtimes, RS_LONG),
+  SCALARN(nlcf, kry.nlcf, RS_LONG),  SCALARN(nklu_fallback, klu.nfallback, RS_LONG),
+  SCALARN(nklu_copy, klu.ncopy, RS_LONG), SCALARN(nklu_values, klu.nvalues, RS_LONG),
+  SCALARN(nklu_refactor, klu.nrefactor, RS_LONG), SCALARN(nklu_solve, klu.nsolve, RS_LONG),
+  SCALARN(nklu_newpattern, klu.nnewpattern, RS_LONG), SCALARN(nklu_nocopy, klu.nnocopy, RS_LONG),
+  SCALARN(last_lin_flag, ls.last_flag, RS_LONG), SCALARN(nout, out.n, RS_LONG),
 };
 
 #define NUM_FIELDS(t) (sizeof(t) / sizeof((t)[0]))
@@ -188,8 +193,8 @@ static sunindextype FieldCount(const LGNMem mem, const RsField *f)
   case LEN_NQ:      return mem->nq;
   case LEN_NV:      return mem->nv;
   case LEN_M:       return mem->m;
-  case LEN_NRTFN:   return mem->nrtfn;
-  case LEN_T3:      return 3 * mem->tlen;
+  case LEN_NRTFN:   return mem->rt.nrtfn;
+  case LEN_T3:      return 3 * mem->blk.tlen;
   case LEN_HIST:    return H;
   case LEN_HIST_NQ: return H * mem->nq;
   case LEN_HIST_NV: return H * mem->nv;
@@ -332,10 +337,10 @@ static void PutHeader(Buffer *b, LGNMem mem, uint64_t payload)
   PutI64(b, (int64_t)mem->nq);                      /* 24 */
   PutI64(b, (int64_t)mem->nv);                      /* 32 */
   PutI64(b, (int64_t)mem->m);                       /* 40 */
-  PutI64(b, (int64_t)mem->nrtfn);                   /* 48 */
+  PutI64(b, (int64_t)mem->rt.nrtfn);                   /* 48 */
   PutU32(b, GroupSignature(mem->G, 0));             /* 56 */
-  PutU32(b, (uint32_t)lgnParallelSize(mem->par));   /* 60 */
-  PutU32(b, (uint32_t)lgnParallelRank(mem->par));   /* 64 */
+  PutU32(b, (uint32_t)lgnParallelSize(mem->ranks.par));   /* 60 */
+  PutU32(b, (uint32_t)lgnParallelRank(mem->ranks.par));   /* 64 */
   PutU32(b, (uint32_t)NUM_FIELDS(StateFields));     /* 68 */
   PutI64(b, (int64_t)payload);                      /* 72 */
   PutI64(b, (int64_t)mem->nst);                     /* 80: informative */
@@ -434,13 +439,13 @@ int LGNWriteRestart(void *lgn_mem, const char *filename)
               "Nothing to write before the first LGNSolve (or after a setting "
               "dropped the work space): the state at t0 is the user's q0, v0.");
     flag = LGN_ILL_INPUT;
-  } else if (mem->red_nout > 0) {
+  } else if (mem->red.nout > 0) {
     /* the row selection of redundant constraints is not in the format */
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "%lld of the %lld constraint rows are left out as redundant: restart "
               "files of mechanisms with redundant constraints are not supported "
               "(make the constraints independent, or continue with LGNReInit from "
-              "the state).", (long long)mem->red_nout, (long long)mem->m_user);
+              "the state).", (long long)mem->red.nout, (long long)mem->red.m_user);
     flag = LGN_ILL_INPUT;
   }
   if (flag == LGN_SUCCESS) {
@@ -577,13 +582,13 @@ static int CheckProblem(LGNMem mem, const char *filename, const unsigned char *p
   const int64_t nq = I64At(p + 24), nv = I64At(p + 32), m = I64At(p + 40);
   const int64_t nrtfn = I64At(p + 48);
   const uint32_t size = U32At(p + 60), rank = U32At(p + 64);
-  if (size != (uint32_t)lgnParallelSize(mem->par) ||
-      rank != (uint32_t)lgnParallelRank(mem->par)) {
+  if (size != (uint32_t)lgnParallelSize(mem->ranks.par) ||
+      rank != (uint32_t)lgnParallelRank(mem->ranks.par)) {
     LGN_ERROR(mem, LGN_RESTART_MISMATCH,
               "The restart file %s was written by rank %u of %u; it is read by rank %d "
               "of %d (one file per rank, read on as many ranks).",
-              filename, (unsigned)rank, (unsigned)size, lgnParallelRank(mem->par),
-              lgnParallelSize(mem->par));
+              filename, (unsigned)rank, (unsigned)size, lgnParallelRank(mem->ranks.par),
+              lgnParallelSize(mem->ranks.par));
     return LGN_RESTART_MISMATCH;
   }
   if (nq != (int64_t)mem->nq || nv != (int64_t)mem->nv || m != (int64_t)mem->m) {
@@ -601,11 +606,11 @@ static int CheckProblem(LGNMem mem, const char *filename, const unsigned char *p
               filename);
     return LGN_RESTART_MISMATCH;
   }
-  if (nrtfn != (int64_t)mem->nrtfn) {
+  if (nrtfn != (int64_t)mem->rt.nrtfn) {
     LGN_ERROR(mem, LGN_RESTART_MISMATCH,
               "The restart file %s has %lld root functions; this integrator has %d "
               "(call LGNRootInit as the run that wrote it did).",
-              filename, (long long)nrtfn, mem->nrtfn);
+              filename, (long long)nrtfn, mem->rt.nrtfn);
     return LGN_RESTART_MISMATCH;
   }
   if (U32At(p + 20) != (uint32_t)NUM_FIELDS(SettingFields) ||
@@ -672,7 +677,7 @@ static int CompareSetting(LGNMem mem, const char *filename, const RsField *f,
   sunindextype i;
   /* vector tolerances: atol is their mean, over all ranks after LGNSolve
    * (compared through atol_vec itself) */
-  if (f->offset == OFF(atol) && mem->atol_vec != NULL) return LGN_SUCCESS;
+  if (f->offset == OFF(atol) && mem->ec.atol_vec != NULL) return LGN_SUCCESS;
   for (i = 0; i < n; i++) {
     int differs;
     double file_value, own_value;
@@ -770,8 +775,8 @@ static void CopyState(LGNMem mem, const unsigned char *p, size_t len)
 static int PrepareRecord(LGNMem mem)
 {
   int flag = lgnEnsureWork(mem);
-  if (flag == LGN_SUCCESS && mem->family == LGN_FAMILY_BDF) flag = lgnAgree(mem, lgnAllocBDF(mem));
-  if (flag == LGN_SUCCESS && mem->nrtfn > 0) flag = lgnAgree(mem, lgnAllocRootVectors(mem));
+  if (flag == LGN_SUCCESS && mem->fam->prepare != NULL) flag = lgnAgree(mem, mem->fam->prepare(mem));
+  if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0) flag = lgnAgree(mem, lgnAllocRootVectors(mem));
   return flag;
 }
 
@@ -792,8 +797,8 @@ static int ReadRestart(LGNMem mem, const char *filename)
     /* what the file cannot hold: the factorised iteration matrix in the
      * linear solver (modified Newton sets one up at the next step), the
      * constant mass matrix (evaluated again) */
-    mem->lu_valid     = SUNFALSE;
-    mem->klu_valid    = SUNFALSE;
+    mem->nls.lu_valid     = SUNFALSE;
+    mem->klu.valid    = SUNFALSE;
     mem->mass_current = SUNFALSE;
   }
   free(image);

@@ -96,13 +96,13 @@ int lgnKrylovAttach(LGNMem mem, SUNLinearSolver LS)
     return LGN_LS_MISMATCH;
   }
   lgnFreeRedundancySolver(mem); /* a stand-in for the old direct solver */
-  if (!mem->krylov) {
-    mem->A = NULL; /* the user's matrix of a direct solver: not ours */
-    mem->own_A = SUNFALSE;
+  if (!mem->kry.on) {
+    mem->ls.A = NULL; /* the user's matrix of a direct solver: not ours */
+    mem->kry.own_A = SUNFALSE;
   }
-  mem->krylov = SUNTRUE;
-  mem->LS     = LS;
-  mem->kry_pretype = PrecType(LS);
+  mem->kry.on = SUNTRUE;
+  mem->ls.LS     = LS;
+  mem->kry.pretype = PrecType(LS);
   lgnInvalidate(mem, LGN_CHANGE_LINSOL);
   return LGN_SUCCESS;
 }
@@ -113,7 +113,7 @@ static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
 
 static sunbooleantype HasPreconditioner(const LGNMem mem)
 {
-  return mem->psolve != NULL || mem->bp_nblocks > 0;
+  return mem->kry.psolve != NULL || mem->kry.bp_nblocks > 0;
 }
 
 /* The block preconditioner for the current sizes and group: the bodies
@@ -122,23 +122,23 @@ static sunbooleantype HasPreconditioner(const LGNMem mem)
 static int MakeBlockPreconditioner(LGNMem mem)
 {
 #if defined(LGN_HAVE_KLU)
-  const int nb = mem->bp_nblocks, nbody = lgnGhostsOwnedBodies(mem);
+  const int nb = mem->kry.bp_nblocks, nbody = lgnGhostsOwnedBodies(mem);
   const sunindextype n = mem->nv + mem->m;
   sunindextype *voff;
   int b;
-  if (lgnBlockPrecFits(mem->bp, n, mem->nv, nb)) return LGN_SUCCESS;
-  lgnBlockPrecFree(&mem->bp);
+  if (lgnBlockPrecFits(mem->kry.bp, n, mem->nv, nb)) return LGN_SUCCESS;
+  lgnBlockPrecFree(&mem->kry.bp);
   if (nb > nbody) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "%d blocks for the block preconditioner but only %d %sbodies "
-              "(leaves of the Lie group).", nb, nbody, mem->halo != NULL ? "owned " : "");
+              "(leaves of the Lie group).", nb, nbody, mem->ranks.halo != NULL ? "owned " : "");
     return LGN_ILL_INPUT;
   }
-  if (mem->bp_bodies != NULL && mem->bp_bodies[nb] != (long int)nbody) {
+  if (mem->kry.bp_bodies != NULL && mem->kry.bp_bodies[nb] != (long int)nbody) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "The block preconditioner's partition ends at body %ld, but "
               "there are %d %sbodies (leaves of the Lie group).",
-              mem->bp_bodies[nb], nbody, mem->halo != NULL ? "owned " : "");
+              mem->kry.bp_bodies[nb], nbody, mem->ranks.halo != NULL ? "owned " : "");
     return LGN_ILL_INPUT;
   }
   voff = (sunindextype *)malloc((size_t)(nb + 1) * sizeof *voff);
@@ -147,14 +147,14 @@ static int MakeBlockPreconditioner(LGNMem mem)
     return LGN_MEM_FAIL;
   }
   for (b = 0; b <= nb; b++) {
-    const long int body = mem->bp_bodies != NULL
-                              ? mem->bp_bodies[b]
+    const long int body = mem->kry.bp_bodies != NULL
+                              ? mem->kry.bp_bodies[b]
                               : (long int)(((long long)b * nbody) / nb);
-    voff[b] = mem->blk_voff[body];
+    voff[b] = mem->blk.voff[body];
   }
-  mem->bp = lgnBlockPrecCreate(n, mem->nv, nb, voff);
+  mem->kry.bp = lgnBlockPrecCreate(n, mem->nv, nb, voff);
   free(voff);
-  if (mem->bp == NULL) {
+  if (mem->kry.bp == NULL) {
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
@@ -171,26 +171,26 @@ static int MakeBlockPreconditioner(LGNMem mem)
 int lgnKrylovCheckPreconditioner(LGNMem mem)
 {
   const sunbooleantype prec = HasPreconditioner(mem);
-  if (!prec && (mem->kry_pretype == SUN_PREC_LEFT || mem->kry_pretype == SUN_PREC_RIGHT ||
-                mem->kry_pretype == SUN_PREC_BOTH)) {
+  if (!prec && (mem->kry.pretype == SUN_PREC_LEFT || mem->kry.pretype == SUN_PREC_RIGHT ||
+                mem->kry.pretype == SUN_PREC_BOTH)) {
     /* SUNLinSolInitialize would fail with SUNLS_PSOLVE_NULL (-807) */
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The Krylov solver was created with %s but no preconditioner is "
               "attached: call LGNSetPreconditioner or LGNSetBlockPreconditioner, "
               "or create it with SUN_PREC_NONE.",
-              mem->kry_pretype == SUN_PREC_LEFT    ? "SUN_PREC_LEFT (PREC_LEFT)"
-              : mem->kry_pretype == SUN_PREC_RIGHT ? "SUN_PREC_RIGHT (PREC_RIGHT)"
+              mem->kry.pretype == SUN_PREC_LEFT    ? "SUN_PREC_LEFT (PREC_LEFT)"
+              : mem->kry.pretype == SUN_PREC_RIGHT ? "SUN_PREC_RIGHT (PREC_RIGHT)"
                                                    : "SUN_PREC_BOTH (PREC_BOTH)");
     return LGN_LS_MISMATCH;
   }
-  if (prec && (mem->kry_pretype == SUN_PREC_NONE ||
-               (mem->kry_pretype == SUN_PREC_RIGHT &&
-                SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_SPFGMR))) {
+  if (prec && (mem->kry.pretype == SUN_PREC_NONE ||
+               (mem->kry.pretype == SUN_PREC_RIGHT &&
+                SUNLinSolGetID(mem->ls.LS) != SUNLINEARSOLVER_SPFGMR))) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "A preconditioner is attached but the Krylov solver was created "
               "with %s: create it with PREC_LEFT (SPFGMR: PREC_RIGHT), the "
               "side whose residual Lignum's tolerance measures.",
-              mem->kry_pretype == SUN_PREC_NONE ? "PREC_NONE" : "PREC_RIGHT");
+              mem->kry.pretype == SUN_PREC_NONE ? "PREC_NONE" : "PREC_RIGHT");
     return LGN_LS_MISMATCH;
   }
   return LGN_SUCCESS;
@@ -201,7 +201,7 @@ int lgnKrylovCheckPreconditioner(LGNMem mem)
 int lgnKrylovCheck(LGNMem mem)
 {
   const sunbooleantype prec = HasPreconditioner(mem);
-  const sunindextype len = TemplateLength(mem->LS), n = mem->nv_own + mem->m;
+  const sunindextype len = TemplateLength(mem->ls.LS), n = mem->ranks.nv_own + mem->m;
   int flag = LGN_SUCCESS, ret;
   if (len >= 0 && len != n) {
     /* its vectors would be read and written past their ends */
@@ -209,9 +209,9 @@ int lgnKrylovCheck(LGNMem mem)
               "The Krylov solver was made for vectors of local length %lld, but this "
               "rank's unknowns are %lld (%s%lld velocities + m = %lld constraints%s): "
               "make it with a template of that length.",
-              (long long)len, (long long)n, mem->halo != NULL ? "the owned bodies' " : "",
-              (long long)mem->nv_own, (long long)mem->m,
-              mem->red_nout > 0 ? ", the rows kept of a redundant set: "
+              (long long)len, (long long)n, mem->ranks.halo != NULL ? "the owned bodies' " : "",
+              (long long)mem->ranks.nv_own, (long long)mem->m,
+              mem->red.nout > 0 ? ", the rows kept of a redundant set: "
                                   "LGNGetRedundantConstraints lists those left out" : "");
     flag = LGN_LS_MISMATCH;
   }
@@ -222,18 +222,18 @@ int lgnKrylovCheck(LGNMem mem)
   if (flag != LGN_SUCCESS) return flag;
   flag = lgnKrylovCheckPreconditioner(mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (mem->bp_nblocks > 0) {
+  if (mem->kry.bp_nblocks > 0) {
     flag = MakeBlockPreconditioner(mem);
     if (flag != LGN_SUCCESS) return flag;
   } else {
-    lgnBlockPrecFree(&mem->bp);
+    lgnBlockPrecFree(&mem->kry.bp);
   }
-  ret = SUNLinSolSetATimes(mem->LS, mem, ATimes);
+  ret = SUNLinSolSetATimes(mem->ls.LS, mem, ATimes);
   if (ret == 0)
-    ret = SUNLinSolSetPreconditioner(mem->LS, mem, prec ? PSetup : NULL,
+    ret = SUNLinSolSetPreconditioner(mem->ls.LS, mem, prec ? PSetup : NULL,
                                      prec ? PSolve : NULL);
-  if (ret == 0 && mem->LS->ops->setscalingvectors != NULL)
-    ret = SUNLinSolSetScalingVectors(mem->LS, mem->kry_w, mem->kry_w);
+  if (ret == 0 && mem->ls.LS->ops->setscalingvectors != NULL)
+    ret = SUNLinSolSetScalingVectors(mem->ls.LS, mem->kry.w, mem->kry.w);
   if (ret != 0) {
     LGN_ERROR(mem, LGN_LINIT_FAIL,
               "The Krylov solver refused Lignum's ATimes, preconditioner or "
@@ -254,14 +254,14 @@ int lgnKrylovCheck(LGNMem mem)
 static int ATimes(void *A_data, N_Vector v, N_Vector z)
 {
   LGNMem mem = (LGNMem)A_data;
-  mem->njtimes++;
-  if (mem->halo != NULL) {
-    lgnGhostsExpand(mem, lgnData(v), mem->hx_ext);
-    lgnMatvec(mem->A, mem->hx_ext, mem->hx_ext2, SUNFALSE);
-    lgnGhostsFold(mem, mem->hx_ext2, lgnData(z));
+  mem->kry.njtimes++;
+  if (mem->ranks.halo != NULL) {
+    lgnGhostsExpand(mem, lgnData(v), mem->ranks.hx_ext);
+    lgnMatvec(mem->ls.A, mem->ranks.hx_ext, mem->ranks.hx_ext2, SUNFALSE);
+    lgnGhostsFold(mem, mem->ranks.hx_ext2, lgnData(z));
     return 0;
   }
-  lgnMatvec(mem->A, lgnData(v), lgnData(z), SUNFALSE);
+  lgnMatvec(mem->ls.A, lgnData(v), lgnData(z), SUNFALSE);
   return 0;
 }
 
@@ -270,13 +270,13 @@ static int ATimes(void *A_data, N_Vector v, N_Vector z)
  * blocks index the rank's whole matrix (ghost entries: in no block). */
 static int BlockSolveOwned(LGNMem mem, const sunrealtype *r, sunrealtype *z)
 {
-  const sunindextype nvo = mem->nv_own, nv = mem->nv, m = mem->m;
+  const sunindextype nvo = mem->ranks.nv_own, nv = mem->nv, m = mem->m;
   int ret;
-  memcpy(mem->hx_ext, r, (size_t)nvo * sizeof(sunrealtype));
-  memset(mem->hx_ext + nvo, 0, (size_t)(nv - nvo) * sizeof(sunrealtype));
-  memcpy(mem->hx_ext + nv, r + nvo, (size_t)m * sizeof(sunrealtype));
-  ret = lgnBlockPrecSolve(mem->bp, mem->hx_ext, mem->hx_ext);
-  lgnGhostsRestrict(mem, mem->hx_ext, z);
+  memcpy(mem->ranks.hx_ext, r, (size_t)nvo * sizeof(sunrealtype));
+  memset(mem->ranks.hx_ext + nvo, 0, (size_t)(nv - nvo) * sizeof(sunrealtype));
+  memcpy(mem->ranks.hx_ext + nv, r + nvo, (size_t)m * sizeof(sunrealtype));
+  ret = lgnBlockPrecSolve(mem->kry.bp, mem->ranks.hx_ext, mem->ranks.hx_ext);
+  lgnGhostsRestrict(mem, mem->ranks.hx_ext, z);
   return ret;
 }
 #endif
@@ -286,38 +286,38 @@ static int BlockSolveOwned(LGNMem mem, const sunrealtype *r, sunrealtype *z)
 static int PSetup(void *P_data)
 {
   LGNMem mem = (LGNMem)P_data;
-  mem->npe++;
-  if (mem->bp_nblocks > 0 && mem->bp != NULL) {
+  mem->kry.npe++;
+  if (mem->kry.bp_nblocks > 0 && mem->kry.bp != NULL) {
 #if defined(LGN_HAVE_KLU)
-    return lgnBlockPrecSetup(mem->bp, SUNSparseMatrix_IndexPointers(mem->A),
-                             SUNSparseMatrix_IndexValues(mem->A),
-                             SUNSparseMatrix_Data(mem->A),
-                             mem->sp != NULL ? mem->sp->npattern : 0L);
+    return lgnBlockPrecSetup(mem->kry.bp, SUNSparseMatrix_IndexPointers(mem->ls.A),
+                             SUNSparseMatrix_IndexValues(mem->ls.A),
+                             SUNSparseMatrix_Data(mem->ls.A),
+                             mem->ls.sp != NULL ? mem->ls.sp->npattern : 0L);
 #else
     return -1;
 #endif
   }
-  if (mem->psetup == NULL) return 0;
-  return mem->psetup(mem->asm_t, mem->q1, mem->v1, mem->asm_cM, mem->asm_cC,
-                     mem->asm_cK, mem->user_data);
+  if (mem->kry.psetup == NULL) return 0;
+  return mem->kry.psetup(mem->kry.asm_t, mem->q1, mem->v1, mem->kry.asm_cM, mem->kry.asm_cC,
+                     mem->kry.asm_cK, mem->user_data);
 }
 
 static int PreconditionerSolve(LGNMem mem, N_Vector r, N_Vector z, sunrealtype tol)
 {
-  if (mem->bp_nblocks > 0 && mem->bp != NULL) {
+  if (mem->kry.bp_nblocks > 0 && mem->kry.bp != NULL) {
 #if defined(LGN_HAVE_KLU)
-    if (mem->halo != NULL) return BlockSolveOwned(mem, lgnData(r), lgnData(z));
-    return lgnBlockPrecSolve(mem->bp, lgnData(r), lgnData(z));
+    if (mem->ranks.halo != NULL) return BlockSolveOwned(mem, lgnData(r), lgnData(z));
+    return lgnBlockPrecSolve(mem->kry.bp, lgnData(r), lgnData(z));
 #else
     return -1;
 #endif
   }
-  if (mem->psolve == NULL) {
+  if (mem->kry.psolve == NULL) {
     N_VScale(SUN_RCONST(1.0), r, z);
     return 0;
   }
-  return mem->psolve(mem->asm_t, mem->q1, mem->v1, r, z, mem->asm_cM,
-                     mem->asm_cC, mem->asm_cK, tol, mem->user_data);
+  return mem->kry.psolve(mem->kry.asm_t, mem->q1, mem->v1, r, z, mem->kry.asm_cM,
+                     mem->kry.asm_cC, mem->kry.asm_cK, tol, mem->user_data);
 }
 
 /* Across ranks a failure must not end the Krylov iteration on one rank
@@ -329,10 +329,10 @@ static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
   LGNMem mem = (LGNMem)P_data;
   int ret;
   (void)lr;
-  mem->nps++;
+  mem->kry.nps++;
   ret = PreconditionerSolve(mem, r, z, tol);
-  if (ret == 0 || mem->par == NULL) return ret;
-  if (mem->kry_pfail == 0 || ret < 0) mem->kry_pfail = ret;
+  if (ret == 0 || mem->ranks.par == NULL) return ret;
+  if (mem->kry.pfail == 0 || ret < 0) mem->kry.pfail = ret;
   N_VScale(SUN_RCONST(1.0), r, z);
   return 0;
 }
@@ -348,7 +348,7 @@ static int PSolve(void *P_data, N_Vector r, N_Vector z, sunrealtype tol, int lr)
 static int RecoverableFailure(LGNMem mem, int fatal, const char *what, int ret,
                               const char *detail)
 {
-  if (mem->step_control == LGN_STEP_ADAPTIVE) return LGN_RECOVERABLE;
+  if (mem->ec.step_control == LGN_STEP_ADAPTIVE) return LGN_RECOVERABLE;
   LGN_ERROR(mem, fatal,
             MSG_TIME "%s failed recoverably (%d) and the fixed step size cannot be "
             "reduced.%s", (double)mem->tn, what, ret, detail);
@@ -358,29 +358,29 @@ static int RecoverableFailure(LGNMem mem, int fatal, const char *what, int ret,
 /* The preconditioner's setup with the matrix just assembled. */
 int lgnKrylovSetup(LGNMem mem)
 {
-  int ret = SUNLinSolSetup(mem->LS, NULL);
-  mem->last_lin_flag = ret;
-  mem->diag_text[0]  = '\0';
+  int ret = SUNLinSolSetup(mem->ls.LS, NULL);
+  mem->ls.last_flag = ret;
+  mem->diag.text[0]  = '\0';
   if (ret == 0) return LGN_SUCCESS;
-  if (ret > 0 && mem->bp_nblocks > 0 && mem->bp != NULL) {
+  if (ret > 0 && mem->kry.bp_nblocks > 0 && mem->kry.bp != NULL) {
     /* the whole matrix may be regular: a block keeps only its own columns */
-    snprintf(mem->diag_text, sizeof mem->diag_text,
+    snprintf(mem->diag.text, sizeof mem->diag.text,
              " A block of the block preconditioner%s is singular: a block keeps the "
              "columns of its own bodies only, so its constraints must be independent "
              "on them; %s, or use a direct solver (KLU%s).",
-             mem->halo != NULL ? " on this rank" : "",
-             mem->halo != NULL ? "declare a joint at a cut on the rank where this holds "
+             mem->ranks.halo != NULL ? " on this rank" : "",
+             mem->ranks.halo != NULL ? "declare a joint at a cut on the rank where this holds "
                                  "(not beside another joint that holds the same owned body)"
                                : "cut the partition elsewhere",
-             mem->halo != NULL ? " on one rank, MUMPS across ranks" : ", MUMPS");
+             mem->ranks.halo != NULL ? " on one rank, MUMPS across ranks" : ", MUMPS");
   }
   if (ret > 0) /* a smaller step may help */
     return RecoverableFailure(mem, LGN_LSETUP_FAIL, "the preconditioner setup", ret,
-                              mem->diag_text);
+                              mem->diag.text);
   LGN_ERROR(mem, LGN_LSETUP_FAIL,
             MSG_TIME "the preconditioner setup failed (%d)%s.", (double)mem->tn,
             ret,
-            mem->bp_nblocks > 0 ? ": a block of the block preconditioner "
+            mem->kry.bp_nblocks > 0 ? ": a block of the block preconditioner "
                                   "could not be factored (singular, or memory "
                                   "refused)"
                                 : "");
@@ -395,24 +395,24 @@ int lgnKrylovSetup(LGNMem mem)
  * The next solve is Newton's. */
 void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c)
 {
-  const sunindextype nv = mem->nv_own, m = mem->m; /* the solver's unknowns */
-  const sunrealtype h = c->h, rtol = mem->nls_rtol, atol = mem->nls_atol;
+  const sunindextype nv = mem->ranks.nv_own, m = mem->m; /* the solver's unknowns */
+  const sunrealtype h = c->h, rtol = mem->nls.rtol, atol = mem->nls.atol;
   const sunrealtype *lambda1 = m > 0 ? lgnData(mem->lambda1) : NULL;
   const sunrealtype roundoff = SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale;
   const sunrealtype sigma_atol  = atol * h + roundoff;
   const sunrealtype lambda_unit = c->scale / h;
   const sunrealtype lambda_atol = atol + roundoff / (mem->beta * h);
-  sunrealtype *w = lgnData(mem->kry_w);
+  sunrealtype *w = lgnData(mem->kry.w);
   sunindextype i;
   for (i = 0; i < nv; i++)
     w[i] = SUN_RCONST(1.0) /
-           (mem->nls_atolv != NULL
-                ? h * mem->nls_vfac * mem->nls_atolv[i] + roundoff + rtol * fabs(mem->sigma[i])
+           (mem->nls.atolv != NULL
+                ? h * mem->nls.vfac * mem->nls.atolv[i] + roundoff + rtol * fabs(mem->sigma[i])
                 : sigma_atol + rtol * fabs(mem->sigma[i]));
   for (i = 0; i < m; i++)
     w[nv + i] = SUN_RCONST(1.0) / (lambda_unit * lambda_atol +
-                                   lambda_unit * mem->nls_lrtol * fabs(h * lambda1[i]));
-  mem->kry_newton = SUNTRUE;
+                                   lambda_unit * mem->nls.lrtol * fabs(h * lambda1[i]));
+  mem->kry.newton = SUNTRUE;
 }
 
 /* sqrt(sum (w_i x_i)^2), over all ranks */
@@ -431,27 +431,27 @@ static sunrealtype WeightedNorm(LGNMem mem, N_Vector x, N_Vector w)
  * lgnKrylovNewtonWeights; else relative), from x = 0. */
 int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
-  const sunrealtype n = mem->nv_all + mem->m_all; /* of all ranks */
-  const sunbooleantype newton = mem->kry_newton;
+  const sunrealtype n = mem->ranks.nv_all + mem->ranks.m_all; /* of all ranks */
+  const sunbooleantype newton = mem->kry.newton;
   const sunbooleantype left = HasPreconditioner(mem) &&
-                              mem->kry_pretype != SUN_PREC_RIGHT;
+                              mem->kry.pretype != SUN_PREC_RIGHT;
   sunrealtype delta;
   long int nli = 0;
   int ret, flag;
-  mem->kry_newton = SUNFALSE;
-  mem->kry_pfail  = 0;
+  mem->kry.newton = SUNFALSE;
+  mem->kry.pfail  = 0;
   if (x == b) { /* the solver needs them apart */
-    N_VScale(SUN_RCONST(1.0), b, mem->kry_tmp);
-    b = mem->kry_tmp;
+    N_VScale(SUN_RCONST(1.0), b, mem->kry.tmp);
+    b = mem->kry.tmp;
   }
   if (newton) {
-    delta = mem->eplifac * sqrt(n);
+    delta = mem->kry.eplifac * sqrt(n);
   } else {
     /* unit weights, a relative residual: of P^{-1} b when the solver
      * measures the left-preconditioned residual */
-    N_VConst(SUN_RCONST(1.0), mem->kry_w);
-    if (left && b != mem->kry_tmp) {
-      ret = PSolve(mem, b, mem->kry_tmp, SUN_RCONST(0.0), 1);
+    N_VConst(SUN_RCONST(1.0), mem->kry.w);
+    if (left && b != mem->kry.tmp) {
+      ret = PSolve(mem, b, mem->kry.tmp, SUN_RCONST(0.0), 1);
       if (ret != 0) {
         if (ret > 0)
           return RecoverableFailure(mem, LGN_LSOLVE_FAIL, "the preconditioner solve", ret, "");
@@ -460,30 +460,30 @@ int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b)
                   (double)mem->tn, ret);
         return LGN_LSOLVE_FAIL;
       }
-      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, mem->kry_tmp, mem->kry_w);
+      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, mem->kry.tmp, mem->kry.w);
     } else {
-      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, b, mem->kry_w);
+      delta = KRYLOV_RTOL_OTHER * WeightedNorm(mem, b, mem->kry.w);
     }
   }
   N_VConst(SUN_RCONST(0.0), x);
   if (!newton && delta == SUN_RCONST(0.0)) return LGN_SUCCESS; /* b = 0 */
-  ret = SUNLinSolSolve(mem->LS, NULL, x, b, delta);
-  nli = (long int)SUNLinSolNumIters(mem->LS);
-  mem->nli += nli;
-  mem->last_lin_flag = ret;
-  if (mem->par != NULL) { /* a preconditioner that failed on some rank */
-    if (mem->kry_pfail < 0)
+  ret = SUNLinSolSolve(mem->ls.LS, NULL, x, b, delta);
+  nli = (long int)SUNLinSolNumIters(mem->ls.LS);
+  mem->kry.nli += nli;
+  mem->ls.last_flag = ret;
+  if (mem->ranks.par != NULL) { /* a preconditioner that failed on some rank */
+    if (mem->kry.pfail < 0)
       LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the preconditioner solve failed (%d).",
-                (double)mem->tn, mem->kry_pfail);
-    flag = lgnAgree(mem, mem->kry_pfail > 0
+                (double)mem->tn, mem->kry.pfail);
+    flag = lgnAgree(mem, mem->kry.pfail > 0
                              ? RecoverableFailure(mem, LGN_LSOLVE_FAIL,
-                                                  "the preconditioner solve", mem->kry_pfail, "")
-                         : mem->kry_pfail < 0 ? LGN_LSOLVE_FAIL
+                                                  "the preconditioner solve", mem->kry.pfail, "")
+                         : mem->kry.pfail < 0 ? LGN_LSOLVE_FAIL
                                               : LGN_SUCCESS);
     if (flag != LGN_SUCCESS) return flag;
   }
   if (ret == SUNLS_SUCCESS) return LGN_SUCCESS;
-  if (ret > 0) mem->nlcf++;
+  if (ret > 0) mem->kry.nlcf++;
   /* an inexact Newton correction: Newton's own test judges it */
   if (ret == SUNLS_RES_REDUCED && newton) return LGN_SUCCESS;
   if (ret == SUNLS_PSOLVE_FAIL_REC || ret == SUNLS_ATIMES_FAIL_REC)
@@ -514,13 +514,13 @@ int LGNSetPreconditioner(void *lgn_mem, LGNPrecSetupFn psetup,
               "preconditioner off).");
     return LGN_ILL_INPUT;
   }
-  mem->psetup     = psetup;
-  mem->psolve     = psolve;
-  mem->bp_nblocks = 0; /* the user's takes the block preconditioner's place */
-  free(mem->bp_bodies);
-  mem->bp_bodies = NULL;
-  lgnBlockPrecFree(&mem->bp);
-  mem->lu_valid = SUNFALSE; /* the next Newton iteration sets it up */
+  mem->kry.psetup     = psetup;
+  mem->kry.psolve     = psolve;
+  mem->kry.bp_nblocks = 0; /* the user's takes the block preconditioner's place */
+  free(mem->kry.bp_bodies);
+  mem->kry.bp_bodies = NULL;
+  lgnBlockPrecFree(&mem->kry.bp);
+  mem->nls.lu_valid = SUNFALSE; /* the next Newton iteration sets it up */
   return LGN_SUCCESS;
 }
 
@@ -565,13 +565,13 @@ int LGNSetBlockPreconditioner(void *lgn_mem, int nblocks,
     }
     memcpy(copy, body_start, (size_t)(nblocks + 1) * sizeof *copy);
   }
-  free(mem->bp_bodies);
-  mem->bp_bodies  = copy;
-  mem->bp_nblocks = nblocks;
-  mem->psetup     = NULL;
-  mem->psolve     = NULL;
-  lgnBlockPrecFree(&mem->bp);
-  mem->lu_valid = SUNFALSE;
+  free(mem->kry.bp_bodies);
+  mem->kry.bp_bodies  = copy;
+  mem->kry.bp_nblocks = nblocks;
+  mem->kry.psetup     = NULL;
+  mem->kry.psolve     = NULL;
+  lgnBlockPrecFree(&mem->kry.bp);
+  mem->nls.lu_valid = SUNFALSE;
   return LGN_SUCCESS;
 }
 
@@ -585,7 +585,7 @@ int LGNSetEpsLin(void *lgn_mem, sunrealtype eplifac)
               (double)eplifac, (double)LGN_EPLIFAC_DEFAULT);
     return LGN_ILL_INPUT;
   }
-  mem->eplifac = eplifac == SUN_RCONST(0.0) ? LGN_EPLIFAC_DEFAULT : eplifac;
+  mem->kry.eplifac = eplifac == SUN_RCONST(0.0) ? LGN_EPLIFAC_DEFAULT : eplifac;
   return LGN_SUCCESS;
 }
 
@@ -607,7 +607,7 @@ int LGNGetNumLinIters(void *lgn_mem, long int *nliters)
   LGNMem mem;
   int flag = Counter(lgn_mem, __func__, nliters, "nliters", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nliters = mem->nli;
+  *nliters = mem->kry.nli;
   return LGN_SUCCESS;
 }
 
@@ -616,7 +616,7 @@ int LGNGetNumPrecEvals(void *lgn_mem, long int *npevals)
   LGNMem mem;
   int flag = Counter(lgn_mem, __func__, npevals, "npevals", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *npevals = mem->npe;
+  *npevals = mem->kry.npe;
   return LGN_SUCCESS;
 }
 
@@ -625,7 +625,7 @@ int LGNGetNumPrecSolves(void *lgn_mem, long int *npsolves)
   LGNMem mem;
   int flag = Counter(lgn_mem, __func__, npsolves, "npsolves", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *npsolves = mem->nps;
+  *npsolves = mem->kry.nps;
   return LGN_SUCCESS;
 }
 
@@ -634,7 +634,7 @@ int LGNGetNumJtimesEvals(void *lgn_mem, long int *njvevals)
   LGNMem mem;
   int flag = Counter(lgn_mem, __func__, njvevals, "njvevals", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *njvevals = mem->njtimes;
+  *njvevals = mem->kry.njtimes;
   return LGN_SUCCESS;
 }
 
@@ -643,6 +643,6 @@ int LGNGetNumLinConvFails(void *lgn_mem, long int *nlcfails)
   LGNMem mem;
   int flag = Counter(lgn_mem, __func__, nlcfails, "nlcfails", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nlcfails = mem->nlcf;
+  *nlcfails = mem->kry.nlcf;
   return LGN_SUCCESS;
 }

@@ -95,11 +95,11 @@ int LGNSetLinearSolver(void *lgn_mem, SUNLinearSolver LS, SUNMatrix A)
               "SUNLinSol_KLU needs a SUNSparseMatrix, not a dense one.");
     return LGN_LS_MISMATCH;
   }
-  if (mem->krylov) lgnFreeKrylov(mem, SUNFALSE); /* Lignum's A, vectors */
-  mem->krylov = SUNFALSE;
+  if (mem->kry.on) lgnFreeKrylov(mem, SUNFALSE); /* Lignum's A, vectors */
+  mem->kry.on = SUNFALSE;
   lgnFreeRedundancySolver(mem); /* a stand-in for the old solver */
-  mem->LS = LS;
-  mem->A  = A;
+  mem->ls.LS = LS;
+  mem->ls.A  = A;
   /* the model matrices are reallocated for A's type at the next solve; the
    * copy of the old solver's factors goes with them */
   lgnInvalidate(mem, LGN_CHANGE_LINSOL);
@@ -181,13 +181,13 @@ int LGNSetOwnKLUSolves(void *lgn_mem, sunbooleantype own)
   int flag = lgnAccessMem(lgn_mem, __func__, &mem);
   if (flag != LGN_SUCCESS) return flag;
   if (own) flag = KluCopyAvailable(mem);
-  mem->own_klu_solves = own && flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
-  if (!mem->own_klu_solves && mem->klu != NULL) {
+  mem->klu.own_solves = own && flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
+  if (!mem->klu.own_solves && mem->klu.copy != NULL) {
     /* SUNLinSolSetup and SUNLinSolSolve from now on; the factors of the
      * matrix may be only in the copy (Lignum refactored), so the next
      * step sets the matrix up anew */
     lgnInvalidate(mem, LGN_CHANGE_MATRIX);
-    lgnKluCopyFree(&mem->klu);
+    lgnKluCopyFree(&mem->klu.copy);
   } /* else the copy is made at the first solve after the next setup */
   return flag;
 }
@@ -212,7 +212,7 @@ int LGNGetNumKLUFactorCopies(void *lgn_mem, long int *ncopies)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, ncopies, "ncopies", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *ncopies = mem->nklu_copy;
+  *ncopies = mem->klu.ncopy;
   return LGN_SUCCESS;
 }
 
@@ -221,7 +221,7 @@ int LGNGetNumKLUValueCopies(void *lgn_mem, long int *nvalues)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nvalues, "nvalues", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nvalues = mem->nklu_values;
+  *nvalues = mem->klu.nvalues;
   return LGN_SUCCESS;
 }
 
@@ -230,7 +230,7 @@ int LGNGetNumOwnKLURefactors(void *lgn_mem, long int *nrefactors)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nrefactors, "nrefactors", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nrefactors = mem->nklu_refactor;
+  *nrefactors = mem->klu.nrefactor;
   return LGN_SUCCESS;
 }
 
@@ -239,7 +239,7 @@ int LGNGetNumOwnKLUSolves(void *lgn_mem, long int *nsolves)
   LGNMem mem;
   int flag = KluGetter(lgn_mem, __func__, nsolves, "nsolves", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *nsolves = mem->nklu_solve;
+  *nsolves = mem->klu.nsolve;
   return LGN_SUCCESS;
 }
 
@@ -253,9 +253,9 @@ int LGNGetNumKLUFallbacks(void *lgn_mem, long int *npivot, long int *npattern,
   if (flag == LGN_SUCCESS)
     flag = KluGetter(lgn_mem, __func__, nnocopy, "nnocopy", &mem);
   if (flag != LGN_SUCCESS) return flag;
-  *npivot   = mem->nklu_fallback;
-  *npattern = mem->nklu_newpattern;
-  *nnocopy  = mem->nklu_nocopy;
+  *npivot   = mem->klu.nfallback;
+  *npattern = mem->klu.nnewpattern;
+  *nnocopy  = mem->klu.nnocopy;
   return LGN_SUCCESS;
 }
 
@@ -276,13 +276,13 @@ static int CheckGGL(LGNMem mem)
           "not the sigma variant (LGN_KINEMATICS_SIGMA: its Newton corrections are "
           "composed on the configuration, and the stabilised form is not derived "
           "for that)";
-  else if (mem->krylov)
+  else if (mem->kry.on)
     why = "a dense matrix A only, not a Krylov solver (the column of the kinematic "
           "multiplier holds products of M, C_t and B with B^T, which only the dense "
           "assembly forms)";
-  else if (mem->halo != NULL)
+  else if (mem->ranks.halo != NULL)
     why = "a rank's own bodies only, not with ghost bodies (LGNSetHalo)";
-  else if (lgnMatID(mem->A) != SUNMATRIX_DENSE)
+  else if (lgnMatID(mem->ls.A) != SUNMATRIX_DENSE)
     why = "a dense matrix A only (SUNDenseMatrix of nv + 2m rows), not a sparse one "
           "(the column of the kinematic multiplier holds products of M, C_t and B "
           "with B^T, which only the dense assembly forms)";
@@ -300,16 +300,16 @@ static int CheckGGL(LGNMem mem)
 static int FitKeptRows(LGNMem mem)
 {
   const sunindextype n = mem->nv + mem->nalg;
-  const sunindextype nuser = mem->nv + (mem->nalg > mem->m ? 2 : 1) * mem->m_user;
+  const sunindextype nuser = mem->nv + (mem->nalg > mem->m ? 2 : 1) * mem->red.m_user;
   sunindextype rows;
-  if (mem->krylov || mem->A == NULL) return LGN_SUCCESS;
-  rows = lgnMatID(mem->A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
-  if (mem->red_LS != NULL) {
-    if (mem->red_nout > 0 && rows == n) return LGN_SUCCESS;
+  if (mem->kry.on || mem->ls.A == NULL) return LGN_SUCCESS;
+  rows = lgnMatID(mem->ls.A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->ls.A) : SM_ROWS_D(mem->ls.A);
+  if (mem->red.LS != NULL) {
+    if (mem->red.nout > 0 && rows == n) return LGN_SUCCESS;
     lgnFreeRedundancySolver(mem);
-    rows = lgnMatID(mem->A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
+    rows = lgnMatID(mem->ls.A) == SUNMATRIX_SPARSE ? SUNSparseMatrix_Rows(mem->ls.A) : SM_ROWS_D(mem->ls.A);
   }
-  if (mem->red_nout == 0 || rows == n || rows != nuser) return LGN_SUCCESS;
+  if (mem->red.nout == 0 || rows == n || rows != nuser) return LGN_SUCCESS;
   return lgnAllocRedundancySolver(mem, n);
 }
 
@@ -323,15 +323,15 @@ static int CheckLinearSolver(LGNMem mem)
   sunindextype rows, cols;
   int ret = CheckGGL(mem);
   if (ret != LGN_SUCCESS) return ret;
-  if (mem->krylov) { /* Lignum's own A, made for the sizes */
+  if (mem->kry.on) { /* Lignum's own A, made for the sizes */
     ret = lgnKrylovCheck(mem);
     if (ret != LGN_SUCCESS) return ret;
   }
   ret = FitKeptRows(mem);
   if (ret != LGN_SUCCESS) return ret;
-  sparse = lgnMatID(mem->A) == SUNMATRIX_SPARSE;
-  if (mem->halo != NULL && !mem->krylov &&
-      (!sparse || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_CUSTOM)) {
+  sparse = lgnMatID(mem->ls.A) == SUNMATRIX_SPARSE;
+  if (mem->ranks.halo != NULL && !mem->kry.on &&
+      (!sparse || SUNLinSolGetID(mem->ls.LS) != SUNLINEARSOLVER_CUSTOM)) {
     /* a rank's matrix is its part of a sum: only a solver across ranks
      * can solve with the sum */
     LGN_ERROR(mem, LGN_LS_MISMATCH,
@@ -340,8 +340,8 @@ static int CheckLinearSolver(LGNMem mem)
               "with a sparse matrix, not a solver of one rank's matrix.");
     return LGN_LS_MISMATCH;
   }
-  rows = sparse ? SUNSparseMatrix_Rows(mem->A) : SM_ROWS_D(mem->A);
-  cols = sparse ? SUNSparseMatrix_Columns(mem->A) : SM_COLUMNS_D(mem->A);
+  rows = sparse ? SUNSparseMatrix_Rows(mem->ls.A) : SM_ROWS_D(mem->ls.A);
+  cols = sparse ? SUNSparseMatrix_Columns(mem->ls.A) : SM_COLUMNS_D(mem->ls.A);
   if (rows != n || cols != n) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The matrix A is %lld x %lld but the problem needs %lld x %lld "
@@ -352,24 +352,24 @@ static int CheckLinearSolver(LGNMem mem)
               mem->nalg > mem->m ? ": LGN_CONSTR_GGL has the multipliers lambda and mu" : "");
     return LGN_LS_MISMATCH;
   }
-  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_DENSE &&
-      ((SUNLinearSolverContent_Dense)mem->LS->content)->N != n) {
+  if (SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_DENSE &&
+      ((SUNLinearSolverContent_Dense)mem->ls.LS->content)->N != n) {
     /* it would factor A with a pivot array of its own size */
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The dense linear solver was created for %lld x %lld matrices, "
               "but A is %lld x %lld: create it with SUNLinSol_Dense(y, A, ctx) "
               "for this A.",
-              (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N,
-              (long long)((SUNLinearSolverContent_Dense)mem->LS->content)->N, (long long)n, (long long)n);
+              (long long)((SUNLinearSolverContent_Dense)mem->ls.LS->content)->N,
+              (long long)((SUNLinearSolverContent_Dense)mem->ls.LS->content)->N, (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
-  if (lgnDenseLUSize(mem->LS) >= 0 && lgnDenseLUSize(mem->LS) != n) {
+  if (lgnDenseLUSize(mem->ls.LS) >= 0 && lgnDenseLUSize(mem->ls.LS) != n) {
     LGN_ERROR(mem, LGN_LS_MISMATCH,
               "The dense linear solver was created for %lld x %lld matrices, "
               "but A is %lld x %lld: create it with LGNLinSol_Dense(y, A, ctx) "
               "for this A.",
-              (long long)lgnDenseLUSize(mem->LS),
-              (long long)lgnDenseLUSize(mem->LS), (long long)n, (long long)n);
+              (long long)lgnDenseLUSize(mem->ls.LS),
+              (long long)lgnDenseLUSize(mem->ls.LS), (long long)n, (long long)n);
     return LGN_LS_MISMATCH;
   }
   return LGN_SUCCESS;
@@ -382,13 +382,13 @@ int lgnLsCheck(LGNMem mem)
    * Krylov solver over MPI vectors: it clones its basis) */
   int flag = lgnAgree(mem, CheckLinearSolver(mem));
   if (flag != LGN_SUCCESS) return flag;
-  if (!mem->ls_initialized) {
-    ret = SUNLinSolInitialize(mem->LS);
-    mem->last_lin_flag = ret;
+  if (!mem->ls.initialized) {
+    ret = SUNLinSolInitialize(mem->ls.LS);
+    mem->ls.last_flag = ret;
     if (ret != 0) LGN_ERROR(mem, LGN_LINIT_FAIL, "SUNLinSolInitialize failed (%d).", ret);
     flag = lgnAgree(mem, ret != 0 ? LGN_LINIT_FAIL : LGN_SUCCESS);
     if (flag != LGN_SUCCESS) return flag;
-    mem->ls_initialized = SUNTRUE;
+    mem->ls.initialized = SUNTRUE;
   }
   return LGN_SUCCESS;
 }
@@ -407,21 +407,21 @@ static void CopyKLUFactors(LGNMem mem)
 {
   long int nfull = 0, nvalues = 0;
   int flag;
-  if (!mem->own_klu_solves || SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU ||
-      mem->klu_nsolve != (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT ? 0 : 1))
+  if (!mem->klu.own_solves || SUNLinSolGetID(mem->ls.LS) != SUNLINEARSOLVER_KLU ||
+      mem->klu.ls_nsolve != (SUNSparseMatrix_SparseType(mem->ls.A) == CSC_MAT ? 0 : 1))
     return;
-  if (mem->klu != NULL) {
-    nfull   = mem->klu->nfull;
-    nvalues = mem->klu->nvalues;
+  if (mem->klu.copy != NULL) {
+    nfull   = mem->klu.copy->nfull;
+    nvalues = mem->klu.copy->nvalues;
   }
-  flag = lgnKluCopyRefresh(&mem->klu, mem->LS);
-  mem->klu_valid = flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
+  flag = lgnKluCopyRefresh(&mem->klu.copy, mem->ls.LS);
+  mem->klu.valid = flag == LGN_SUCCESS ? SUNTRUE : SUNFALSE;
   if (flag == LGN_SUCCESS) {
-    mem->nklu_copy   += mem->klu->nfull - nfull;
-    mem->nklu_values += mem->klu->nvalues - nvalues;
+    mem->klu.ncopy   += mem->klu.copy->nfull - nfull;
+    mem->klu.nvalues += mem->klu.copy->nvalues - nvalues;
   } else {
-    mem->nklu_nocopy++;
-    lgnKluCopyFree(&mem->klu);
+    mem->klu.nnocopy++;
+    lgnKluCopyFree(&mem->klu.copy);
   }
 }
 
@@ -429,7 +429,7 @@ static void CopyKLUFactors(LGNMem mem)
  * new one, and with it KLU's analysis). */
 static long int PatternNumber(LGNMem mem)
 {
-  return mem->sp != NULL ? mem->sp->npattern : -1L;
+  return mem->ls.sp != NULL ? mem->ls.sp->npattern : -1L;
 }
 
 /* Lignum's refactorisation of A into the copy of KLU's factors, with KLU's
@@ -442,23 +442,23 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 {
 #if defined(LGN_KLU_COPY)
   int flag;
-  if (!mem->own_klu_solves || mem->klu == NULL || !mem->klu->rows ||
-      SUNLinSolGetID(mem->LS) != SUNLINEARSOLVER_KLU)
+  if (!mem->klu.own_solves || mem->klu.copy == NULL || !mem->klu.copy->rows ||
+      SUNLinSolGetID(mem->ls.LS) != SUNLINEARSOLVER_KLU)
     return SUNFALSE;
-  if (mem->klu_pattern != PatternNumber(mem)) {
-    mem->nklu_newpattern++;
+  if (mem->klu.pattern != PatternNumber(mem)) {
+    mem->klu.nnewpattern++;
     return SUNFALSE;
   }
-  flag = lgnKluCopyRefactor(mem->klu, mem->A, mem->klu_pattern,
-                            SUNLinSol_KLUGetCommon(mem->LS)->scale);
-  if (flag == LGN_MEM_FAIL) lgnKluCopyFree(&mem->klu);
+  flag = lgnKluCopyRefactor(mem->klu.copy, mem->ls.A, mem->klu.pattern,
+                            SUNLinSol_KLUGetCommon(mem->ls.LS)->scale);
+  if (flag == LGN_MEM_FAIL) lgnKluCopyFree(&mem->klu.copy);
   if (flag != LGN_SUCCESS) {
-    if (flag == LGN_KLU_PIVOT) mem->nklu_fallback++;
-    else mem->nklu_nocopy++;
+    if (flag == LGN_KLU_PIVOT) mem->klu.nfallback++;
+    else mem->klu.nnocopy++;
     return SUNFALSE;
   }
-  mem->nklu_refactor++;
-  mem->klu_valid = SUNTRUE; /* the factors are the copy's: nothing to copy */
+  mem->klu.nrefactor++;
+  mem->klu.valid = SUNTRUE; /* the factors are the copy's: nothing to copy */
   return SUNTRUE;
 #else
   (void)mem;
@@ -475,12 +475,12 @@ static sunbooleantype OwnRefactor(LGNMem mem)
 static void ResetSolver(LGNMem mem)
 {
 #if defined(LGN_HAVE_KLU)
-  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU)
-    SUNLinSol_KLUReInit(mem->LS, mem->A, SUNSparseMatrix_NNZ(mem->A),
+  if (SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_KLU)
+    SUNLinSol_KLUReInit(mem->ls.LS, mem->ls.A, SUNSparseMatrix_NNZ(mem->ls.A),
                         SUNKLU_REINIT_PARTIAL);
 #endif
-  lgnKluCopyFree(&mem->klu);
-  mem->ls_restart = SUNFALSE;
+  lgnKluCopyFree(&mem->klu.copy);
+  mem->ls.restart = SUNFALSE;
 }
 
 /* SUNDIALS' dense LU stops only at an exact zero pivot; a matrix whose
@@ -494,9 +494,9 @@ static int DenseNearlySingular(LGNMem mem)
   const sunindextype n = mem->nv + mem->nalg;
   sunrealtype umin = SUN_BIG_REAL, umax = SUN_RCONST(0.0), u;
   sunindextype k, kmin = 0;
-  if (lgnMatID(mem->A) != SUNMATRIX_DENSE) return 0;
+  if (lgnMatID(mem->ls.A) != SUNMATRIX_DENSE) return 0;
   for (k = 0; k < n; k++) { /* the LU factors are in A */
-    u = fabs(SM_ELEMENT_D(mem->A, k, k));
+    u = fabs(SM_ELEMENT_D(mem->ls.A, k, k));
     if (u < umin) {
       umin = u;
       kmin = k;
@@ -510,25 +510,25 @@ int lgnLsSetup(LGNMem mem)
 {
   int ret;
   mem->nlsetup++;
-  if (mem->krylov) return lgnKrylovSetup(mem);
+  if (mem->kry.on) return lgnKrylovSetup(mem);
   if (OwnRefactor(mem)) return LGN_SUCCESS;
-  mem->klu_valid  = SUNFALSE; /* the factors in LS change (or are lost) */
-  mem->klu_nsolve = 0;
-  mem->klu_pattern = PatternNumber(mem);
-  if (mem->ls_restart) ResetSolver(mem);
-  ret = SUNLinSolSetup(mem->LS, mem->A);
-  mem->last_lin_flag = ret;
-  mem->ls_restart = ret != 0 ? SUNTRUE : SUNFALSE;
+  mem->klu.valid  = SUNFALSE; /* the factors in LS change (or are lost) */
+  mem->klu.ls_nsolve = 0;
+  mem->klu.pattern = PatternNumber(mem);
+  if (mem->ls.restart) ResetSolver(mem);
+  ret = SUNLinSolSetup(mem->ls.LS, mem->ls.A);
+  mem->ls.last_flag = ret;
+  mem->ls.restart = ret != 0 ? SUNTRUE : SUNFALSE;
   if (ret == 0) ret = DenseNearlySingular(mem);
   if (ret != 0) {
-    lgnDiagnoseSingular(mem, ret, mem->diag_text, sizeof mem->diag_text);
+    lgnDiagnoseSingular(mem, ret, mem->diag.text, sizeof mem->diag.text);
     /* singular at this step size: the caller retries a smaller one */
-    if (mem->lsetup_recoverable && (ret > 0 || mem->diag_pivot >= 0)) return LGN_RECOVERABLE;
+    if (mem->ls.setup_recoverable && (ret > 0 || mem->diag.pivot >= 0)) return LGN_RECOVERABLE;
     LGN_ERROR(mem, LGN_LSETUP_FAIL,
               MSG_TIME "the linear solver setup failed (%d%s).%s",
               (double)mem->tn, ret,
-              ret > 0 || mem->diag_pivot >= 0 ? ": the matrix is singular" : "",
-              mem->diag_text);
+              ret > 0 || mem->diag.pivot >= 0 ? ": the matrix is singular" : "",
+              mem->diag.text);
     return LGN_LSETUP_FAIL;
   }
   return LGN_SUCCESS;
@@ -539,12 +539,12 @@ int lgnLsSetup(LGNMem mem)
 static int SolveWithGhosts(LGNMem mem, N_Vector x, N_Vector b)
 {
   int ret;
-  lgnGhostsFold(mem, lgnData(b), lgnData(mem->hx_b));
-  if (mem->krylov) {
-    ret = lgnKrylovSolve(mem, mem->hx_x, mem->hx_b);
+  lgnGhostsFold(mem, lgnData(b), lgnData(mem->ranks.hx_b));
+  if (mem->kry.on) {
+    ret = lgnKrylovSolve(mem, mem->ranks.hx_x, mem->ranks.hx_b);
   } else {
-    ret = SUNLinSolSolve(mem->LS, mem->A, mem->hx_x, mem->hx_b, SUN_RCONST(0.0));
-    mem->last_lin_flag = ret;
+    ret = SUNLinSolSolve(mem->ls.LS, mem->ls.A, mem->ranks.hx_x, mem->ranks.hx_b, SUN_RCONST(0.0));
+    mem->ls.last_flag = ret;
     if (ret != 0) {
       LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the linear solve failed (%d).",
                 (double)mem->tn, ret);
@@ -553,32 +553,32 @@ static int SolveWithGhosts(LGNMem mem, N_Vector x, N_Vector b)
   }
   /* the expansion is collective: every rank takes part, whatever failed */
   ret = lgnAgree(mem, ret);
-  if (ret == LGN_SUCCESS) lgnGhostsExpand(mem, lgnData(mem->hx_x), lgnData(x));
+  if (ret == LGN_SUCCESS) lgnGhostsExpand(mem, lgnData(mem->ranks.hx_x), lgnData(x));
   return ret;
 }
 
 int lgnLsSolve(LGNMem mem, N_Vector x, N_Vector b)
 {
   int ret;
-  if (mem->halo != NULL) {
+  if (mem->ranks.halo != NULL) {
     mem->nlsolve++;
     return SolveWithGhosts(mem, x, b);
   }
-  if (mem->krylov) {
+  if (mem->kry.on) {
     mem->nlsolve++;
     return lgnKrylovSolve(mem, x, b);
   }
-  if (!mem->klu_valid) CopyKLUFactors(mem);
-  mem->klu_nsolve++;
+  if (!mem->klu.valid) CopyKLUFactors(mem);
+  mem->klu.ls_nsolve++;
   mem->nlsolve++;
-  if (mem->klu_valid) { /* Lignum's solve on its copy of the factors */
-    mem->nklu_solve++;
-    lgnKluCopySolve(mem->klu, lgnData(b), lgnData(x));
-    mem->last_lin_flag = 0;
+  if (mem->klu.valid) { /* Lignum's solve on its copy of the factors */
+    mem->klu.nsolve++;
+    lgnKluCopySolve(mem->klu.copy, lgnData(b), lgnData(x));
+    mem->ls.last_flag = 0;
     return LGN_SUCCESS;
   }
-  ret = SUNLinSolSolve(mem->LS, mem->A, x, b, SUN_RCONST(0.0));
-  mem->last_lin_flag = ret;
+  ret = SUNLinSolSolve(mem->ls.LS, mem->ls.A, x, b, SUN_RCONST(0.0));
+  mem->ls.last_flag = ret;
   if (ret != 0) {
     LGN_ERROR(mem, LGN_LSOLVE_FAIL, MSG_TIME "the linear solve failed (%d).",
               (double)mem->tn, ret);

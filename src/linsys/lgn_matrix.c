@@ -60,12 +60,12 @@ static inline TangentColumn ColumnOf(LGNMem mem, const sunrealtype *T,
                                      sunindextype j)
 {
   TangentColumn c = {NULL, j, j + 1};
-  const int b = (int)mem->blk_of[j];
+  const int b = (int)mem->blk.of[j];
   sunindextype o, n;
   if (T == NULL || lgnBlockIsIdentity(mem, b)) return c;
-  o    = mem->blk_voff[b];
-  n    = mem->blk_voff[b + 1] - o;
-  c.tj = T + mem->blk_toff[b] + (j - o) * n - o;
+  o    = mem->blk.voff[b];
+  n    = mem->blk.voff[b + 1] - o;
+  c.tj = T + mem->blk.toff[b] + (j - o) * n - o;
   lgnTangentColumnRange(mem, j, &c.k0, &c.k1);
   return c;
 }
@@ -157,7 +157,7 @@ static void GGLColumn(LGNMem mem, const LGNMatrixTerms *x, sunindextype j,
   sunrealtype *b = mem->work_nv, *w = mem->work2_nv, *u = b, s;
   for (k = 0; k < nv; k++) b[k] = GB[j + k * m];
   if (x->UA != NULL || x->UV != NULL) { /* w = UA b, u = UV b */
-    u = lgnData(mem->dq_g);
+    u = lgnData(mem->dq.g);
     PackedApply(mem, x->UA, b, w);
     PackedApply(mem, x->UV, b, u);
     for (i = 0; i < nv; i++) {
@@ -192,7 +192,7 @@ static int AssembleDense(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
   /* GGL: the Phi rows come first, the velocity rows (B v + Phi_t)/gamma'
    * at vrow; under GGL the saddle-point matrix has an identity for mu */
   const sunindextype vrow = x->ggl ? nv + m : nv;
-  sunrealtype *A = SM_DATA_D(mem->A); /* all dense on this path */
+  sunrealtype *A = SM_DATA_D(mem->ls.A); /* all dense on this path */
   const sunrealtype *M = SM_DATA_D(mem->Mmat);
   const sunrealtype *C = SM_DATA_D(mem->Cmat);
   const sunrealtype *K = SM_DATA_D(mem->Kmat);
@@ -286,19 +286,19 @@ int lgnAssembleIterationMatrix(LGNMem mem, sunrealtype t,
 {
   const sunrealtype *data;
   sunindextype len;
-  int flag = mem->sparse ? lgnAssembleSparse(mem, t, terms)
+  int flag = mem->ls.sparse ? lgnAssembleSparse(mem, t, terms)
                          : AssembleDense(mem, t, terms);
   if (flag != LGN_SUCCESS) return flag;
-  mem->asm_t  = t; /* for a preconditioner's setup (lgn_krylov.c) */
-  mem->asm_cM = terms->cM;
-  mem->asm_cC = terms->cC;
-  mem->asm_cK = terms->cK;
-  if (mem->sparse) {
-    data = SUNSparseMatrix_Data(mem->A);
-    len  = SUNSparseMatrix_IndexPointers(mem->A)[SUNSparseMatrix_NP(mem->A)];
+  mem->kry.asm_t  = t; /* for a preconditioner's setup (lgn_krylov.c) */
+  mem->kry.asm_cM = terms->cM;
+  mem->kry.asm_cC = terms->cC;
+  mem->kry.asm_cK = terms->cK;
+  if (mem->ls.sparse) {
+    data = SUNSparseMatrix_Data(mem->ls.A);
+    len  = SUNSparseMatrix_IndexPointers(mem->ls.A)[SUNSparseMatrix_NP(mem->ls.A)];
   } else {
-    data = SM_DATA_D(mem->A);
-    len  = SM_LDATA_D(mem->A);
+    data = SM_DATA_D(mem->ls.A);
+    len  = SM_LDATA_D(mem->ls.A);
   }
   if (lgnAllFinite(data, len)) return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_NONFINITE,

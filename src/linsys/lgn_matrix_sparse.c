@@ -50,7 +50,7 @@ static void Forget(struct LGNSparseWorkRec *sp, int s, sunbooleantype changed)
  * quotients use the colouring of K_t's pattern. */
 static int RefreshViews(LGNMem mem)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   sunbooleantype changed = SUNFALSE;
   int flag = lgnCscViewSeen(mem->Mmat, &sp->M, &sp->Mseen, &changed);
   Forget(sp, LGN_MAP_M, changed);
@@ -78,7 +78,7 @@ static int RefreshViews(LGNMem mem)
 /* K and C as evaluated: views of the user's matrices, or the DQ storage. */
 static int TangentViews(LGNMem mem, const LGNCsc **K, const LGNCsc **C)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   sunbooleantype changed = SUNFALSE;
   int flag = LGN_SUCCESS;
   if (mem->stiffness != NULL) {
@@ -120,7 +120,7 @@ static sunbooleantype RangesAlike(LGNMem mem, const LGNCsc *P)
  * CSR permutation, and A's index arrays; the maps into the old one go. */
 static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const sunindextype nv = mem->nv, m = mem->m, n = nv + m;
   const LGNCsc *src[3];
   LGNCsc P;
@@ -165,9 +165,9 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
     return LGN_LSETUP_FAIL; /* cannot happen */
   }
   nnz = flag == LGN_SUCCESS ? P.colptr[n] : 0;
-  if (flag == LGN_SUCCESS && SUNSparseMatrix_NNZ(mem->A) < nnz)
-    flag = SUNSparseMatrix_Reallocate(mem->A, nnz) == 0 ? LGN_SUCCESS : LGN_MEM_FAIL;
-  if (flag == LGN_SUCCESS && SUNSparseMatrix_SparseType(mem->A) == CSR_MAT) {
+  if (flag == LGN_SUCCESS && SUNSparseMatrix_NNZ(mem->ls.A) < nnz)
+    flag = SUNSparseMatrix_Reallocate(mem->ls.A, nnz) == 0 ? LGN_SUCCESS : LGN_MEM_FAIL;
+  if (flag == LGN_SUCCESS && SUNSparseMatrix_SparseType(mem->ls.A) == CSR_MAT) {
     sunindextype *perm = (sunindextype *)realloc(sp->csr_perm, (size_t)SUNMAX(nnz, 1) * sizeof *perm);
     if (perm == NULL) flag = LGN_MEM_FAIL;
     else sp->csr_perm = perm;
@@ -177,7 +177,7 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
     LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
-  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) { /* filled in place */
+  if (SUNSparseMatrix_SparseType(mem->ls.A) == CSC_MAT) { /* filled in place */
     free(P.val);
     P.val = NULL;
   }
@@ -185,13 +185,13 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
   sp->A = P;
   for (s = 0; s < LGN_NMAPS; s++) sp->map[s].valid = SUNFALSE;
 
-  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
-    memcpy(SUNSparseMatrix_IndexPointers(mem->A), P.colptr, (size_t)(n + 1) * sizeof(sunindextype));
-    memcpy(SUNSparseMatrix_IndexValues(mem->A), P.rowind, (size_t)nnz * sizeof(sunindextype));
+  if (SUNSparseMatrix_SparseType(mem->ls.A) == CSC_MAT) {
+    memcpy(SUNSparseMatrix_IndexPointers(mem->ls.A), P.colptr, (size_t)(n + 1) * sizeof(sunindextype));
+    memcpy(SUNSparseMatrix_IndexValues(mem->ls.A), P.rowind, (size_t)nnz * sizeof(sunindextype));
   } else {
     /* CSR of A = CSC of A^T: count rows, then place entries column by column */
-    sunindextype *rowptr = SUNSparseMatrix_IndexPointers(mem->A);
-    sunindextype *colind = SUNSparseMatrix_IndexValues(mem->A);
+    sunindextype *rowptr = SUNSparseMatrix_IndexPointers(mem->ls.A);
+    sunindextype *colind = SUNSparseMatrix_IndexValues(mem->ls.A);
     memset(rowptr, 0, (size_t)(n + 1) * sizeof(sunindextype));
     for (p = 0; p < nnz; p++) rowptr[P.rowind[p] + 1]++;
     for (i = 0; i < n; i++) rowptr[i + 1] += rowptr[i];
@@ -209,8 +209,8 @@ static int BuildPattern(LGNMem mem, const LGNCsc *K, const LGNCsc *C)
 #if defined(LGN_HAVE_KLU)
     /* KLU only: a Krylov solver has no factorisation, another sparse
      * solver (LGNLinSol_PETSc) sees the new pattern itself */
-    if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU)
-      SUNLinSol_KLUReInit(mem->LS, mem->A, nnz, SUNKLU_REINIT_PARTIAL);
+    if (SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_KLU)
+      SUNLinSol_KLUReInit(mem->ls.LS, mem->ls.A, nnz, SUNKLU_REINIT_PARTIAL);
 #endif
     sp->analysed = SUNFALSE;
   }
@@ -245,7 +245,7 @@ static int AddTerm(LGNMem mem, Term *t, int nt, const LGNCsc *X,
 static int Terms(LGNMem mem, const LGNCsc *K, const LGNCsc *C,
                  const LGNMatrixTerms *x, Term *t)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   int nt = 0;
   nt = AddTerm(mem, t, nt, &sp->M, NULL, x->TM, x->cM, LGN_MAP_M);
   nt = AddTerm(mem, t, nt, C, NULL, x->TC, x->cC, LGN_MAP_C);
@@ -276,7 +276,7 @@ static sunindextype FindRow(const LGNCsc *A, sunindextype j, sunindextype r)
  * outside A's pattern sets *miss and leaves the map invalid. */
 static int BuildMap(LGNMem mem, int s, const LGNCsc *X, sunbooleantype *miss)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   LGNScatterMap *map = &sp->map[s];
   const sunindextype nnz = X->colptr[X->ncols], shift = s == LGN_MAP_B ? mem->nv : 0;
   sunindextype k, p, q;
@@ -314,7 +314,7 @@ static int BuildMap(LGNMem mem, int s, const LGNCsc *X, sunbooleantype *miss)
 /* Map s of X unless it is there for the current patterns. */
 static int NeedMap(LGNMem mem, int s, const LGNCsc *X, sunbooleantype *miss)
 {
-  const LGNScatterMap *map = &mem->sp->map[s];
+  const LGNScatterMap *map = &mem->ls.sp->map[s];
   return map->valid && map->src == X ? LGN_SUCCESS : BuildMap(mem, s, X, miss);
 }
 
@@ -327,7 +327,7 @@ static int MapTerms(LGNMem mem, const Term *t, int nt, sunbooleantype *miss)
   for (i = 0; i < nt && flag == LGN_SUCCESS && !*miss; i++)
     flag = NeedMap(mem, t[i].map, t[i].X, miss);
   if (flag == LGN_SUCCESS && !*miss && mem->m > 0)
-    flag = NeedMap(mem, LGN_MAP_BT, &mem->sp->B, miss);
+    flag = NeedMap(mem, LGN_MAP_BT, &mem->ls.sp->B, miss);
   return flag;
 }
 
@@ -359,7 +359,7 @@ static void AddTimesTangent(const Term *t, const sunindextype *off,
  * and their entries p in order; B^T: B's entries in order. */
 static void FillValues(LGNMem mem, const Term *t, int nt, sunrealtype *val)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const sunindextype nv = mem->nv, n = nv + mem->m;
   const sunindextype *colptr = sp->A.colptr, *bt = sp->map[LGN_MAP_BT].off;
   sunindextype j, p, k0, k1, o, nb;
@@ -368,14 +368,14 @@ static void FillValues(LGNMem mem, const Term *t, int nt, sunrealtype *val)
 
   memset(val, 0, (size_t)colptr[n] * sizeof *val);
   for (j = 0; j < nv; j++) {
-    b  = (int)mem->blk_of[j];
-    o  = mem->blk_voff[b];
-    nb = mem->blk_voff[b + 1] - o;
+    b  = (int)mem->blk.of[j];
+    o  = mem->blk.voff[b];
+    nb = mem->blk.voff[b + 1] - o;
     lgnTangentColumnRange(mem, j, &k0, &k1);
     acol = val + colptr[j];
     for (i = 0; i < nt; i++)
       AddTimesTangent(&t[i], sp->map[t[i].map].off, j, o, nb, k0, k1,
-                      t[i].T != NULL && !lgnBlockIsIdentity(mem, b) ? t[i].T + mem->blk_toff[b] : NULL,
+                      t[i].T != NULL && !lgnBlockIsIdentity(mem, b) ? t[i].T + mem->blk.toff[b] : NULL,
                       acol);
   }
   if (mem->m > 0)
@@ -384,7 +384,7 @@ static void FillValues(LGNMem mem, const Term *t, int nt, sunrealtype *val)
 
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const LGNCsc *K, *C;
   Term terms[5];
   sunindextype p, nnz;
@@ -413,8 +413,8 @@ int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *x)
   if (flag != LGN_SUCCESS) return flag;
 
   nnz  = sp->A.colptr[mem->nv + mem->m];
-  data = SUNSparseMatrix_Data(mem->A);
-  if (SUNSparseMatrix_SparseType(mem->A) == CSC_MAT) {
+  data = SUNSparseMatrix_Data(mem->ls.A);
+  if (SUNSparseMatrix_SparseType(mem->ls.A) == CSC_MAT) {
     FillValues(mem, terms, nt, data); /* A's indices are sp->A's */
   } else {
     FillValues(mem, terms, nt, sp->A.val);

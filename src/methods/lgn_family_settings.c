@@ -55,7 +55,7 @@ int lgnCheckFamilySettings(LGNMem mem, const char *func)
       return Conflict(mem, "LGNSetKinematics", LGN_FAMILY_NEWMARK, func);
     if (mem->predictor != LGN_PREDICTOR_ZERO)
       return Conflict(mem, "LGNSetPredictor", LGN_FAMILY_NEWMARK, func);
-  } else if (mem->bdf_form != LGN_BDF_VARIABLE_COEFF) {
+  } else if (mem->bdf.form != LGN_BDF_VARIABLE_COEFF) {
     return Conflict(mem, "LGNSetBDFForm", LGN_FAMILY_BDF, func);
   }
   return LGN_SUCCESS;

@@ -44,7 +44,7 @@ void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c)
   const sunrealtype h = c->h, beta = mem->beta, gamma = mem->gamma;
   const sunrealtype ca = (SUN_RCONST(1.0) - mem->alpha_f) /
                          (SUN_RCONST(1.0) - mem->alpha_m);
-  const sunrealtype *v = lgnData(mem->v), *a = mem->a_step;
+  const sunrealtype *v = lgnData(mem->v), *a = mem->ec.a_step;
   sunrealtype a1;
 
   for (i = 0; i < nv; i++) {
@@ -254,7 +254,7 @@ static int SigmaPredict(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *acc,
   if (ret == 0)
     ret = G->ops.compose_exp(G, lgnData(mem->q), mem->sigma, lgnData(mem->q1));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
-  for (i = 0; i < nv; i++) mem->incr[i] = mem->sigma[i]; /* q1 = q_n o exp(incr) */
+  for (i = 0; i < nv; i++) mem->dense.incr[i] = mem->sigma[i]; /* q1 = q_n o exp(incr) */
   return LGN_SUCCESS;
 }
 
@@ -285,11 +285,11 @@ static int SigmaCorrect(LGNMem mem, const sunrealtype *delta)
   sunindextype i, nv = mem->nv;
   int ret = G->ops.compose_exp(G, lgnData(mem->q1), delta, lgnData(mem->q1));
   if (ret == 0 && G->ops.tangent_inverse_apply != NULL) {
-    ret = G->ops.tangent_inverse_apply(G, mem->incr, delta, mem->work_nv);
-    for (i = 0; i < nv && ret == 0; i++) mem->incr[i] += mem->work_nv[i];
+    ret = G->ops.tangent_inverse_apply(G, mem->dense.incr, delta, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++) mem->dense.incr[i] += mem->work_nv[i];
   } else if (ret == 0) {
-    ret = G->ops.tangent_dot_apply(G, mem->zero_nv, mem->incr, delta, mem->work_nv);
-    for (i = 0; i < nv && ret == 0; i++) mem->incr[i] += delta[i] - mem->work_nv[i];
+    ret = G->ops.tangent_dot_apply(G, mem->dense.zero_nv, mem->dense.incr, delta, mem->work_nv);
+    for (i = 0; i < nv && ret == 0; i++) mem->dense.incr[i] += delta[i] - mem->work_nv[i];
   }
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   return LGN_SUCCESS;
@@ -297,7 +297,7 @@ static int SigmaCorrect(LGNMem mem, const sunrealtype *delta)
 
 static const sunrealtype *SigmaIncrement(LGNMem mem)
 {
-  return mem->incr;
+  return mem->dense.incr;
 }
 
 static const LGNKinematicsOps sigma_ops = {
@@ -339,18 +339,18 @@ static int BDFIterate(LGNMem mem, sunbooleantype with_tangent)
 {
   LGNGroup G = mem->G;
   sunindextype i, nv = mem->nv;
-  const sunrealtype c0 = mem->bdf_c0;
+  const sunrealtype c0 = mem->bdf.c0;
   sunrealtype *v1 = lgnData(mem->v1), *vdot1 = lgnData(mem->vdot1);
   int ret = Configuration(mem, with_tangent);
   if (ret != LGN_SUCCESS) return ret;
-  for (i = 0; i < nv; i++) mem->sigma_dot[i] = c0 * mem->sigma[i] + mem->bdf_rx[i];
+  for (i = 0; i < nv; i++) mem->sigma_dot[i] = c0 * mem->sigma[i] + mem->bdf.rx[i];
   ret = G->ops.tangent_apply(G, mem->sigma, mem->sigma_dot, v1);
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   if (mem->constr_index == LGN_CONSTR_GGL && mem->m > 0) {
     ret = GGLVelocity(mem, v1);
     if (ret != LGN_SUCCESS) return ret;
   }
-  for (i = 0; i < nv; i++) vdot1[i] = c0 * v1[i] + mem->bdf_rv[i];
+  for (i = 0; i < nv; i++) vdot1[i] = c0 * v1[i] + mem->bdf.rv[i];
   return LGN_SUCCESS;
 }
 

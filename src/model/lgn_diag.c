@@ -31,8 +31,8 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #endif
 
-/* The redundant constraints into mem->diag_red (ascending, the user's row
- * numbers), their number into mem->diag_nred, and B's rank into *rank; -1
+/* The redundant constraints into mem->diag.red (ascending, the user's row
+ * numbers), their number into mem->diag.nred, and B's rank into *rank; -1
  * if not computed (lgn_redundancy.c's QR with column pivoting of B^T). */
 static int RedundantConstraints(LGNMem mem, sunindextype *rank)
 {
@@ -45,8 +45,8 @@ static int RedundantConstraints(LGNMem mem, sunindextype *rank)
   if (lgnRankRevealingRows(mem->Bmat, m, mem->nv, SUN_RCONST(0.0), rank, rows) == 0) {
     /* the rows beyond the rank, ascending; the kept rows are ascending in
      * the user's numbering, so the map keeps the order */
-    for (i = *rank; i < m; i++) mem->diag_red[nred++] = lgnUserRow(mem, rows[i]);
-    mem->diag_nred = nred;
+    for (i = *rank; i < m; i++) mem->diag.red[nred++] = lgnUserRow(mem, rows[i]);
+    mem->diag.nred = nred;
   }
   free(rows);
   return *rank >= 0 ? 0 : -1;
@@ -56,14 +56,14 @@ static int RedundantConstraints(LGNMem mem, sunindextype *rank)
 static sunindextype ZeroPivot(LGNMem mem, int ret)
 {
 #if defined(LGN_HAVE_KLU)
-  if (SUNLinSolGetID(mem->LS) == SUNLINEARSOLVER_KLU) {
-    klu_l_common *c = SUNLinSol_KLUGetCommon(mem->LS);
+  if (SUNLinSolGetID(mem->ls.LS) == SUNLINEARSOLVER_KLU) {
+    klu_l_common *c = SUNLinSol_KLUGetCommon(mem->ls.LS);
     return c != NULL && c->status == KLU_SINGULAR ? (sunindextype)c->singular_col : -1;
   }
 #endif
   {
     /* SUNDIALS' dense LU: the last flag is 1 + the column of the zero pivot */
-    const sunindextype lf = (sunindextype)SUNLinSolLastFlag(mem->LS);
+    const sunindextype lf = (sunindextype)SUNLinSolLastFlag(mem->ls.LS);
     (void)ret;
     /* (SUNLS_LUFACT_FAIL itself names no column: a solver that cannot
      * tell, such as LGNLinSol_PETSc without null pivots, has last flag 0) */
@@ -88,9 +88,9 @@ static void NameUnknown(LGNMem mem, sunindextype k, char *buf, size_t len)
     snprintf(buf, len, "the multiplier of constraint %lld",
              (long long)lgnUserRow(mem, k - mem->nv));
   } else {
-    const int b = (int)mem->blk_of[k];
-    const sunindextype d = k - mem->blk_voff[b];
-    const LGNGroupKind kind = mem->blk_group[b]->kind;
+    const int b = (int)mem->blk.of[k];
+    const sunindextype d = k - mem->blk.voff[b];
+    const LGNGroupKind kind = mem->blk.group[b]->kind;
     if (kind == LGN_GROUP_R3XSO3 || kind == LGN_GROUP_SE3)
       snprintf(buf, len, "velocity %lld: body %d, %s", (long long)k, b, rigid[d]);
     else if (kind == LGN_GROUP_SO3)
@@ -111,22 +111,22 @@ void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len)
   char what[96];
 
   buf[0] = '\0';
-  mem->diag_nred  = 0;
-  mem->diag_pivot = pivot = ZeroPivot(mem, ret);
-  if (RedundantConstraints(mem, &rank) == 0 && mem->diag_nred > 0) {
+  mem->diag.nred  = 0;
+  mem->diag.pivot = pivot = ZeroPivot(mem, ret);
+  if (RedundantConstraints(mem, &rank) == 0 && mem->diag.nred > 0) {
     used += (size_t)snprintf(buf + used, len - used,
                              " Redundant constraints (B has rank %lld of %lld): ",
                              (long long)rank, (long long)mem->m);
     /* (with rows left out at the start, mem->m counts the kept ones) */
-    for (i = 0; i < mem->diag_nred && used < len; i++)
+    for (i = 0; i < mem->diag.nred && used < len; i++)
       used += (size_t)snprintf(buf + used, len - used, "%s%lld", i > 0 ? ", " : "",
-                               (long long)mem->diag_red[i]);
+                               (long long)mem->diag.red[i]);
     if (used < len)
       used += (size_t)snprintf(buf + used, len - used,
                                " (LGNGetRedundantConstraints; LGNJoints_DescribeConstraint "
                                "names their joints).");
   }
-  if (pivot >= 0 && used < len && mem->halo != NULL) {
+  if (pivot >= 0 && used < len && mem->ranks.halo != NULL) {
     /* ghost bodies: the solver's column is a global unknown of the ranks'
      * sum (LGNGetGlobalIndices), not one of this rank's */
     used += (size_t)snprintf(buf + used, len - used,
@@ -137,7 +137,7 @@ void lgnDiagnoseSingular(LGNMem mem, int ret, char *buf, size_t len)
     NameUnknown(mem, pivot, what, sizeof what);
     used += (size_t)snprintf(buf + used, len - used, " Zero pivot at unknown %lld, %s%s.",
                              (long long)pivot, what,
-                             pivot < mem->nv && mem->diag_nred == 0
+                             pivot < mem->nv && mem->diag.nred == 0
                                  ? " (check the mass matrix and the forces' Jacobian there)"
                                  : "");
   }

@@ -49,10 +49,10 @@ static int DQResidualAt(LGNMem mem, sunrealtype t)
   int flag;
   SUNMatrix M = mem->mass_constant ? mem->Mmat : mem->Mdq;
   mem->ndq++;
-  flag = lgnEvalModelAt(mem, t, mem->dq_q, mem->v1, M, mem->dq_g, mem->Bdq,
+  flag = lgnEvalModelAt(mem, t, mem->dq.q, mem->v1, M, mem->dq.g, mem->Bdq,
                         mem->constr_force == NULL);
   if (flag == LGN_SUCCESS)
-    flag = lgnDynamicResidual(mem, t, mem->dq_q, M, mem->dq_g, mem->Bdq, mem->dq_r);
+    flag = lgnDynamicResidual(mem, t, mem->dq.q, M, mem->dq.g, mem->Bdq, mem->dq.r);
   return flag;
 }
 
@@ -60,7 +60,7 @@ static int StiffnessDQ(LGNMem mem, sunrealtype t)
 {
   sunindextype i, j, nv = mem->nv;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
-  const sunrealtype *r0 = lgnData(mem->rdyn), *r = lgnData(mem->dq_r);
+  const sunrealtype *r0 = lgnData(mem->rdyn), *r = lgnData(mem->dq.r);
   sunrealtype *w = mem->work_nv, *col, eps;
   int ret, flag;
 
@@ -69,7 +69,7 @@ static int StiffnessDQ(LGNMem mem, sunrealtype t)
     memset(w, 0, (size_t)nv * sizeof(sunrealtype));
     w[j] = eps;
     ret  = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), w,
-                                   lgnData(mem->dq_q));
+                                   lgnData(mem->dq.q));
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
     flag = DQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
@@ -84,18 +84,18 @@ static int DampingDQ(LGNMem mem, sunrealtype t)
   sunindextype i, j, nv = mem->nv;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
   const sunrealtype *v1 = lgnData(mem->v1), *g0 = lgnData(mem->g);
-  sunrealtype *vp = lgnData(mem->dq_v), *g = lgnData(mem->dq_g), *col, eps;
+  sunrealtype *vp = lgnData(mem->dq.v), *g = lgnData(mem->dq.g), *col, eps;
   int ret;
 
-  N_VScale(SUN_RCONST(1.0), mem->v1, mem->dq_v);
+  N_VScale(SUN_RCONST(1.0), mem->v1, mem->dq.v);
   for (j = 0; j < nv; j++) {
     eps   = srur * SUNMAX(SUN_RCONST(1.0), fabs(v1[j]));
     vp[j] = v1[j] + eps;
     mem->ndq++;
-    N_VConst(SUN_RCONST(0.0), mem->dq_g);
+    N_VConst(SUN_RCONST(0.0), mem->dq.g);
     ret = lgnCallbackVector(mem, LGN_CB_FORCE,
-                            mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data),
-                            mem->dq_g, "LGNSolve");
+                            mem->force(t, mem->q1, mem->dq.v, mem->dq.g, mem->user_data),
+                            mem->dq.g, "LGNSolve");
     if (ret != LGN_SUCCESS) return ret;
     col = SUNDenseMatrix_Column(mem->Cmat, j);
     for (i = 0; i < nv; i++) col[i] = (g[i] - g0[i]) / eps;
@@ -110,12 +110,12 @@ static int DampingDQ(LGNMem mem, sunrealtype t)
 static int ConstraintVelocityAt(LGNMem mem, sunrealtype t, N_Vector q,
                                 const sunrealtype *w, N_Vector v, sunrealtype *z)
 {
-  int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq_q));
+  int ret = mem->G->ops.compose_exp(mem->G, lgnData(q), w, lgnData(mem->dq.q));
   if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   mem->ndq++;
-  ret = lgnEvalConstraintJacobian(mem, t, mem->dq_q, mem->Bdq);
+  ret = lgnEvalConstraintJacobian(mem, t, mem->dq.q, mem->Bdq);
   if (ret != LGN_SUCCESS) return ret;
-  return lgnConstraintVelocity(mem, t, mem->dq_q, mem->Bdq, lgnData(v), z);
+  return lgnConstraintVelocity(mem, t, mem->dq.q, mem->Bdq, lgnData(v), z);
 }
 
 int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
@@ -123,7 +123,7 @@ int lgnCurvatureDQ(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v,
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   sunrealtype vmax = SUN_RCONST(0.0), eps;
-  sunrealtype *zd = lgnData(z), *zm = lgnData(mem->dq_z), *w = mem->work_nv;
+  sunrealtype *zd = lgnData(z), *zm = lgnData(mem->dq.z), *w = mem->work_nv;
   const sunrealtype *vd = lgnData(v);
   int flag;
 
@@ -159,7 +159,7 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
 {
   sunindextype i, j, nv = mem->nv, m = mem->m;
   const sunrealtype srur = sqrt(SUN_UNIT_ROUNDOFF);
-  sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq_z), eps;
+  sunrealtype *w = mem->work_nv, *z0 = lgnData(mem->dq.z), eps;
   int flag;
 
   flag = lgnConstraintVelocity(mem, t, mem->q1, mem->Bmat, lgnData(mem->v1), z0);
@@ -183,13 +183,13 @@ int lgnConstraintVelocityDQ(LGNMem mem, sunrealtype t)
 /* Symmetric pattern blocks u M u M^T u B^T B of size nv x nv into P. */
 static int BuildPattern(LGNMem mem, const LGNCsc *Mt, LGNCsc *P)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const sunindextype nv = mem->nv;
   LGNColumnBuilder cb;
   sunindextype i, j, p, q;
   int b, flag;
 
-  flag = lgnCscReserve(P, nv, nv, 2 * (sp->M.colptr[nv] + nv) + mem->tlen);
+  flag = lgnCscReserve(P, nv, nv, 2 * (sp->M.colptr[nv] + nv) + mem->blk.tlen);
   if (flag != LGN_SUCCESS) return flag;
   P->colptr[0] = 0;
   cb.mark      = sp->mark;
@@ -197,8 +197,8 @@ static int BuildPattern(LGNMem mem, const LGNCsc *Mt, LGNCsc *P)
   for (j = 0; j < nv && flag == LGN_SUCCESS; j++) {
     cb.col = j;
     cb.cnt = 0;
-    b = (int)mem->blk_of[j];
-    for (i = mem->blk_voff[b]; i < mem->blk_voff[b + 1]; i++) lgnColumnAddRow(&cb, i);
+    b = (int)mem->blk.of[j];
+    for (i = mem->blk.voff[b]; i < mem->blk.voff[b + 1]; i++) lgnColumnAddRow(&cb, i);
     for (p = sp->M.colptr[j]; p < sp->M.colptr[j + 1]; p++) lgnColumnAddRow(&cb, sp->M.rowind[p]);
     for (p = Mt->colptr[j]; p < Mt->colptr[j + 1]; p++) lgnColumnAddRow(&cb, Mt->rowind[p]);
     if (mem->m > 0)
@@ -218,7 +218,7 @@ static int BuildPattern(LGNMem mem, const LGNCsc *Mt, LGNCsc *P)
 /* The DQ patterns and colourings, from the current views of M and B. */
 int lgnBuildDQPatterns(LGNMem mem)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   LGNCsc Mt;
   int flag;
   memset(&Mt, 0, sizeof Mt);
@@ -273,17 +273,17 @@ static void ColorDisplacement(LGNMem mem, const LGNColoring *col,
 
 static int StiffnessDQColored(LGNMem mem, sunrealtype t)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   sunindextype c;
   int ret, flag;
   for (c = 0; c < sp->Kcol.ncolors; c++) {
     ColorDisplacement(mem, &sp->Kcol, c, mem->sigma, mem->work_nv);
     ret = mem->G->ops.compose_exp(mem->G, lgnData(mem->q1), mem->work_nv,
-                                  lgnData(mem->dq_q));
+                                  lgnData(mem->dq.q));
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
     flag = DQResidualAt(mem, t);
     if (flag != LGN_SUCCESS) return flag;
-    ScatterColor(&sp->Kdq, sp->Kdq.val, &sp->Kcol, c, lgnData(mem->dq_r),
+    ScatterColor(&sp->Kdq, sp->Kdq.val, &sp->Kcol, c, lgnData(mem->dq.r),
                  lgnData(mem->rdyn), mem->sigma);
   }
   return LGN_SUCCESS;
@@ -291,21 +291,21 @@ static int StiffnessDQColored(LGNMem mem, sunrealtype t)
 
 static int DampingDQColored(LGNMem mem, sunrealtype t)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const sunrealtype *v1 = lgnData(mem->v1);
-  sunrealtype *vp = lgnData(mem->dq_v), *w = mem->work_nv;
+  sunrealtype *vp = lgnData(mem->dq.v), *w = mem->work_nv;
   sunindextype c, i;
   int ret;
   for (c = 0; c < sp->Ccol.ncolors; c++) {
     ColorDisplacement(mem, &sp->Ccol, c, v1, w);
     for (i = 0; i < mem->nv; i++) vp[i] = v1[i] + w[i];
     mem->ndq++;
-    N_VConst(SUN_RCONST(0.0), mem->dq_g);
+    N_VConst(SUN_RCONST(0.0), mem->dq.g);
     ret = lgnCallbackVector(mem, LGN_CB_FORCE,
-                            mem->force(t, mem->q1, mem->dq_v, mem->dq_g, mem->user_data),
-                            mem->dq_g, "LGNSolve");
+                            mem->force(t, mem->q1, mem->dq.v, mem->dq.g, mem->user_data),
+                            mem->dq.g, "LGNSolve");
     if (ret != LGN_SUCCESS) return ret;
-    ScatterColor(&sp->Cdq, sp->Cdq.val, &sp->Ccol, c, lgnData(mem->dq_g),
+    ScatterColor(&sp->Cdq, sp->Cdq.val, &sp->Ccol, c, lgnData(mem->dq.g),
                  lgnData(mem->g), v1);
   }
   return LGN_SUCCESS;
@@ -315,9 +315,9 @@ static int DampingDQColored(LGNMem mem, sunrealtype t)
  * Phi_t depends on the coordinates Phi does). */
 int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t)
 {
-  struct LGNSparseWorkRec *sp = mem->sp;
+  struct LGNSparseWorkRec *sp = mem->ls.sp;
   const sunindextype nnzB = sp->B.colptr[mem->nv];
-  sunrealtype *z0 = mem->work_m, *z = lgnData(mem->dq_z);
+  sunrealtype *z0 = mem->work_m, *z = lgnData(mem->dq.z);
   sunindextype c;
   int flag;
 
@@ -359,7 +359,7 @@ int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
       ret = lgnCallbackMatrix(mem, LGN_CB_STIFFNESS, ret, mem->Kmat, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
     } else {
-      ret = mem->sparse ? StiffnessDQColored(mem, t) : StiffnessDQ(mem, t);
+      ret = mem->ls.sparse ? StiffnessDQColored(mem, t) : StiffnessDQ(mem, t);
       if (ret != LGN_SUCCESS) return ret;
     }
   }
@@ -370,7 +370,7 @@ int lgnEvalTangents(LGNMem mem, sunrealtype t, sunrealtype cC, sunrealtype cK)
       ret = lgnCallbackMatrix(mem, LGN_CB_DAMPING, ret, mem->Cmat, "LGNSolve");
       if (ret != LGN_SUCCESS) return ret;
     } else {
-      ret = mem->sparse ? DampingDQColored(mem, t) : DampingDQ(mem, t);
+      ret = mem->ls.sparse ? DampingDQColored(mem, t) : DampingDQ(mem, t);
       if (ret != LGN_SUCCESS) return ret;
     }
   }

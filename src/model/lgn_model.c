@@ -28,7 +28,7 @@
 sunbooleantype lgnNeedsConstraintJacobian(LGNMem mem, sunbooleantype for_matrix)
 {
   if (mem->m == 0) return SUNFALSE;
-  if (mem->constr_index == LGN_CONSTR_GGL) return mem->family != LGN_FAMILY_BDF;
+  if (mem->constr_index == LGN_CONSTR_GGL) return mem->fam->ggl_at_tn;
   return for_matrix || mem->constr_force == NULL || mem->constr_index == LGN_CONSTR_INDEX2;
 }
 

@@ -229,7 +229,7 @@ done:
 static sunbooleantype RankSparse(const LGNMem mem)
 {
 #if defined(LGN_HAVE_SPQR)
-  return mem->krylov || (mem->A != NULL && lgnMatIsSparse(mem->A));
+  return mem->kry.on || (mem->ls.A != NULL && lgnMatIsSparse(mem->ls.A));
 #else
   (void)mem;
   return SUNFALSE;
@@ -263,18 +263,18 @@ static void NewSizes(LGNMem mem)
 }
 
 /* The selection sel[0 .. r-1] kept, sel[r .. m_user-1] left out, made
- * current (into mem->red_rows, and red_keep: the kept index of each user
+ * current (into mem->red.rows, and red_keep: the kept index of each user
  * row, -1 if left out); the work space is rebuilt for r rows when that
  * changes the integrator's m. */
 static void UseSelection(LGNMem mem, sunindextype r, const sunindextype *sel)
 {
-  const sunindextype mu = mem->m_user;
+  const sunindextype mu = mem->red.m_user;
   sunindextype i;
-  memmove(mem->red_rows, sel, (size_t)mu * sizeof(sunindextype));
-  for (i = 0; i < mu; i++) mem->red_keep[i] = -1;
-  for (i = 0; i < r; i++) mem->red_keep[mem->red_rows[i]] = i;
-  mem->red_nout = mu - r;
-  mem->red_nsel++;
+  memmove(mem->red.rows, sel, (size_t)mu * sizeof(sunindextype));
+  for (i = 0; i < mu; i++) mem->red.keep[i] = -1;
+  for (i = 0; i < r; i++) mem->red.keep[mem->red.rows[i]] = i;
+  mem->red.nout = mu - r;
+  mem->red.nsel++;
   if (mem->m != r) {
     mem->m = r;
     NewSizes(mem);
@@ -286,21 +286,21 @@ static void UseSelection(LGNMem mem, sunindextype r, const sunindextype *sel)
 /* Back to all of the user's rows (nothing left out). */
 static void UseAllRows(LGNMem mem)
 {
-  if (mem->red_nout == 0 && mem->m == mem->m_user) return;
-  mem->red_nout = 0;
-  mem->red_nsel++;
-  mem->m        = mem->m_user;
+  if (mem->red.nout == 0 && mem->m == mem->red.m_user) return;
+  mem->red.nout = 0;
+  mem->red.nsel++;
+  mem->m        = mem->red.m_user;
   NewSizes(mem);
 }
 
 int lgnRedundancyAnalyse(LGNMem mem, const char *func)
 {
-  const sunindextype mu = mem->m_user;
+  const sunindextype mu = mem->red.m_user;
   sunindextype rank, *sel;
   char list[200];
   int ret, flag;
 
-  if (mu == 0 || mem->red_mode == LGN_REDUNDANT_REFUSE || mem->par != NULL ||
+  if (mu == 0 || mem->red.mode == LGN_REDUNDANT_REFUSE || mem->ranks.par != NULL ||
       (!RankSparse(mem) && (long int)mu * (long int)mem->nv > LGN_RED_MAX_ENTRIES)) {
     /* the integrator sees every row: a redundant one makes its matrix
      * singular, and lgn_diag.c names it */
@@ -309,12 +309,12 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
   }
   flag = lgnAllocRedundancy(mem);
   if (flag != LGN_SUCCESS) return flag;
-  lgnMatClear(mem->red_B);
-  ret  = mem->constr_jac(mem->tn, mem->q, mem->red_B, mem->user_data);
-  flag = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, ret, mem->red_B, func);
+  lgnMatClear(mem->red.B);
+  ret  = mem->constr_jac(mem->tn, mem->q, mem->red.B, mem->user_data);
+  flag = lgnCallbackMatrix(mem, LGN_CB_CONSTR_JAC, ret, mem->red.B, func);
   if (flag != LGN_SUCCESS) return flag;
-  sel = mem->red_rows + mu; /* the second half: scratch */
-  if (lgnRankRevealingRows(mem->red_B, mu, mem->nv, SUN_RCONST(0.0), &rank, sel) != 0) {
+  sel = mem->red.rows + mu; /* the second half: scratch */
+  if (lgnRankRevealingRows(mem->red.B, mu, mem->nv, SUN_RCONST(0.0), &rank, sel) != 0) {
     lgnProcessError(mem, LGN_MEM_FAIL, __LINE__, func, __FILE__, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
@@ -322,8 +322,8 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
     UseAllRows(mem);
     return LGN_SUCCESS;
   }
-  if (mem->red_nout > 0 && mem->m == rank &&
-      memcmp(mem->red_rows, sel, (size_t)mu * sizeof(sunindextype)) == 0)
+  if (mem->red.nout > 0 && mem->m == rank &&
+      memcmp(mem->red.rows, sel, (size_t)mu * sizeof(sunindextype)) == 0)
     return LGN_SUCCESS; /* the same selection as before: said already */
   ListRows(sel + rank, mu - rank, list, sizeof list);
   lgnProcessError(mem, LGN_WARNING, __LINE__, func, __FILE__,
@@ -348,28 +348,28 @@ int lgnRedundancyAnalyse(LGNMem mem, const char *func)
 
 int lgnRedundancyCheck(LGNMem mem, sunrealtype t, N_Vector q, const char *func)
 {
-  const sunindextype mu = mem->m_user, r = mem->m;
+  const sunindextype mu = mem->red.m_user, r = mem->m;
   const sunrealtype *phi;
   sunrealtype kept = SUN_RCONST(0.0), out = SUN_RCONST(0.0), qs = SUN_RCONST(1.0), tol;
   sunindextype i, worst = -1;
   int ret, flag;
 
-  if (mem->red_nout == 0) return LGN_SUCCESS;
-  N_VConst(SUN_RCONST(0.0), mem->red_full);
-  ret  = mem->constr(t, q, mem->red_full, mem->user_data);
-  flag = lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->red_full, func);
+  if (mem->red.nout == 0) return LGN_SUCCESS;
+  N_VConst(SUN_RCONST(0.0), mem->red.full);
+  ret  = mem->constr(t, q, mem->red.full, mem->user_data);
+  flag = lgnCallbackVector(mem, LGN_CB_CONSTR, ret, mem->red.full, func);
   if (flag != LGN_SUCCESS) return flag;
-  phi = lgnData(mem->red_full);
-  for (i = 0; i < r; i++) kept = SUNMAX(kept, fabs(phi[mem->red_rows[i]]));
+  phi = lgnData(mem->red.full);
+  for (i = 0; i < r; i++) kept = SUNMAX(kept, fabs(phi[mem->red.rows[i]]));
   for (i = r; i < mu; i++)
-    if (!(fabs(phi[mem->red_rows[i]]) <= out)) { /* NaN counts as the largest */
-      out   = fabs(phi[mem->red_rows[i]]);
-      worst = mem->red_rows[i];
+    if (!(fabs(phi[mem->red.rows[i]]) <= out)) { /* NaN counts as the largest */
+      out   = fabs(phi[mem->red.rows[i]]);
+      worst = mem->red.rows[i];
     }
   for (i = 0; i < mem->nq; i++) qs = SUNMAX(qs, fabs(lgnData(q)[i]));
   /* the kept rows' own level (index 2 lets Phi drift), or the tolerances' */
   tol = LGN_RED_CHECK_FAC * SUNMAX(kept, mem->atol + mem->rtol * qs);
-  mem->red_viol = out;
+  mem->red.viol = out;
   if (worst < 0 || out <= tol) return LGN_SUCCESS;
   lgnProcessError(mem, LGN_REDUNDANT_INCONSISTENT, __LINE__, func, __FILE__,
                   MSG_TIME "the redundant constraints are not consistent: constraint %lld, "
@@ -386,37 +386,37 @@ int lgnRedundancyCheck(LGNMem mem, sunrealtype t, N_Vector q, const char *func)
  * The user's callbacks through the selection
  * ===========================================================================*/
 
-/* out (length m) = the kept rows of mem->red_full. */
+/* out (length m) = the kept rows of mem->red.full. */
 static void GatherRows(LGNMem mem, N_Vector out)
 {
-  const sunrealtype *full = lgnData(mem->red_full);
+  const sunrealtype *full = lgnData(mem->red.full);
   sunrealtype *o = lgnData(out);
   sunindextype i;
-  for (i = 0; i < mem->m; i++) o[i] = full[mem->red_rows[i]];
+  for (i = 0; i < mem->m; i++) o[i] = full[mem->red.rows[i]];
 }
 
 void lgnRedundancyExpand(const LGNMem mem, const sunrealtype *lambda, sunrealtype *full)
 {
   sunindextype i;
-  if (mem->red_nout == 0) {
+  if (mem->red.nout == 0) {
     memcpy(full, lambda, (size_t)mem->m * sizeof(sunrealtype));
     return;
   }
-  for (i = 0; i < mem->m_user; i++) full[i] = SUN_RCONST(0.0);
-  for (i = 0; i < mem->m; i++) full[mem->red_rows[i]] = lambda[i];
+  for (i = 0; i < mem->red.m_user; i++) full[i] = SUN_RCONST(0.0);
+  for (i = 0; i < mem->m; i++) full[mem->red.rows[i]] = lambda[i];
 }
 
 sunindextype lgnUserRow(const LGNMem mem, sunindextype k)
 {
-  return mem->red_nout == 0 || k < 0 || k >= mem->m ? k : mem->red_rows[k];
+  return mem->red.nout == 0 || k < 0 || k >= mem->m ? k : mem->red.rows[k];
 }
 
 int lgnUserConstr(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phi)
 {
   int ret;
-  if (mem->red_nout == 0) return mem->constr(t, q, phi, mem->user_data);
-  N_VConst(SUN_RCONST(0.0), mem->red_full);
-  ret = mem->constr(t, q, mem->red_full, mem->user_data);
+  if (mem->red.nout == 0) return mem->constr(t, q, phi, mem->user_data);
+  N_VConst(SUN_RCONST(0.0), mem->red.full);
+  ret = mem->constr(t, q, mem->red.full, mem->user_data);
   GatherRows(mem, phi);
   return ret;
 }
@@ -424,9 +424,9 @@ int lgnUserConstr(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phi)
 int lgnUserConstrTime(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phit)
 {
   int ret;
-  if (mem->red_nout == 0) return mem->constr_time(t, q, phit, mem->user_data);
-  N_VConst(SUN_RCONST(0.0), mem->red_full);
-  ret = mem->constr_time(t, q, mem->red_full, mem->user_data);
+  if (mem->red.nout == 0) return mem->constr_time(t, q, phit, mem->user_data);
+  N_VConst(SUN_RCONST(0.0), mem->red.full);
+  ret = mem->constr_time(t, q, mem->red.full, mem->user_data);
   GatherRows(mem, phit);
   return ret;
 }
@@ -434,27 +434,27 @@ int lgnUserConstrTime(LGNMem mem, sunrealtype t, N_Vector q, N_Vector phit)
 int lgnUserCurvature(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, N_Vector z)
 {
   int ret;
-  if (mem->red_nout == 0) return mem->curvature(t, q, v, z, mem->user_data);
-  N_VConst(SUN_RCONST(0.0), mem->red_full);
-  ret = mem->curvature(t, q, v, mem->red_full, mem->user_data);
+  if (mem->red.nout == 0) return mem->curvature(t, q, v, z, mem->user_data);
+  N_VConst(SUN_RCONST(0.0), mem->red.full);
+  ret = mem->curvature(t, q, v, mem->red.full, mem->user_data);
   GatherRows(mem, z);
   return ret;
 }
 
 int lgnUserConstrForce(LGNMem mem, sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f)
 {
-  if (mem->red_nout == 0) return mem->constr_force(t, q, lambda, f, mem->user_data);
-  lgnRedundancyExpand(mem, lgnData(lambda), lgnData(mem->red_lam));
-  return mem->constr_force(t, q, mem->red_lam, f, mem->user_data);
+  if (mem->red.nout == 0) return mem->constr_force(t, q, lambda, f, mem->user_data);
+  lgnRedundancyExpand(mem, lgnData(lambda), lgnData(mem->red.lam));
+  return mem->constr_force(t, q, mem->red.lam, f, mem->user_data);
 }
 
 int lgnUserStiffness(LGNMem mem, sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                      N_Vector lambda, SUNMatrix K)
 {
-  if (mem->red_nout == 0 || lambda == NULL)
+  if (mem->red.nout == 0 || lambda == NULL)
     return mem->stiffness(t, q, v, vdot, lambda, K, mem->user_data);
-  lgnRedundancyExpand(mem, lgnData(lambda), lgnData(mem->red_lam));
-  return mem->stiffness(t, q, v, vdot, mem->red_lam, K, mem->user_data);
+  lgnRedundancyExpand(mem, lgnData(lambda), lgnData(mem->red.lam));
+  return mem->stiffness(t, q, v, vdot, mem->red.lam, K, mem->user_data);
 }
 
 /* The kept rows of the sparse F (m_user x nv) into the sparse B (m x nv):
@@ -466,7 +466,7 @@ static int GatherSparse(LGNMem mem, SUNMatrix F, SUNMatrix B)
   const sunindextype *fp = SUNSparseMatrix_IndexPointers(F);
   const sunindextype *fi = SUNSparseMatrix_IndexValues(F);
   const sunrealtype *fv = SUNSparseMatrix_Data(F);
-  sunindextype *bp, *bi, *keep = mem->red_keep;
+  sunindextype *bp, *bi, *keep = mem->red.keep;
   sunrealtype *bv;
   sunindextype i, j, p, nnz = 0;
 
@@ -477,7 +477,7 @@ static int GatherSparse(LGNMem mem, SUNMatrix F, SUNMatrix B)
   bv = SUNSparseMatrix_Data(B);
   if (SUNSparseMatrix_SparseType(F) == CSR_MAT) {
     for (i = 0; i < mem->m; i++) {
-      const sunindextype row = mem->red_rows[i];
+      const sunindextype row = mem->red.rows[i];
       bp[i] = nnz;
       for (p = fp[row]; p < fp[row + 1]; p++, nnz++) {
         bi[nnz] = fi[p];
@@ -504,21 +504,21 @@ int lgnUserConstrJac(LGNMem mem, sunrealtype t, N_Vector q, SUNMatrix B)
 {
   sunindextype i, j;
   int ret;
-  if (mem->red_nout == 0) return mem->constr_jac(t, q, B, mem->user_data);
-  lgnMatClear(mem->red_B);
-  ret = mem->constr_jac(t, q, mem->red_B, mem->user_data);
+  if (mem->red.nout == 0) return mem->constr_jac(t, q, B, mem->user_data);
+  lgnMatClear(mem->red.B);
+  ret = mem->constr_jac(t, q, mem->red.B, mem->user_data);
   if (ret != 0) return ret;
   if (lgnMatIsSparse(B)) {
-    if (GatherSparse(mem, mem->red_B, B) != LGN_SUCCESS) {
+    if (GatherSparse(mem, mem->red.B, B) != LGN_SUCCESS) {
       LGN_ERROR(mem, LGN_MEM_FAIL, MSG_MEM_FAIL);
       return -1;
     }
     return 0;
   }
   for (j = 0; j < mem->nv; j++) {
-    const sunrealtype *col = SM_COLUMN_D(mem->red_B, j);
+    const sunrealtype *col = SM_COLUMN_D(mem->red.B, j);
     sunrealtype *out = SM_COLUMN_D(B, j);
-    for (i = 0; i < mem->m; i++) out[i] = col[mem->red_rows[i]];
+    for (i = 0; i < mem->m; i++) out[i] = col[mem->red.rows[i]];
   }
   return 0;
 }

@@ -22,12 +22,12 @@
 int lgnTangentMatrices(LGNMem mem)
 {
   int b, ret;
-  for (b = 0; b < mem->nblk; b++) {
-    LGNGroup F = mem->blk_group[b];
-    sunindextype o = mem->blk_voff[b], size = mem->blk_voff[b + 1] - o;
+  for (b = 0; b < mem->blk.n; b++) {
+    LGNGroup F = mem->blk.group[b];
+    sunindextype o = mem->blk.voff[b], size = mem->blk.voff[b + 1] - o;
     if (lgnBlockIsIdentity(mem, b)) continue;
     if (F->ops.tangent_matrix == NULL) return lgnCallbackFlag(mem, LGN_CB_GROUP, -1, "LGNSolve");
-    ret = F->ops.tangent_matrix(F, mem->sigma + o, mem->Tm + mem->blk_toff[b], size);
+    ret = F->ops.tangent_matrix(F, mem->sigma + o, mem->Tm + mem->blk.toff[b], size);
     if (ret != 0) return lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve");
   }
   return LGN_SUCCESS;
@@ -82,13 +82,13 @@ int lgnExactKinematicsMap(LGNMem mem, sunbooleantype with_tangent)
   sunrealtype *q1 = lgnData(mem->q1), *v1 = lgnData(mem->v1);
   sunrealtype *vdot1 = lgnData(mem->vdot1);
   int b, ret;
-  for (b = 0; b < mem->nblk; b++) {
-    LGNGroup F = mem->blk_group[b];
-    const sunindextype o = mem->blk_voff[b], n = mem->blk_voff[b + 1] - o;
-    const sunindextype qo = mem->blk_qoff[b];
+  for (b = 0; b < mem->blk.n; b++) {
+    LGNGroup F = mem->blk.group[b];
+    const sunindextype o = mem->blk.voff[b], n = mem->blk.voff[b + 1] - o;
+    const sunindextype qo = mem->blk.qoff[b];
     const sunrealtype *w = mem->sigma + o, *wd = mem->sigma_dot + o;
     const sunrealtype *wdd = mem->sigma_ddot + o;
-    sunrealtype *Tm = with_tangent ? mem->Tm + mem->blk_toff[b] : NULL;
+    sunrealtype *Tm = with_tangent ? mem->Tm + mem->blk.toff[b] : NULL;
     sunindextype i;
     if (lgnBlockIsIdentity(mem, b)) { /* R^n: T = I, Tdot = 0 */
       for (i = 0; i < n; i++) {
@@ -128,12 +128,12 @@ int lgnExactKinematicsMap(LGNMem mem, sunbooleantype with_tangent)
  * of T, by a forward difference (ExactBlockDQ). */
 static int ExactBlockDQ(LGNMem mem, int b, sunrealtype gamma_p, sunrealtype beta_p)
 {
-  LGNGroup F = mem->blk_group[b];
-  const sunindextype o = mem->blk_voff[b], n = mem->blk_voff[b + 1] - o;
+  LGNGroup F = mem->blk.group[b];
+  const sunindextype o = mem->blk.voff[b], n = mem->blk.voff[b + 1] - o;
   const sunrealtype ratio = gamma_p / beta_p, srur = sqrt(SUN_UNIT_ROUNDOFF);
   sunrealtype *sigma = mem->sigma + o, *sd = mem->sigma_dot + o, *sdd = mem->sigma_ddot + o;
-  sunrealtype *Tm = mem->Tm + mem->blk_toff[b], *Tv = mem->Tv + mem->blk_toff[b];
-  sunrealtype *Ta = mem->Ta + mem->blk_toff[b];
+  sunrealtype *Tm = mem->Tm + mem->blk.toff[b], *Tv = mem->Tv + mem->blk.toff[b];
+  sunrealtype *Ta = mem->Ta + mem->blk.toff[b];
   sunrealtype *e = mem->blk_work, *col = e + n, *td0 = col + n, eps, sj;
   sunindextype i, j;
   int ret;
@@ -175,8 +175,8 @@ static int ExactBlockDQ(LGNMem mem, int b, sunrealtype gamma_p, sunrealtype beta
 static int ExactBlockAnalytic(LGNMem mem, int b, sunrealtype gamma_p,
                               sunrealtype beta_p)
 {
-  LGNGroup F = mem->blk_group[b];
-  const sunindextype o = mem->blk_voff[b], to = mem->blk_toff[b];
+  LGNGroup F = mem->blk.group[b];
+  const sunindextype o = mem->blk.voff[b], to = mem->blk.toff[b];
   const sunrealtype *w = mem->sigma + o, *wd = mem->sigma_dot + o;
   const sunrealtype *wdd = mem->sigma_ddot + o, *Tm = mem->Tm + to;
   sunrealtype *Tv = mem->Tv + to, *Ta = mem->Ta + to;
@@ -196,7 +196,7 @@ int lgnExactKinematicsDerivatives(LGNMem mem, sunrealtype gamma_p,
                                   sunrealtype beta_p)
 {
   int b, ret;
-  for (b = 0; b < mem->nblk; b++) {
+  for (b = 0; b < mem->blk.n; b++) {
     if (lgnBlockIsIdentity(mem, b)) continue; /* Tv = Ta = I */
     ret = ExactBlockAnalytic(mem, b, gamma_p, beta_p);
     if (ret == 1) ret = ExactBlockDQ(mem, b, gamma_p, beta_p);
@@ -218,12 +218,12 @@ void lgnDenseTimesTangent(LGNMem mem, const sunrealtype *X, sunindextype ldx,
 {
   sunindextype i, j, k, k0, k1, o, n;
   int b;
-  for (b = 0; b < mem->nblk; b++) {
+  for (b = 0; b < mem->blk.n; b++) {
     /* T == NULL stands for T = I: no offset into it */
-    const sunrealtype *Tb = T != NULL ? T + mem->blk_toff[b] : NULL;
+    const sunrealtype *Tb = T != NULL ? T + mem->blk.toff[b] : NULL;
     const sunbooleantype ident = T == NULL || lgnBlockIsIdentity(mem, b);
-    o = mem->blk_voff[b];
-    n = mem->blk_voff[b + 1] - o;
+    o = mem->blk.voff[b];
+    n = mem->blk.voff[b + 1] - o;
     for (j = o; j < o + n; j++) {
       sunrealtype *restrict y = Y + j * ldy;
       const sunrealtype *restrict tj;

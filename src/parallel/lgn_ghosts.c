@@ -33,7 +33,7 @@
 int lgnGhostsOwnedBodies(const LGNMem mem)
 {
   int b = 0;
-  while (b < mem->nblk && mem->blk_voff[b] < mem->nv_own) b++;
+  while (b < mem->blk.n && mem->blk.voff[b] < mem->ranks.nv_own) b++;
   return b;
 }
 
@@ -41,53 +41,53 @@ int lgnGhostsOwnedBodies(const LGNMem mem)
 
 void lgnGhostsFold(LGNMem mem, const sunrealtype *ext, sunrealtype *owned)
 {
-  const sunindextype nvo = mem->nv_own;
+  const sunindextype nvo = mem->ranks.nv_own;
   memcpy(owned, ext, (size_t)nvo * sizeof(sunrealtype));
-  lgnHaloReverse(mem->halo, ext, owned);
+  lgnHaloReverse(mem->ranks.halo, ext, owned);
   memcpy(owned + nvo, ext + mem->nv, (size_t)mem->m * sizeof(sunrealtype));
 }
 
 void lgnGhostsRestrict(LGNMem mem, const sunrealtype *ext, sunrealtype *owned)
 {
-  const sunindextype nvo = mem->nv_own;
+  const sunindextype nvo = mem->ranks.nv_own;
   memcpy(owned, ext, (size_t)nvo * sizeof(sunrealtype));
   memcpy(owned + nvo, ext + mem->nv, (size_t)mem->m * sizeof(sunrealtype));
 }
 
 void lgnGhostsExpand(LGNMem mem, const sunrealtype *owned, sunrealtype *ext)
 {
-  const sunindextype nvo = mem->nv_own;
+  const sunindextype nvo = mem->ranks.nv_own;
   memcpy(ext, owned, (size_t)nvo * sizeof(sunrealtype));
-  lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, ext);
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_VELOCITY, ext);
   memcpy(ext + mem->nv, owned + nvo, (size_t)mem->m * sizeof(sunrealtype));
 }
 
 void lgnGhostsRefreshState(LGNMem mem)
 {
-  if (mem->halo == NULL) return;
-  lgnHaloForward(mem->halo, LGN_HALO_CONFIGURATION, lgnData(mem->q));
-  lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, lgnData(mem->v));
-  lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, lgnData(mem->vdot));
-  lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, lgnData(mem->a));
+  if (mem->ranks.halo == NULL) return;
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_CONFIGURATION, lgnData(mem->q));
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_VELOCITY, lgnData(mem->v));
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_VELOCITY, lgnData(mem->vdot));
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_VELOCITY, lgnData(mem->a));
 }
 
 void lgnGhostsOwnedLengths(const LGNMem mem, sunindextype *nq, sunindextype *nv)
 {
   *nq = mem->G->nq;
   *nv = mem->G->nv;
-  if (mem->halo != NULL) lgnHaloOwnedLengths(mem->halo, nq, nv);
+  if (mem->ranks.halo != NULL) lgnHaloOwnedLengths(mem->ranks.halo, nq, nv);
 }
 
 void lgnGhostsClear(const LGNMem mem, sunrealtype *q, sunrealtype *v)
 {
-  if (mem->halo != NULL) lgnHaloClearGhosts(mem->halo, q, v);
+  if (mem->ranks.halo != NULL) lgnHaloClearGhosts(mem->ranks.halo, q, v);
 }
 
 int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M)
 {
-  const sunindextype nvo = mem->nv_own;
+  const sunindextype nvo = mem->ranks.nv_own;
   sunindextype i, j, p, bad = -1;
-  if (mem->halo == NULL) return LGN_SUCCESS;
+  if (mem->ranks.halo == NULL) return LGN_SUCCESS;
   if (lgnMatIsSparse(M)) { /* CSC or CSR: an entry with an index past the owned ones */
     const sunindextype *ptr = SUNSparseMatrix_IndexPointers(M);
     const sunindextype *ind = SUNSparseMatrix_IndexValues(M);
@@ -111,14 +111,14 @@ int lgnGhostsCheckMass(LGNMem mem, SUNMatrix M)
             "The mass matrix has entries of ghost body %lld (leaf %lld of the group, "
             "velocity %lld): a ghost's mass belongs to its owner's rank, and the ranks' "
             "matrices are summed (mark ghosts with LGNBodies_SetGhosts).",
-            (long long)(mem->blk_of[bad] - lgnGhostsOwnedBodies(mem)), (long long)mem->blk_of[bad],
+            (long long)(mem->blk.of[bad] - lgnGhostsOwnedBodies(mem)), (long long)mem->blk.of[bad],
             (long long)bad);
   return LGN_ILL_INPUT;
 }
 
 int lgnGhostsCheck(LGNMem mem)
 {
-  if (mem->halo == NULL || lgnHaloGroup(mem->halo) == mem->G) return LGN_SUCCESS;
+  if (mem->ranks.halo == NULL || lgnHaloGroup(mem->ranks.halo) == mem->G) return LGN_SUCCESS;
   LGN_ERROR(mem, LGN_ILL_INPUT,
             "The halo (LGNSetHalo) was made for another group than the one of "
             "LGNSetGroup: make it for the rank's group of owned and ghost bodies.");
@@ -140,14 +140,14 @@ int LGNSetHalo(void *lgn_mem, LGNHalo H)
               "make the halo with the rank's group of owned and ghost bodies.");
     return LGN_ILL_INPUT;
   }
-  if (H != NULL && mem->malloc_done && mem->par == NULL) {
+  if (H != NULL && mem->malloc_done && mem->ranks.par == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT,
               "H needs a run across ranks: q0 and v0 of LGNInit must be "
               "N_Vector_Parallel or MPIPlusX vectors.");
     return LGN_ILL_INPUT;
   }
-  if (H == mem->halo) return LGN_SUCCESS;
-  mem->halo = H;
+  if (H == mem->ranks.halo) return LGN_SUCCESS;
+  mem->ranks.halo = H;
   lgnInvalidate(mem, LGN_CHANGE_SIZES | LGN_CHANGE_LINSOL);
   return LGN_SUCCESS;
 }
@@ -181,7 +181,7 @@ int LGNGetGlobalIndices(void *lgn_mem, sunindextype *idx)
     LGN_ERROR(mem, LGN_NO_MALLOC, MSG_NO_MALLOC);
     return LGN_NO_MALLOC;
   }
-  if (idx == NULL || mem->halo == NULL) {
+  if (idx == NULL || mem->ranks.halo == NULL) {
     LGN_ERROR(mem, LGN_ILL_INPUT, idx == NULL ? "idx = NULL illegal."
                                               : "No halo: call LGNSetHalo first.");
     flag = LGN_ILL_INPUT;
@@ -190,10 +190,10 @@ int LGNGetGlobalIndices(void *lgn_mem, sunindextype *idx)
    * leave the others waiting in it) */
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
-  lgnHaloOwnedLengths(mem->halo, &nq_own, &nv_own);
+  lgnHaloOwnedLengths(mem->ranks.halo, &nq_own, &nv_own);
   mine = (long long)(nv_own + mem->m);
   {
-    MPI_Comm comm = lgnHaloComm(mem->halo);
+    MPI_Comm comm = lgnHaloComm(mem->ranks.halo);
     int hrank = 0;
     MPI_Comm_rank(comm, &hrank);
     MPI_Exscan(&mine, &first, 1, MPI_LONG_LONG, MPI_SUM, comm);
@@ -209,7 +209,7 @@ int LGNGetGlobalIndices(void *lgn_mem, sunindextype *idx)
     return flag;
   }
   for (i = 0; i < mem->nv; i++) gv[i] = (sunrealtype)(first + (long long)i);
-  lgnHaloForward(mem->halo, LGN_HALO_VELOCITY, gv);
+  lgnHaloForward(mem->ranks.halo, LGN_HALO_VELOCITY, gv);
   for (i = 0; i < mem->nv; i++) idx[i] = (sunindextype)gv[i];
   for (i = 0; i < mem->m; i++) idx[mem->nv + i] = (sunindextype)(first + nv_own + i);
   free(gv);

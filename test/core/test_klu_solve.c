@@ -1245,28 +1245,28 @@ static void Switch(SUNContext ctx, int type, int newton)
    * at the second solve with a factorisation, so never with full Newton
    * (one solve per factorisation), and refreshed after KLU's
    * refactorisations (values only) */
-  if (mon->klu != NULL) {
-    nfull     = mon->klu->nfull;
-    nvalues   = mon->klu->nvalues;
-    nrefactor = mon->klu->nrefactor;
+  if (mon->klu.copy != NULL) {
+    nfull     = mon->klu.copy->nfull;
+    nvalues   = mon->klu.copy->nvalues;
+    nrefactor = mon->klu.copy->nrefactor;
   }
   if (newton == LGN_NEWTON_MODIFIED || byrows)
-    CHECK(mon->klu != NULL && mon->klu_valid, "point chain %s %s: on, the copy is used",
+    CHECK(mon->klu.copy != NULL && mon->klu.valid, "point chain %s %s: on, the copy is used",
           fmt, nwt);
   if (byrows)
-    CHECK(nfull == 1 && nvalues == 0 && nrefactor > 0 && mon->nklu_fallback == 0,
+    CHECK(nfull == 1 && nvalues == 0 && nrefactor > 0 && mon->klu.nfallback == 0,
           "point chain %s %s: one copy of KLU's factors, then Lignum's "
           "refactorisations (%ld whole copies, %ld of values, %ld refactorisations, "
           "%ld handed back to KLU)", fmt, nwt, nfull, nvalues, nrefactor,
-          mon->nklu_fallback);
+          mon->klu.nfallback);
   else if (newton == LGN_NEWTON_MODIFIED)
     CHECK(nfull >= 1 && nvalues > 0 && nrefactor == 0,
           "point chain %s %s: refreshes after refactorisations take the values "
           "only (%ld whole copies, %ld of values)", fmt, nwt, nfull, nvalues);
   else
-    CHECK(mon->klu == NULL && !mon->klu_valid,
+    CHECK(mon->klu.copy == NULL && !mon->klu.valid,
           "point chain %s %s: on, factors solved with once are not copied", fmt, nwt);
-  CHECK(moff->klu == NULL && !moff->klu_valid,
+  CHECK(moff->klu.copy == NULL && !moff->klu.valid,
         "point chain %s %s: off, no copy (SUNLinSolSolve)", fmt, nwt);
   {
     Counts on_c = GetCounts(on.mem), off_c = GetCounts(off.mem);
@@ -1308,14 +1308,14 @@ static void Switch(SUNContext ctx, int type, int newton)
   /* flipped during the run: on, off (copy freed), on again */
   f1 = LGNSolve(flip.mem, 0.1, &t, flip.q, flip.v, LGN_NORMAL);
   f2 = LGNSetOwnKLUSolves(flip.mem, SUNFALSE);
-  CHECK(f2 == LGN_SUCCESS && mflip->klu == NULL && !mflip->klu_valid,
+  CHECK(f2 == LGN_SUCCESS && mflip->klu.copy == NULL && !mflip->klu.valid,
         "point chain %s %s: switched off, the copy is freed", fmt, nwt);
   f2 = LGNSolve(flip.mem, 0.2, &t, flip.q, flip.v, LGN_NORMAL);
-  CHECK(mflip->klu == NULL, "point chain %s %s: stays off", fmt, nwt);
+  CHECK(mflip->klu.copy == NULL, "point chain %s %s: stays off", fmt, nwt);
   LGNSetOwnKLUSolves(flip.mem, SUNTRUE);
   f3 = LGNSolve(flip.mem, 0.3, &t, flip.q, flip.v, LGN_NORMAL);
   CHECK(f1 == LGN_SUCCESS && f2 == LGN_SUCCESS && f3 == LGN_SUCCESS &&
-            (newton == LGN_NEWTON_FULL || (mflip->klu != NULL && mflip->klu_valid)),
+            (newton == LGN_NEWTON_FULL || (mflip->klu.copy != NULL && mflip->klu.valid)),
         "point chain %s %s: on again, the copy is back after a setup", fmt, nwt);
   d = MaxDiff(N_VGetArrayPointer(on.q), N_VGetArrayPointer(flip.q), 2 * NMASS);
   LGNGetNumNewtonIters(flip.mem, &nni_flip);
@@ -1326,7 +1326,7 @@ static void Switch(SUNContext ctx, int type, int newton)
 
   /* a new linear solver drops the copy of the old one's factors */
   LGNSetLinearSolver(on.mem, on.LS, on.A);
-  CHECK(mon->klu == NULL && !mon->klu_valid,
+  CHECK(mon->klu.copy == NULL && !mon->klu.valid,
         "point chain %s %s: LGNSetLinearSolver frees the copy", fmt, nwt);
   printf("(c) point chain %s, %s Newton: %ld Newton iterations, on = off, "
          "flipped = on; refreshes: %ld whole copies, %ld of values\n", fmt, nwt,
@@ -1451,14 +1451,14 @@ static void DefaultAndCounters(SUNContext ctx)
   m    = (LGNMem)c.mem;
   flag = LGNSolve(c.mem, 0.05, &t, c.q, c.v, LGN_NORMAL);
   k    = GetCounts(c.mem);
-  CHECK(flag == LGN_SUCCESS && !m->own_klu_solves && m->klu == NULL &&
+  CHECK(flag == LGN_SUCCESS && !m->klu.own_solves && m->klu.copy == NULL &&
             k.ncopy == 0 && k.nrefactor == 0 && k.nsolve == 0 &&
             k.nlsolve > 0 && StatsShowCopy(c.mem) == 0,
         "(e) default: no copy of KLU's factors (own %d, %ld copies, %ld own "
         "solves of %ld), none in LGNPrintAllStats",
-        (int)m->own_klu_solves, k.ncopy, k.nsolve, k.nlsolve);
+        (int)m->klu.own_solves, k.ncopy, k.nsolve, k.nlsolve);
 
-  CHECK(LGNSetOwnKLUSolves(c.mem, SUNTRUE) == LGN_SUCCESS && m->own_klu_solves,
+  CHECK(LGNSetOwnKLUSolves(c.mem, SUNTRUE) == LGN_SUCCESS && m->klu.own_solves,
         "(e) switched on (KLU %d.%d.%d with SUNDIALS %d.%d)", KLU_MAIN_VERSION,
         KLU_SUB_VERSION, KLU_SUBSUB_VERSION, SUNDIALS_VERSION_MAJOR,
         SUNDIALS_VERSION_MINOR);
@@ -1477,7 +1477,7 @@ static void DefaultAndCounters(SUNContext ctx)
         k.nrefactor, k.nsolve);
   flag = LGNSolve(c.mem, t + 0.05, &t, c.q, c.v, LGN_NORMAL);
   k    = GetCounts(c.mem);
-  CHECK(flag == LGN_SUCCESS && m->klu != NULL && k.ncopy == 0 &&
+  CHECK(flag == LGN_SUCCESS && m->klu.copy != NULL && k.ncopy == 0 &&
             k.nrefactor == k.nlsetup && k.nsolve == k.nlsolve && k.nlsolve > 0,
         "(e) after LGNReInit the copy is kept: setups %ld of %ld and solves "
         "%ld of %ld Lignum's, %ld copies", k.nrefactor, k.nlsetup, k.nsolve,
@@ -1515,8 +1515,8 @@ static void DefaultAndCounters(SUNContext ctx)
         "(e) the getters refuse a NULL memory block");
 
   /* off again: the copy is freed, nothing more is counted */
-  CHECK(LGNSetOwnKLUSolves(c.mem, SUNFALSE) == LGN_SUCCESS && m->klu == NULL &&
-            !m->own_klu_solves && StatsShowCopy(c.mem) == 0,
+  CHECK(LGNSetOwnKLUSolves(c.mem, SUNFALSE) == LGN_SUCCESS && m->klu.copy == NULL &&
+            !m->klu.own_solves && StatsShowCopy(c.mem) == 0,
         "(e) switched off: the copy is freed, not in LGNPrintAllStats");
   PChainFree(&c);
   printf("(e) default off, counters, LGNReInit, arguments: checked\n");

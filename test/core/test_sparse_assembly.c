@@ -114,8 +114,8 @@ static void Forget(Model *md)
 {
   LGNMem mem = (LGNMem)md->mem;
   int s;
-  if (md->forget && mem != NULL && mem->sp != NULL)
-    for (s = 0; s < LGN_NMAPS; s++) mem->sp->map[s].valid = SUNFALSE;
+  if (md->forget && mem != NULL && mem->ls.sp != NULL)
+    for (s = 0; s < LGN_NMAPS; s++) mem->ls.sp->map[s].valid = SUNFALSE;
 }
 
 static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
@@ -394,7 +394,7 @@ static double DiffDense(SUNMatrix S, SUNMatrix D, double *dmax)
   return d;
 }
 
-static long int Mapped(const Run *r) { return ((LGNMem)r->mem)->sp->nmapped; }
+static long int Mapped(const Run *r) { return ((LGNMem)r->mem)->ls.sp->nmapped; }
 
 static long int Get(void *mem, int (*fn)(void *, long int *))
 {

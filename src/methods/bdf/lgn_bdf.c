@@ -117,39 +117,39 @@ static void LagrangeDerivativeAtFirst(const sunrealtype *tau, int n, sunrealtype
 /* Start anew from the state at t_n (one point). */
 static void StartHistory(LGNMem mem)
 {
-  mem->bdf_t[0] = mem->tn;
-  memcpy(mem->bdf_q, lgnData(mem->q), (size_t)mem->nq * sizeof(sunrealtype));
-  memcpy(mem->bdf_v, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
-  if (mem->m > 0) memcpy(mem->bdf_l, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
-  mem->bdf_vgain[0]     = SUN_RCONST(0.0); /* v_0 is given */
-  mem->bdf_nhist        = 1;
-  mem->bdf_order        = 1;
-  mem->bdf_nsteps_order = 0;
-  mem->bdf_phase0       = SUNTRUE;
-  mem->bdf_chart_t      = NAN;
-  mem->bdf_ns           = 0;
-  mem->bdf_hused        = SUN_RCONST(0.0);
+  mem->bdf.t[0] = mem->tn;
+  memcpy(mem->bdf.q, lgnData(mem->q), (size_t)mem->nq * sizeof(sunrealtype));
+  memcpy(mem->bdf.v, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));
+  if (mem->m > 0) memcpy(mem->bdf.l, lgnData(mem->lambda), (size_t)mem->m * sizeof(sunrealtype));
+  mem->bdf.vgain[0]     = SUN_RCONST(0.0); /* v_0 is given */
+  mem->bdf.nhist        = 1;
+  mem->bdf.order        = 1;
+  mem->bdf.nsteps_order = 0;
+  mem->bdf.phase0       = SUNTRUE;
+  mem->bdf.chart_t      = NAN;
+  mem->bdf.ns           = 0;
+  mem->bdf.hused        = SUN_RCONST(0.0);
 }
 
 /* The accepted state at t_n becomes the newest point. */
 static void PushHistory(LGNMem mem)
 {
   const size_t nq = (size_t)mem->nq, nv = (size_t)mem->nv, m = (size_t)mem->m;
-  const int n = SUNMIN(mem->bdf_nhist, LGN_BDF_MAXHIST - 1);
-  memmove(mem->bdf_t + 1, mem->bdf_t, (size_t)n * sizeof(sunrealtype));
-  memmove(mem->bdf_vgain + 1, mem->bdf_vgain, (size_t)n * sizeof(sunrealtype));
-  memmove(mem->bdf_q + nq, mem->bdf_q, (size_t)n * nq * sizeof(sunrealtype));
-  memmove(mem->bdf_v + nv, mem->bdf_v, (size_t)n * nv * sizeof(sunrealtype));
-  mem->bdf_t[0] = mem->tn;
-  mem->bdf_vgain[0] = mem->bdf_vgain1;
-  memcpy(mem->bdf_q, lgnData(mem->q), nq * sizeof(sunrealtype));
-  memcpy(mem->bdf_v, lgnData(mem->v), nv * sizeof(sunrealtype));
+  const int n = SUNMIN(mem->bdf.nhist, LGN_BDF_MAXHIST - 1);
+  memmove(mem->bdf.t + 1, mem->bdf.t, (size_t)n * sizeof(sunrealtype));
+  memmove(mem->bdf.vgain + 1, mem->bdf.vgain, (size_t)n * sizeof(sunrealtype));
+  memmove(mem->bdf.q + nq, mem->bdf.q, (size_t)n * nq * sizeof(sunrealtype));
+  memmove(mem->bdf.v + nv, mem->bdf.v, (size_t)n * nv * sizeof(sunrealtype));
+  mem->bdf.t[0] = mem->tn;
+  mem->bdf.vgain[0] = mem->bdf.vgain1;
+  memcpy(mem->bdf.q, lgnData(mem->q), nq * sizeof(sunrealtype));
+  memcpy(mem->bdf.v, lgnData(mem->v), nv * sizeof(sunrealtype));
   if (m > 0) {
-    memmove(mem->bdf_l + m, mem->bdf_l, (size_t)n * m * sizeof(sunrealtype));
-    memcpy(mem->bdf_l, lgnData(mem->lambda), m * sizeof(sunrealtype));
+    memmove(mem->bdf.l + m, mem->bdf.l, (size_t)n * m * sizeof(sunrealtype));
+    memcpy(mem->bdf.l, lgnData(mem->lambda), m * sizeof(sunrealtype));
   }
-  mem->bdf_nhist   = n + 1;
-  mem->bdf_chart_t = NAN;
+  mem->bdf.nhist   = n + 1;
+  mem->bdf.chart_t = NAN;
 }
 
 /* x_{n-j} = log(q_n^{-1} q_{n-j}), once per t_n (x_n = 0). The logarithm
@@ -167,13 +167,13 @@ static int ChartCoordinates(LGNMem mem)
   const sunindextype nq = mem->nq, nv = mem->nv;
   sunindextype i;
   int j, ret;
-  if (mem->bdf_chart_t == mem->tn) return LGN_SUCCESS;
-  mem->dense_valid = SUNFALSE; /* the dense output reads the old chart */
-  memset(mem->bdf_x, 0, (size_t)nv * sizeof(sunrealtype));
-  for (j = 1; j < mem->bdf_nhist; j++) {
-    sunrealtype *x = mem->bdf_x + j * nv;
+  if (mem->bdf.chart_t == mem->tn) return LGN_SUCCESS;
+  mem->dense.valid = SUNFALSE; /* the dense output reads the old chart */
+  memset(mem->bdf.x, 0, (size_t)nv * sizeof(sunrealtype));
+  for (j = 1; j < mem->bdf.nhist; j++) {
+    sunrealtype *x = mem->bdf.x + j * nv;
     sunrealtype dmax = SUN_RCONST(0.0), dprev = SUN_RCONST(0.0);
-    ret = G->ops.compose_log(G, mem->bdf_q, mem->bdf_q + j * nq, x);
+    ret = G->ops.compose_log(G, mem->bdf.q, mem->bdf.q + j * nq, x);
     ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve")
                                   : LGN_SUCCESS);
     if (ret != LGN_SUCCESS) return ret;
@@ -183,16 +183,16 @@ static int ChartCoordinates(LGNMem mem)
       dprev = SUNMAX(dprev, fabs(x[i - nv] - x[i - 2 * nv]));
     }
     /* the history is cut on every rank where it leaves one rank's chart */
-    if (lgnMaxAll(mem, dmax > SUN_RCONST(2.0) * dprev * (mem->bdf_t[j - 1] - mem->bdf_t[j]) /
-                                  (mem->bdf_t[j - 2] - mem->bdf_t[j - 1]) +
+    if (lgnMaxAll(mem, dmax > SUN_RCONST(2.0) * dprev * (mem->bdf.t[j - 1] - mem->bdf.t[j]) /
+                                  (mem->bdf.t[j - 2] - mem->bdf.t[j - 1]) +
                               SUN_RCONST(0.5)
                           ? SUN_RCONST(1.0)
                           : SUN_RCONST(0.0)) > SUN_RCONST(0.0)) { /* beyond the chart */
-      mem->bdf_nhist = j;
+      mem->bdf.nhist = j;
       break;
     }
   }
-  mem->bdf_chart_t = mem->tn;
+  mem->bdf.chart_t = mem->tn;
   return LGN_SUCCESS;
 }
 
@@ -208,7 +208,7 @@ static int SpacingOrder(const LGNMem mem, sunrealtype h, int k)
   sunrealtype prev = h, d;
   int j;
   for (j = 1; j < k; j++) {
-    d = mem->bdf_t[j - 1] - mem->bdf_t[j];
+    d = mem->bdf.t[j - 1] - mem->bdf.t[j];
     if (d > SUN_RCONST(4.0) * prev || prev > SUN_RCONST(4.0) * d) return j;
     prev = d;
   }
@@ -234,7 +234,7 @@ static void PredictMultipliers(LGNMem mem, int kp, const sunrealtype *p)
   }
   for (i = 0; i < m; i++) {
     sunrealtype l = SUN_RCONST(0.0);
-    for (j = 0; j <= kp; j++) l += p[j] * mem->bdf_l[j * m + i];
+    for (j = 0; j <= kp; j++) l += p[j] * mem->bdf.l[j * m + i];
     l1[i] = l;
   }
 }
@@ -254,12 +254,12 @@ static sunrealtype AlphaS(int k)
 static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
 {
   const sunindextype nv = mem->nv;
-  const int nh = mem->bdf_nhist;
+  const int nh = mem->bdf.nhist;
   const sunrealtype t1 = mem->tn + h;
-  const sunrealtype *X = mem->bdf_x, *V = mem->bdf_v;
-  sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING && nh > 1;
+  const sunrealtype *X = mem->bdf.x, *V = mem->bdf.v;
+  sunbooleantype flc = mem->bdf.form == LGN_BDF_FIXED_LEADING && nh > 1;
   sunrealtype tau[LGN_BDF_MAXHIST + 1], d[LGN_BDF_MAXHIST + 1], dp[LGN_BDF_MAXHIST + 1];
-  sunrealtype *xp = mem->bdf_xpred, *vp = mem->bdf_vpred;
+  sunrealtype *xp = mem->bdf.xpred, *vp = mem->bdf.vpred;
   sunbooleantype used_old = SUNFALSE;
   sunindextype i;
   int j, kp = 0, flag;
@@ -273,12 +273,12 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
       xp[i] = h * v0[i];
       vp[i] = v0[i] + h * a0[i];
     }
-    mem->bdf_vpgain = mem->bdf_vgain[0];
+    mem->bdf.vpgain = mem->bdf.vgain[0];
   } else {
     kp = SUNMIN(k, nh - 1);
     /* the derivative weights only for the fixed leading coefficient (the
      * basis' derivative costs (kp + 1)^3 divisions) */
-    lgnLagrangeBasis(mem->bdf_t, kp, t1, d, flc ? dp : NULL);
+    lgnLagrangeBasis(mem->bdf.t, kp, t1, d, flc ? dp : NULL);
     for (i = 0; i < nv; i++) {
       sunrealtype x = SUN_RCONST(0.0), v = SUN_RCONST(0.0);
       for (j = 0; j <= kp; j++) {
@@ -288,8 +288,8 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
       xp[i] = x;
       vp[i] = v;
     }
-    mem->bdf_vpgain = SUN_RCONST(0.0);
-    for (j = 0; j <= kp; j++) mem->bdf_vpgain += fabs(d[j]) * mem->bdf_vgain[j];
+    mem->bdf.vpgain = SUN_RCONST(0.0);
+    for (j = 0; j <= kp; j++) mem->bdf.vpgain += fabs(d[j]) * mem->bdf.vgain[j];
   }
 
   /* the fixed leading coefficient extrapolates P' from the predictor's
@@ -297,43 +297,43 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
    * control to a fixed step 40 times longer was seen to diverge at order 4)
    * the step takes the variable coefficients */
   if (flc && SpacingOrder(mem, h, kp + 1) < kp + 1) flc = SUNFALSE;
-  mem->bdf_step_flc = flc;
+  mem->bdf.step_flc = flc;
   if (flc) {
     /* fixed leading coefficient (IDA): xdot = P'(t_{n+1}) + c0 (x - P(t_{n+1}))
      * with c0 = alpha_s / h, so r_x = sum_j (dp_j - c0 d_j) x_{n-j} (the same
      * for v); the noise gain of v_{n+1} is c0 + sum_j |dp_j - c0 d_j| */
     const sunrealtype c0 = AlphaS(k) / h;
-    mem->bdf_c0     = c0;
-    mem->bdf_vgain1 = c0;
-    for (j = 0; j <= kp; j++) mem->bdf_vgain1 += fabs(dp[j] - c0 * d[j]);
+    mem->bdf.c0     = c0;
+    mem->bdf.vgain1 = c0;
+    for (j = 0; j <= kp; j++) mem->bdf.vgain1 += fabs(dp[j] - c0 * d[j]);
     for (i = 0; i < nv; i++) {
       sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
       for (j = 0; j <= kp; j++) {
         rx += (dp[j] - c0 * d[j]) * X[j * nv + i];
         rv += (dp[j] - c0 * d[j]) * V[j * nv + i];
       }
-      mem->bdf_rx[i] = rx;
-      mem->bdf_rv[i] = rv;
+      mem->bdf.rx[i] = rx;
+      mem->bdf.rv[i] = rv;
     }
   } else {
     /* variable coefficients: nodes t_{n+1}, t_n, ..., t_{n+1-k} */
     sunrealtype dc[LGN_BDF_MAXHIST + 1];
     tau[0] = t1;
-    for (j = 1; j <= k; j++) tau[j] = mem->bdf_t[j - 1];
+    for (j = 1; j <= k; j++) tau[j] = mem->bdf.t[j - 1];
     LagrangeDerivativeAtFirst(tau, k, dc);
-    mem->bdf_c0 = dc[0];
+    mem->bdf.c0 = dc[0];
     /* v_{n+1} = T(x)(sum_j d_j x_{n+1-j}): a noise e in each x_j reaches it
      * as at most sum_j |d_j| e (PositionNoise) */
-    mem->bdf_vgain1 = SUN_RCONST(0.0);
-    for (j = 0; j <= k; j++) mem->bdf_vgain1 += fabs(dc[j]);
+    mem->bdf.vgain1 = SUN_RCONST(0.0);
+    for (j = 0; j <= k; j++) mem->bdf.vgain1 += fabs(dc[j]);
     for (i = 0; i < nv; i++) {
       sunrealtype rx = SUN_RCONST(0.0), rv = SUN_RCONST(0.0);
       for (j = 1; j <= k; j++) {
         rx += dc[j] * X[(j - 1) * nv + i];
         rv += dc[j] * V[(j - 1) * nv + i];
       }
-      mem->bdf_rx[i] = rx;
-      mem->bdf_rv[i] = rv;
+      mem->bdf.rx[i] = rx;
+      mem->bdf.rv[i] = rv;
     }
   }
   memcpy(mem->sigma, xp, (size_t)nv * sizeof(sunrealtype));
@@ -342,15 +342,16 @@ static int Attempt(LGNMem mem, sunrealtype h, int k, LGNStepCoeffs *c)
   /* Newton on (x, lambda): d xdot / dx = c0, d vdot / dx ~ c0^2 (T aside) */
   c->h       = h;
   c->t1      = t1;
-  c->gamma_p = mem->bdf_c0;
-  c->beta_p  = mem->bdf_c0 * mem->bdf_c0;
+  c->gamma_p = mem->bdf.c0;
+  c->beta_p  = mem->bdf.c0 * mem->bdf.c0;
   c->scale   = SUN_RCONST(1.0) / c->beta_p;
-  c->hmat    = SUN_RCONST(1.0) / mem->bdf_c0;
+  c->hmat    = SUN_RCONST(1.0) / mem->bdf.c0;
+  c->beta_n  = c->scale / (h * h); /* scale = beta_n h^2 for Newton */
   c->qscale  = SUN_RCONST(1.0);
   for (i = 0; i < mem->nq; i++) c->qscale = SUNMAX(c->qscale, fabs(lgnData(mem->q)[i]));
   c->qscale = lgnMaxAll(mem, c->qscale);
 
-  mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
+  mem->dense.valid = SUNFALSE; /* the iterate overwrites the last step's start */
   mem->kin->bind(mem);
   flag = lgnNewton(mem, c, SUNFALSE, &used_old);
   if (flag == LGN_CONV_FAILURE && used_old) {
@@ -374,12 +375,12 @@ static sunrealtype PositionNoise(const LGNMem mem, const LGNStepCoeffs *c, const
 {
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
-  for (i = 0; i < mem->nv_own; i++) s += w[i] * w[i];
+  for (i = 0; i < mem->ranks.nv_own; i++) s += w[i] * w[i];
   lgnSumAll(mem, &s, 1); /* the weights' RMS over all ranks */
-  return SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale * sqrt(s / mem->nv_all);
+  return SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF * c->qscale * sqrt(s / mem->ranks.nv_all);
 }
 
-/* The local error estimate of order k (into mem->ele: the positions) and
+/* The local error estimate of order k (into mem->ec.ele: the positions) and
  * its norm: the larger of the positions' LTE_k and the velocities' h LTE_k,
  * both projected on the constraints' tangent space and in the weights of
  * the positions (the velocity error of the step, as the displacement it
@@ -395,8 +396,8 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
   sunrealtype f = SUN_RCONST(1.0), ev;
   sunindextype i;
   int flag;
-  mem->bdf_sigck = SUN_RCONST(1.0);
-  if (mem->bdf_nhist > 1 && mem->bdf_step_flc) {
+  mem->bdf.sigck = SUN_RCONST(1.0);
+  if (mem->bdf.nhist > 1 && mem->bdf.step_flc) {
     /* IDA's error test (IDASetCoeffs, IDATestError): ck |y - y_pred| with
      *   ck = max(|alpha_k + alpha_0 - alpha_s|, alpha_k),
      *   alpha_j = h / psi_{j+1}, alpha_0 = sum_{j<=k} h / psi_j,
@@ -405,28 +406,28 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
      * difference of the variable leading coefficient from the fixed one,
      * times h), and the order/step estimate sigma_k |y - y_pred| with
      * sigma_k = k! prod_{j=1..k} h / psi_{j+1} (bdf_sigck = sigma_k / ck) */
-    const sunrealtype h = c->h, ak = h / (c->t1 - mem->bdf_t[k]);
+    const sunrealtype h = c->h, ak = h / (c->t1 - mem->bdf.t[k]);
     sunrealtype a0 = SUN_RCONST(0.0), sig = SUN_RCONST(1.0);
     int j;
     for (j = 1; j <= k; j++) {
-      a0 += h / (c->t1 - mem->bdf_t[j - 1]);
-      sig *= (sunrealtype)j * h / (c->t1 - mem->bdf_t[j]);
+      a0 += h / (c->t1 - mem->bdf.t[j - 1]);
+      sig *= (sunrealtype)j * h / (c->t1 - mem->bdf.t[j]);
     }
     f = SUNMAX(fabs(ak + a0 - AlphaS(k)), ak);
-    mem->bdf_sigck = sig / f;
-  } else if (mem->bdf_nhist > 1) /* else the Taylor predictor: LTE_1 = y - y_pred */
-    f = SUN_RCONST(1.0) / (mem->bdf_c0 * (c->t1 - mem->bdf_t[k]));
-  for (i = 0; i < nv; i++) mem->ele[i] = f * (mem->sigma[i] - mem->bdf_xpred[i]);
+    mem->bdf.sigck = sig / f;
+  } else if (mem->bdf.nhist > 1) /* else the Taylor predictor: LTE_1 = y - y_pred */
+    f = SUN_RCONST(1.0) / (mem->bdf.c0 * (c->t1 - mem->bdf.t[k]));
+  for (i = 0; i < nv; i++) mem->ec.ele[i] = f * (mem->sigma[i] - mem->bdf.xpred[i]);
   flag = lgnErrorNorm(mem, c, mem->sigma, SUN_RCONST(1.0), err);
   if (flag != LGN_SUCCESS) return flag;
   /* the velocities, projected the same way (ele keeps the positions) */
-  memcpy(mem->bdf_dd, mem->ele, (size_t)nv * sizeof(sunrealtype));
-  for (i = 0; i < nv; i++) mem->ele[i] = c->h * f * (v1[i] - mem->bdf_vpred[i]);
+  memcpy(mem->bdf.dd, mem->ec.ele, (size_t)nv * sizeof(sunrealtype));
+  for (i = 0; i < nv; i++) mem->ec.ele[i] = c->h * f * (v1[i] - mem->bdf.vpred[i]);
   flag = lgnErrorNorm(mem, c, mem->sigma, SUN_RCONST(1.0), &ev);
-  memcpy(mem->ele, mem->bdf_dd, (size_t)nv * sizeof(sunrealtype));
+  memcpy(mem->ec.ele, mem->bdf.dd, (size_t)nv * sizeof(sunrealtype));
   /* less what the positions' noise can make of it: h f (v_{n+1} - sum_j
    * p_j v_{n-j}), each v with its gain */
-  ev -= c->h * f * (mem->bdf_vgain1 + mem->bdf_vpgain) * PositionNoise(mem, c, mem->ewt);
+  ev -= c->h * f * (mem->bdf.vgain1 + mem->bdf.vpgain) * PositionNoise(mem, c, mem->ec.ewt);
   *err = SUNMAX(*err, ev);
   return flag;
 }
@@ -450,17 +451,17 @@ static int LocalError(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype *er
  * and the fixed leading coefficient keeps IDA's unprojected estimates. */
 static sunbooleantype ProjectsOrderEstimates(const LGNMem mem, int k)
 {
-  return mem->bdf_form == LGN_BDF_VARIABLE_COEFF && mem->m > 0 &&
-         mem->constr_index == LGN_CONSTR_INDEX3 && mem->bdf_maxord == 5 && k >= 4;
+  return mem->bdf.form == LGN_BDF_VARIABLE_COEFF && mem->m > 0 &&
+         mem->constr_index == LGN_CONSTR_INDEX3 && mem->bdf.maxord == 5 && k >= 4;
 }
 
-/* mem->work_nv <- its projection (mem->ele is the projection's work space;
+/* mem->work_nv <- its projection (mem->ec.ele is the projection's work space;
  * OrderEstimates restores it). A failed solve leaves it unprojected. */
 static void ProjectOrderEstimate(LGNMem mem, const LGNStepCoeffs *c)
 {
   const size_t bytes = (size_t)mem->nv * sizeof(sunrealtype);
-  memcpy(mem->ele, mem->work_nv, bytes);
-  if (lgnProjectEstimate(mem, c) == LGN_SUCCESS) memcpy(mem->work_nv, mem->ele, bytes);
+  memcpy(mem->ec.ele, mem->work_nv, bytes);
+  if (lgnProjectEstimate(mem, c) == LGN_SUCCESS) memcpy(mem->work_nv, mem->ec.ele, bytes);
 }
 
 /* Estimates E_j of the error of orders j = k - 2 ... k + 1 of the step just
@@ -475,8 +476,8 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
 {
   const sunindextype nv = mem->nv;
   const sunbooleantype project = ProjectsOrderEstimates(mem, k);
-  const int npts = SUNMIN(mem->bdf_nhist + 1, k + 3);
-  sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf_dd;
+  const int npts = SUNMIN(mem->bdf.nhist + 1, k + 3);
+  sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf.dd;
   sunrealtype den[LGN_BDF_MAXHIST + 1][LGN_BDF_MAXHIST + 1];
   sunindextype i;
   int j, m, o;
@@ -484,7 +485,7 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   tt[0] = c->t1;
   memcpy(a, y1, (size_t)nv * sizeof(sunrealtype));
   for (j = 1; j < npts; j++) {
-    tt[j] = mem->bdf_t[j - 1];
+    tt[j] = mem->bdf.t[j - 1];
     memcpy(a + j * nv, Y + (j - 1) * nv, (size_t)nv * sizeof(sunrealtype));
   }
   /* in place: a_m <- [P_0 .. P_m] (one division per node pair, not per
@@ -513,13 +514,13 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
     /* projected: E_{k-2}, and E_{k+1} at maxord, are left out (no rule of
      * this form reads them) */
     if (ord < 1 || ord + 1 >= npts) continue;
-    if (project && (o == 0 || (o == 3 && k >= mem->bdf_maxord))) continue;
+    if (project && (o == 0 || (o == 3 && k >= mem->bdf.maxord))) continue;
     for (j = 1; j <= ord; j++) {
       prod *= c->t1 - tt[j];
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
     }
     fac = prod / c0;
-    if (mem->bdf_form == LGN_BDF_FIXED_LEADING) {
+    if (mem->bdf.form == LGN_BDF_FIXED_LEADING) {
       /* IDA: E_ord = sigma_ord |phi_{ord+1}|, phi_m = [P_0 .. P_m] prod_{j<=m}
        * psi_j, sigma_ord = ord! prod_{j<=ord} h / psi_{j+1}: ord! h^{ord+1}
        * [P_0 .. P_{ord+1}] (for ord = k + 1 IDA takes the difference of two
@@ -535,26 +536,26 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
        * (v_{n+1-j}) with the noise gain g_j times the positions' noise */
       sunrealtype nz = SUN_RCONST(0.0), e;
       for (j = 0; j <= ord + 1; j++)
-        nz += (j == 0 ? mem->bdf_vgain1 : mem->bdf_vgain[j - 1]) / fabs(den[ord + 1][j]);
-      e = lgnWrmsNorm(mem, mem->work_nv, mem->ewt) - nz * noise * fac;
+        nz += (j == 0 ? mem->bdf.vgain1 : mem->bdf.vgain[j - 1]) / fabs(den[ord + 1][j]);
+      e = lgnWrmsNorm(mem, mem->work_nv, mem->ec.ewt) - nz * noise * fac;
       E[o] = SUNMAX(E[o], SUNMAX(SUN_RCONST(0.0), e));
     } else
-      E[o] = SUNMAX(E[o], lgnWrmsNorm(mem, mem->work_nv, mem->ewt));
+      E[o] = SUNMAX(E[o], lgnWrmsNorm(mem, mem->work_nv, mem->ec.ewt));
   }
 }
 
 /* E_{k-2} ... E_{k+1} of the error test's kind (projected or not,
  * ProjectsOrderEstimates): positions x in the chart of q_n and velocities
- * times h. The step's own estimate in mem->ele is kept. */
+ * times h. The step's own estimate in mem->ec.ele is kept. */
 static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype E[4])
 {
   const size_t bytes = (size_t)mem->nv * sizeof(sunrealtype);
   E[0] = E[1] = E[2] = E[3] = -SUN_RCONST(1.0);
-  memcpy(mem->bdf_ele_keep, mem->ele, bytes);
-  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf_x, SUN_RCONST(1.0), SUN_RCONST(0.0), E);
-  OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf_v, c->h,
-                   PositionNoise(mem, c, mem->ewt), E);
-  memcpy(mem->ele, mem->bdf_ele_keep, bytes);
+  memcpy(mem->bdf.ele_keep, mem->ec.ele, bytes);
+  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf.x, SUN_RCONST(1.0), SUN_RCONST(0.0), E);
+  OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf.v, c->h,
+                   PositionNoise(mem, c, mem->ec.ewt), E);
+  memcpy(mem->ec.ele, mem->bdf.ele_keep, bytes);
 }
 
 /* The step factor for an error estimate E at order k: r = (2 E +
@@ -606,17 +607,17 @@ static sunrealtype SelectOrderFLC(LGNMem mem, const LGNStepCoeffs *c, int k, sun
   int knew = k;
   OrderEstimates(mem, c, k, E);
   /* from the unprojected estimates to the projected sigma measure */
-  scale = E[2] > SUN_RCONST(0.0) ? err * mem->bdf_sigck / E[2] : mem->bdf_sigck;
-  Enew  = err * mem->bdf_sigck;
+  scale = E[2] > SUN_RCONST(0.0) ? err * mem->bdf.sigck / E[2] : mem->bdf.sigck;
+  Enew  = err * mem->bdf.sigck;
   if (LowerOrderFLC(E, k)) {
     knew = k - 1;
     Enew = E[1] * scale;
-  } else if (k < mem->bdf_maxord && mem->bdf_phase0) {
+  } else if (k < mem->bdf.maxord && mem->bdf.phase0) {
     if (E[3] < SUN_RCONST(0.0) || (E[2] >= SUN_RCONST(0.0) && E[3] < E[2])) {
       knew = k + 1; /* start-up */
       if (E[3] >= SUN_RCONST(0.0)) Enew = E[3] * scale;
     }
-  } else if (k < mem->bdf_maxord && mem->bdf_ns >= k + 2 && E[3] >= SUN_RCONST(0.0) &&
+  } else if (k < mem->bdf.maxord && mem->bdf.ns >= k + 2 && E[3] >= SUN_RCONST(0.0) &&
              E[2] >= SUN_RCONST(0.0)) {
     const sunrealtype tk = (sunrealtype)(k + 1) * E[2], tkp1 = (sunrealtype)(k + 2) * E[3];
     if (k == 1) {
@@ -629,9 +630,9 @@ static sunrealtype SelectOrderFLC(LGNMem mem, const LGNStepCoeffs *c, int k, sun
     if (knew == k + 1) Enew = E[3] * scale;
     if (knew == k - 1) Enew = E[1] * scale;
   }
-  if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
-  if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
-  mem->bdf_order = knew;
+  if (knew < k || knew == mem->bdf.maxord) mem->bdf.phase0 = SUNFALSE;
+  if (knew != k) mem->bdf.nsteps_order = -1; /* Accept counts this step */
+  mem->bdf.order = knew;
   return StepFactor(Enew, knew, BDF_FLC_GROW);
 }
 
@@ -658,28 +659,28 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   sunrealtype E[4], Enew = err, scale;
   sunbooleantype may_raise;
   int knew = k;
-  if (mem->bdf_form == LGN_BDF_FIXED_LEADING) return SelectOrderFLC(mem, c, k, err);
+  if (mem->bdf.form == LGN_BDF_FIXED_LEADING) return SelectOrderFLC(mem, c, k, err);
   OrderEstimates(mem, c, k, E);
   /* E[1], E[3] compared with E[2], their own kind (unprojected, or
    * projected at index 3 with maxord 5 from order 4 on: OrderEstimates),
    * and carried over to err's measure (projected, with the
    * velocity-constraint term) by err / E[2] */
   scale = E[2] > SUN_RCONST(0.0) ? err / E[2] : SUN_RCONST(1.0);
-  may_raise = k < mem->bdf_maxord && E[3] >= SUN_RCONST(0.0) && E[2] >= SUN_RCONST(0.0) &&
-              (mem->bdf_phase0 || mem->bdf_nsteps_order >= k + 1);
+  may_raise = k < mem->bdf.maxord && E[3] >= SUN_RCONST(0.0) && E[2] >= SUN_RCONST(0.0) &&
+              (mem->bdf.phase0 || mem->bdf.nsteps_order >= k + 1);
   if (LowerOrder(E, k)) {
     knew = k - 1;
     Enew = E[1] * scale;
   } else if (may_raise && E[3] < E[2]) {
     knew = k + 1;
     Enew = E[3] * scale;
-  } else if (k < mem->bdf_maxord && mem->bdf_phase0 && E[3] < SUN_RCONST(0.0)) {
+  } else if (k < mem->bdf.maxord && mem->bdf.phase0 && E[3] < SUN_RCONST(0.0)) {
     knew = k + 1; /* start-up: not enough points for E_{k+1} yet */
   }
   /* the start-up ends as IDA's does: at a decrease, or at maxord */
-  if (knew < k || knew == mem->bdf_maxord) mem->bdf_phase0 = SUNFALSE;
-  if (knew != k) mem->bdf_nsteps_order = -1; /* Accept counts this step */
-  mem->bdf_order = knew;
+  if (knew < k || knew == mem->bdf.maxord) mem->bdf.phase0 = SUNFALSE;
+  if (knew != k) mem->bdf.nsteps_order = -1; /* Accept counts this step */
+  mem->bdf.order = knew;
   return SUNMIN(StepFactor(Enew, knew, BDF_VC_GROW), Order5Limit(E, k, knew, scale));
 }
 
@@ -703,11 +704,11 @@ static int Prepare(LGNMem mem)
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;
   /* a landing on a stop time or tout moves t_n to it by roundoff */
-  if (mem->bdf_nhist > 0 &&
-      fabs(mem->bdf_t[0] - mem->tn) <= SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
+  if (mem->bdf.nhist > 0 &&
+      fabs(mem->bdf.t[0] - mem->tn) <= SUN_RCONST(100.0) * SUN_UNIT_ROUNDOFF *
                                            SUNMAX(SUN_RCONST(1.0), fabs(mem->tn)))
-    mem->bdf_t[0] = mem->tn;
-  if (mem->bdf_nhist == 0 || mem->bdf_t[0] != mem->tn) StartHistory(mem);
+    mem->bdf.t[0] = mem->tn;
+  if (mem->bdf.nhist == 0 || mem->bdf.t[0] != mem->tn) StartHistory(mem);
   return ChartCoordinates(mem);
 }
 
@@ -716,9 +717,9 @@ static void Accept(LGNMem mem, const LGNStepCoeffs *c, int k)
 {
   lgnCommitStep(mem, c);
   PushHistory(mem);
-  mem->bdf_last_order = k;
-  mem->bdf_nsteps_order++;
-  mem->bdf_nord[k]++;
+  mem->bdf.last_order = k;
+  mem->bdf.nsteps_order++;
+  mem->bdf.nord[k]++;
 }
 
 /* A step of the fixed size h (LGN_STEP_FIXED): order min(maxord, points
@@ -729,7 +730,7 @@ int lgnBDFStep(LGNMem mem, sunrealtype h)
   int k, flag = lgnCheckProgress(mem, h);
   if (flag == LGN_SUCCESS) flag = Prepare(mem);
   if (flag != LGN_SUCCESS) return flag;
-  k = SUNMIN(mem->bdf_maxord, mem->bdf_nhist);
+  k = SUNMIN(mem->bdf.maxord, mem->bdf.nhist);
   lgnFixedNewtonTolerances(mem);
   flag = Attempt(mem, h, k, &c);
   if (flag == LGN_CONV_FAILURE)
@@ -739,7 +740,7 @@ int lgnBDFStep(LGNMem mem, sunrealtype h)
               (double)mem->tn, mem->maxcor, (double)h);
   if (flag != LGN_SUCCESS) return flag;
   Accept(mem, &c, k);
-  mem->bdf_order = SUNMIN(mem->bdf_maxord, mem->bdf_nhist);
+  mem->bdf.order = SUNMIN(mem->bdf.maxord, mem->bdf.nhist);
   return LGN_SUCCESS;
 }
 
@@ -754,11 +755,11 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
 
   flag = Prepare(mem);
   if (flag != LGN_SUCCESS) return flag;
-  if (!(mem->hnext > SUN_RCONST(0.0))) {
-    mem->hnext     = lgnFirstStep(mem, tout);
-    mem->h0_actual = mem->hnext;
+  if (!(mem->ec.hnext > SUN_RCONST(0.0))) {
+    mem->ec.hnext     = lgnFirstStep(mem, tout);
+    mem->ec.h0_actual = mem->ec.hnext;
   }
-  h = lgnLimitStep(mem, mem->hnext);
+  h = lgnLimitStep(mem, mem->ec.hnext);
   for (;;) {
     h_wanted = h;
     /* a step that would leave less than a tenth of itself before the stop
@@ -778,59 +779,59 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
     flag = lgnCheckProgress(mem, h);
     if (flag != LGN_SUCCESS) return flag;
     /* order k needs k + 1 points for its estimate (or the Taylor start) */
-    k = SUNMAX(1, SpacingOrder(mem, h, SUNMIN(mem->bdf_order, mem->bdf_nhist - 1)));
+    k = SUNMAX(1, SpacingOrder(mem, h, SUNMIN(mem->bdf.order, mem->bdf.nhist - 1)));
     /* at index 3 a Newton error in x reaches v = T(x)(c0 x + r_x) times
      * c0 ~ k/h, and the history: a tenth of epcon times the error test's
      * tolerances (measured on the heavy top: with modified Newton the error
      * then follows tol^1.0 instead of tol^0.8) */
     lgnNewtonTolerancesPerStep(mem, h, BDF_NEWTON_SHARE);
-    mem->lsetup_recoverable = SUNTRUE;
+    mem->ls.setup_recoverable = SUNTRUE;
     flag = Attempt(mem, h, k, &c);
-    mem->lsetup_recoverable = SUNFALSE;
+    mem->ls.setup_recoverable = SUNFALSE;
     if (flag == LGN_SUCCESS) flag = LocalError(mem, &c, k, &err);
-    if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
+    if (flag == LGN_SUCCESS && mem->ec.lambda_errcon) { /* the multipliers too (lgn_output.c) */
       sunrealtype err_l;
       flag = lgnMultiplierError(mem, c.t1, &err_l);
       err  = SUNMAX(err, err_l);
     }
-    mem->err_norm = err;
+    mem->ec.err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {
       /* IDA's ns: consecutive steps of this size and order, up to k + 2 */
-      mem->bdf_ns    = h == mem->bdf_hused && k == mem->bdf_last_order
-                           ? SUNMIN(mem->bdf_ns + 1, k + 2) : 1;
-      mem->bdf_hused = h;
+      mem->bdf.ns    = h == mem->bdf.hused && k == mem->bdf.last_order
+                           ? SUNMIN(mem->bdf.ns + 1, k + 2) : 1;
+      mem->bdf.hused = h;
       factor = SelectOrder(mem, &c, k, err);
       if (nef > 0 || ncf > 0) factor = SUNMIN(factor, SUN_RCONST(1.0));
       Accept(mem, &c, k);
       if (landing) mem->tn = mem->tstop;
-      mem->err_prev = err;
+      mem->ec.err_prev = err;
       /* after a landing, go on from the step the controller wanted (the
        * spacing guard lowers the order while the short step is in the
        * history) */
-      mem->hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
+      mem->ec.hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
       return LGN_SUCCESS;
     }
 
-    mem->bdf_phase0 = SUNFALSE;
+    mem->bdf.phase0 = SUNFALSE;
     if (flag == LGN_SUCCESS) { /* error test failed */
-      mem->netf++;
+      mem->ec.netf++;
       nef++;
-      if (nef >= mem->maxnef || h <= mem->hmin) {
+      if (nef >= mem->ec.maxnef || h <= mem->ec.hmin) {
         LGN_ERROR(mem, LGN_ERR_FAILURE,
                   MSG_TIME "the error test failed %d times, the last with "
                   "h = %g, order %d and |e| = %g%s (the state at t is kept).",
                   (double)mem->tn, nef, (double)h, k, (double)err,
-                  h <= mem->hmin ? " at the minimum step size" : "");
+                  h <= mem->ec.hmin ? " at the minimum step size" : "");
         return LGN_ERR_FAILURE;
       }
       if (nef == 1) {
-        const sunbooleantype flc = mem->bdf_form == LGN_BDF_FIXED_LEADING;
+        const sunbooleantype flc = mem->bdf.form == LGN_BDF_FIXED_LEADING;
         OrderEstimates(mem, &c, k, E);
-        if (flc) err *= mem->bdf_sigck; /* IDA: the step from sigma_k, not ck */
+        if (flc) err *= mem->bdf.sigck; /* IDA: the step from sigma_k, not ck */
         if ((flc ? LowerOrderFLC(E, k) : LowerOrder(E, k)) && E[2] > SUN_RCONST(0.0)) {
-          mem->bdf_order = k - 1;
-          mem->bdf_nsteps_order = 0;
+          mem->bdf.order = k - 1;
+          mem->bdf.nsteps_order = 0;
           err *= E[1] / E[2];
           k--;
         }
@@ -839,37 +840,20 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
         factor = SUNMAX(BDF_CUT_FAIL, SUNMIN(SUN_RCONST(0.9), factor));
       } else {
         if (nef >= 3) {
-          mem->bdf_order = 1;
-          mem->bdf_nsteps_order = 0;
+          mem->bdf.order = 1;
+          mem->bdf.nsteps_order = 0;
         }
         factor = BDF_CUT_FAIL;
       }
     } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
-      /* singular on any rank: the same flag on all */
-      const sunbooleantype singular =
-          lgnMaxAll(mem, flag == LGN_RECOVERABLE && mem->last_lin_flag != 0 ? SUN_RCONST(1.0)
-                                                                             : SUN_RCONST(0.0)) >
-          SUN_RCONST(0.0);
-      ncf++;
-      if (ncf >= mem->maxncf || h <= mem->hmin) {
-        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE
-                      : singular                 ? LGN_LSETUP_FAIL
-                                                 : LGN_REPTD_CALLBACK_ERR;
-        LGN_ERROR(mem, out,
-                  MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
-                  "is kept).%s", (double)mem->tn,
-                  flag == LGN_CONV_FAILURE ? "the Newton iteration failed to converge"
-                  : singular ? "the iteration matrix was singular"
-                             : "a callback failed recoverably",
-                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "",
-                  singular ? mem->diag_text : "");
-        return out;
-      }
-      factor = BDF_CUT_FAIL;
+      /* Newton, a singular matrix, a callback: the shared policy (lgn_failure.c) */
+      flag = lgnHandleNFlag(mem, flag, h, &ncf);
+      if (flag != LGN_RECOVERABLE) return flag;
+      factor = LGN_CUT_NFAIL;
     } else {
       return flag; /* unrecoverable: reported where it happened */
     }
     h = lgnLimitStep(mem, h * factor);
-    mem->hnext = h;
+    mem->ec.hnext = h;
   }
 }

@@ -60,8 +60,8 @@ static sunrealtype ErrorFactor(sunrealtype err)
 /* h limited to [hmin, hmax] (and the floor). */
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h)
 {
-  if (mem->hmax > SUN_RCONST(0.0)) h = SUNMIN(h, mem->hmax);
-  return SUNMAX(SUNMAX(h, mem->hmin), H_FLOOR);
+  if (mem->ec.hmax > SUN_RCONST(0.0)) h = SUNMIN(h, mem->ec.hmax);
+  return SUNMAX(SUNMAX(h, mem->ec.hmin), H_FLOOR);
 }
 
 /* The first step size when the user gives none: the displacement by the
@@ -71,9 +71,9 @@ sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout)
 {
   const sunrealtype span = fabs(tout - mem->tn);
   sunrealtype h, anorm, vnorm;
-  lgnErrorWeights(mem, mem->zero_nv, SUN_RCONST(1.0), mem->ewt);
-  anorm = lgnWrmsNorm(mem, lgnData(mem->vdot), mem->ewt);
-  vnorm = lgnWrmsNorm(mem, lgnData(mem->v), mem->ewt);
+  lgnErrorWeights(mem, mem->dense.zero_nv, SUN_RCONST(1.0), mem->ec.ewt);
+  anorm = lgnWrmsNorm(mem, lgnData(mem->vdot), mem->ec.ewt);
+  vnorm = lgnWrmsNorm(mem, lgnData(mem->v), mem->ec.ewt);
   if (anorm > SUN_RCONST(0.0))
     h = sqrt(SUN_RCONST(2.0) / anorm);
   else if (vnorm > SUN_RCONST(0.0))
@@ -96,8 +96,8 @@ sunrealtype lgnFirstStep(LGNMem mem, sunrealtype tout)
 {
   const sunrealtype span = fabs(tout - mem->tn);
   sunrealtype h;
-  if (!(mem->h0_user > SUN_RCONST(0.0))) return lgnInitialStep(mem, tout);
-  h = mem->h0_user;
+  if (!(mem->ec.h0_user > SUN_RCONST(0.0))) return lgnInitialStep(mem, tout);
+  h = mem->ec.h0_user;
   if (span > SUN_RCONST(0.0)) h = SUNMIN(h, span);
   return lgnLimitStep(mem, h);
 }
@@ -139,7 +139,7 @@ static sunrealtype ConstraintModeRadius(const LGNMem mem)
 int lgnCheckIndex3Damping(LGNMem mem)
 {
   sunrealtype rho;
-  if (mem->family != LGN_FAMILY_NEWMARK || mem->step_control != LGN_STEP_ADAPTIVE ||
+  if (mem->family != LGN_FAMILY_NEWMARK || mem->ec.step_control != LGN_STEP_ADAPTIVE ||
       mem->m == 0 || mem->constr_index != LGN_CONSTR_INDEX3)
     return LGN_SUCCESS;
   rho = ConstraintModeRadius(mem);
@@ -166,7 +166,7 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
   sunrealtype r;
   sunindextype i;
   if (!(mem->hlast > SUN_RCONST(0.0)) || h == mem->hlast) {
-    mem->a_step = a;
+    mem->ec.a_step = a;
     return;
   }
   /* a - vdot ~ (alpha_m - alpha_f) h_old vddot plus Newton's noise: the
@@ -174,8 +174,8 @@ static void RescaleAux(LGNMem mem, sunrealtype h)
    * a collapse to 1e-18, or LGNSetInitStep after steps) would multiply the
    * noise by h / h_old ~ 1e9; beyond RESCALE_MAX a is taken as ~ vdot */
   r = SUNMIN(h / mem->hlast, RESCALE_MAX);
-  for (i = 0; i < nv; i++) mem->a_scaled[i] = vdot[i] + r * (a[i] - vdot[i]);
-  mem->a_step = mem->a_scaled;
+  for (i = 0; i < nv; i++) mem->ec.a_scaled[i] = vdot[i] + r * (a[i] - vdot[i]);
+  mem->ec.a_step = mem->ec.a_scaled;
 }
 
 /* One accepted step from tn (LGN_SUCCESS), or the flag of a failure, with
@@ -187,11 +187,11 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
   int nef = 0, ncf = 0, flag;
   LGNStepCoeffs c;
 
-  if (!(mem->hnext > SUN_RCONST(0.0))) {
-    mem->hnext     = lgnFirstStep(mem, tout);
-    mem->h0_actual = mem->hnext;
+  if (!(mem->ec.hnext > SUN_RCONST(0.0))) {
+    mem->ec.hnext     = lgnFirstStep(mem, tout);
+    mem->ec.h0_actual = mem->ec.hnext;
   }
-  h = lgnLimitStep(mem, mem->hnext); /* the limits may have changed since */
+  h = lgnLimitStep(mem, mem->ec.hnext); /* the limits may have changed since */
   for (;;) {
     /* a stop time ahead: a step that would leave less than a tenth of
      * itself stretches to land on it, and one that would leave less than a
@@ -201,7 +201,7 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
      * multipliers follow badly. The stretch stays within hmax. */
     h_wanted = h;
     landing  = mem->tstop_set && mem->tn + h * LAND_STRETCH >= mem->tstop &&
-               !(mem->hmax > SUN_RCONST(0.0) && mem->tstop - mem->tn > mem->hmax);
+               !(mem->ec.hmax > SUN_RCONST(0.0) && mem->tstop - mem->tn > mem->ec.hmax);
     if (landing)
       h = mem->tstop - mem->tn;
     else if (mem->tstop_set && mem->tn + SUN_RCONST(2.0) * h * LAND_STRETCH > mem->tstop)
@@ -214,16 +214,16 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
     lgnNewtonTolerances(mem, &c);
     /* a singular iteration matrix at this h: retried with a smaller one
      * (LGN_RECOVERABLE from lgnLsSetup), as IDA's IDAHandleNFlag does */
-    mem->lsetup_recoverable = SUNTRUE;
+    mem->ls.setup_recoverable = SUNTRUE;
     flag = lgnStepAttempt(mem, &c);
-    mem->lsetup_recoverable = SUNFALSE;
+    mem->ls.setup_recoverable = SUNFALSE;
     if (flag == LGN_SUCCESS) flag = lgnLocalError(mem, &c, &err);
-    if (flag == LGN_SUCCESS && mem->lambda_errcon) { /* the multipliers too (lgn_output.c) */
+    if (flag == LGN_SUCCESS && mem->ec.lambda_errcon) { /* the multipliers too (lgn_output.c) */
       sunrealtype err_l;
       flag = lgnMultiplierError(mem, c.t1, &err_l);
       err  = SUNMAX(err, err_l);
     }
-    mem->err_norm = err;
+    mem->ec.err_norm = err;
 
     if (flag == LGN_SUCCESS && err <= SUN_RCONST(1.0)) {
       lgnStepComplete(mem, &c);
@@ -231,27 +231,27 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       /* growth judged by the larger of the last two errors: generalized-
        * alpha's estimate may drop for one step (after a change of h) and
        * would otherwise propose a step that fails */
-      factor = ErrorFactor(SUNMAX(err, mem->err_prev));
-      mem->err_prev = err;
+      factor = ErrorFactor(SUNMAX(err, mem->ec.err_prev));
+      mem->ec.err_prev = err;
       factor = SUNMIN(factor, nef > 0 || ncf > 0 ? SUN_RCONST(1.0) : FMAX);
       if (factor >= SUN_RCONST(1.0) && factor < KEEP_BELOW) factor = SUN_RCONST(1.0);
       factor = SUNMAX(factor, FMIN);
       /* after a landing, go on from the step size the controller wanted */
-      mem->hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
+      mem->ec.hnext = lgnLimitStep(mem, landing ? SUNMAX(h * factor, h_wanted) : h * factor);
       return LGN_SUCCESS;
     }
 
     if (flag == LGN_SUCCESS) {
       /* error test failed */
       lgnStepRejected(mem);
-      mem->netf++;
+      mem->ec.netf++;
       nef++;
-      if (nef >= mem->maxnef || h <= mem->hmin || !isfinite(err)) {
+      if (nef >= mem->ec.maxnef || h <= mem->ec.hmin || !isfinite(err)) {
         LGN_ERROR(mem, LGN_ERR_FAILURE,
                   MSG_TIME "the error test failed %d times, the last with "
                   "h = %g and |e| = %g%s (the state at t is kept).%s",
                   (double)mem->tn, nef, (double)h, (double)err,
-                  h <= mem->hmin ? " at the minimum step size" : "",
+                  h <= mem->ec.hmin ? " at the minimum step size" : "",
                   isfinite(err) ? ""
                                 : " The error norm is not finite: the tolerances (rtol, "
                                   "atol) are too small for finite error weights.");
@@ -263,32 +263,15 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout)
       factor = nef == 1 ? SUNMAX(FMIN, SUNMIN(SAFETY, ErrorFactor(err)))
                         : SUNMAX(CUT_MIN, SUNMIN(CUT_FAIL, ErrorFactor(err)));
     } else if (flag == LGN_CONV_FAILURE || flag == LGN_RECOVERABLE) {
-      /* singular on any rank: the same flag on all */
-      const sunbooleantype singular =
-          lgnMaxAll(mem, flag == LGN_RECOVERABLE && mem->last_lin_flag != 0 ? SUN_RCONST(1.0)
-                                                                             : SUN_RCONST(0.0)) >
-          SUN_RCONST(0.0);
-      ncf++;
-      if (ncf >= mem->maxncf || h <= mem->hmin) {
-        const int out = flag == LGN_CONV_FAILURE ? LGN_CONV_FAILURE
-                      : singular                 ? LGN_LSETUP_FAIL
-                                                 : LGN_REPTD_CALLBACK_ERR;
-        LGN_ERROR(mem, out,
-                  MSG_TIME "%s %d times, the last with h = %g%s (the state at t "
-                  "is kept).%s", (double)mem->tn,
-                  flag == LGN_CONV_FAILURE ? "the Newton iteration failed to converge"
-                  : singular ? "the iteration matrix was singular"
-                             : "a callback failed recoverably",
-                  ncf, (double)h, h <= mem->hmin ? " at the minimum step size" : "",
-                  singular ? mem->diag_text : "");
-        return out;
-      }
-      factor = CUT_FAIL;
+      /* Newton, a singular matrix, a callback: the shared policy (lgn_failure.c) */
+      flag = lgnHandleNFlag(mem, flag, h, &ncf);
+      if (flag != LGN_RECOVERABLE) return flag;
+      factor = LGN_CUT_NFAIL;
     } else {
       lgnStepRejected(mem); /* (the estimate itself failed) */
       return flag; /* unrecoverable: reported where it happened */
     }
     h = lgnLimitStep(mem, h * factor);
-    mem->hnext = h;
+    mem->ec.hnext = h;
   }
 }

@@ -23,7 +23,7 @@
  * step's configuration error makes over it, in the weights of a velocity,
  * 1 / (atol_i + rtol |s_i / h|) (|s / h| ~ |v|), the meaning IDA gives
  * atol and rtol on its velocity components; that is e itself in the
- * weights w_i = 1 / (h atol_i + rtol |s_i|) (mem->ele keeps e, mem->ewt
+ * weights w_i = 1 / (h atol_i + rtol |s_i|) (mem->ec.ele keeps e, mem->ec.ewt
  * these w). The norm is the RMS of e_i w_i over the nv components; a step
  * passes when it is <= 1.
  * Since |e| / h ~ h^2, the global error of these second-order methods then
@@ -44,7 +44,7 @@
 void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunrealtype *w)
 {
   const sunindextype nv = mem->nv;
-  const sunrealtype *atol = mem->atol_vec;
+  const sunrealtype *atol = mem->ec.atol_vec;
   sunindextype i;
   for (i = 0; i < nv; i++)
     w[i] = SUN_RCONST(1.0) /
@@ -56,9 +56,9 @@ sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w)
 {
   sunrealtype s = SUN_RCONST(0.0);
   sunindextype i;
-  for (i = 0; i < mem->nv_own; i++) s += (x[i] * w[i]) * (x[i] * w[i]);
+  for (i = 0; i < mem->ranks.nv_own; i++) s += (x[i] * w[i]) * (x[i] * w[i]);
   lgnSumAll(mem, &s, 1);
-  return sqrt(s / mem->nv_all);
+  return sqrt(s / mem->ranks.nv_all);
 }
 
 /* Index 3: e's part normal to the constraints, e <- e - M^{-1} B^T mu with
@@ -75,14 +75,14 @@ static int ProjectOnConstraints(LGNMem mem, const LGNStepCoeffs *c)
   const sunrealtype cM = c->scale * c->beta_p;
   sunindextype i;
   int flag;
-  lgnMatvec(mem->Mmat, mem->ele, rhs, SUNFALSE);
+  lgnMatvec(mem->Mmat, mem->ec.ele, rhs, SUNFALSE);
   for (i = 0; i < nv; i++) rhs[i] *= cM;
   /* the constraint rows: 0 (under GGL the velocity rows too: then B B^T nu
    * = O(h) x, nu ~ 0, and x is the same projection) */
   for (i = 0; i < mem->nalg; i++) rhs[nv + i] = SUN_RCONST(0.0);
   flag = lgnAgree(mem, lgnLsSolve(mem, mem->sol, mem->rhs));
   if (flag != LGN_SUCCESS) return flag;
-  for (i = 0; i < nv; i++) mem->ele[i] = sol[i];
+  for (i = 0; i < nv; i++) mem->ec.ele[i] = sol[i];
   return LGN_SUCCESS;
 }
 
@@ -105,7 +105,7 @@ static int ProjectOnConstraints(LGNMem mem, const LGNStepCoeffs *c)
  * estimate may vanish by coincidence. Seen: a pendulum started at rest
  * (lambda_0 = 0: the projected change of vdot is zero for every h) took
  * h = 0.5 (a quarter period) with a projected |e| of roundoff and q off by
- * 0.28. Called with mem->ele unprojected; only when e is also above the
+ * 0.28. Called with mem->ec.ele unprojected; only when e is also above the
  * tolerance (a step at rest: s and e both at roundoff). */
 static sunbooleantype OutOfRange(LGNMem mem, const sunrealtype *s, sunrealtype h)
 {
@@ -116,18 +116,18 @@ static sunbooleantype OutOfRange(LGNMem mem, const sunrealtype *s, sunrealtype h
    * the pendulum (what the projection removes): only the first step, from
    * a consistent start, is tested there */
   if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3 && mem->nst > 0) return SUNFALSE;
-  for (i = 0; i < mem->nv_own; i++) {
-    sum[0] += mem->ele[i] * mem->ele[i];
+  for (i = 0; i < mem->ranks.nv_own; i++) {
+    sum[0] += mem->ec.ele[i] * mem->ec.ele[i];
     sum[1] += s[i] * s[i];
   }
   lgnSumAll(mem, sum, 2);
   if (!(sum[0] > TAYLOR_RATIO * TAYLOR_RATIO * sum[1])) return SUNFALSE;
-  lgnErrorWeights(mem, s, h, mem->ewt);
-  return lgnWrmsNorm(mem, mem->ele, mem->ewt) > SUN_RCONST(1.0);
+  lgnErrorWeights(mem, s, h, mem->ec.ewt);
+  return lgnWrmsNorm(mem, mem->ec.ele, mem->ec.ewt) > SUN_RCONST(1.0);
 }
 
 /* After Newton has converged (the iterate holds t_{n+1}, the state t_n):
- * the estimate into mem->ele, the weights into mem->ewt, and its norm into
+ * the estimate into mem->ec.ele, the weights into mem->ec.ewt, and its norm into
  * *norm. */
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 {
@@ -140,12 +140,12 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
   sunrealtype *td = mem->work_nv; /* Tdot(0, v_n) vdot_n = -ad(v_n) vdot_n / 2 */
   sunindextype i;
   sunbooleantype out_of_range;
-  int ret = G->ops.tangent_dot_apply(G, mem->zero_nv, v0, a0, td);
+  int ret = G->ops.tangent_dot_apply(G, mem->dense.zero_nv, v0, a0, td);
   ret = lgnAgree(mem, ret != 0 ? lgnCallbackFlag(mem, LGN_CB_GROUP, ret, "LGNSolve")
                                 : LGN_SUCCESS);
   if (ret != LGN_SUCCESS) return ret;
   for (i = 0; i < nv; i++)
-    mem->ele[i] = s[i] - (h * v0[i] + h2 * (SUN_RCONST(0.5) * a0[i] +
+    mem->ec.ele[i] = s[i] - (h * v0[i] + h2 * (SUN_RCONST(0.5) * a0[i] +
                                             (a1[i] - a0[i]) / SUN_RCONST(6.0)) -
                           h2 * h * td[i] / SUN_RCONST(6.0));
   out_of_range = OutOfRange(mem, s, h);
@@ -155,9 +155,9 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
   return ret;
 }
 
-/* The norm of the estimate in mem->ele (projected at index 3), with the
+/* The norm of the estimate in mem->ec.ele (projected at index 3), with the
  * weights of the step's increment incr and the unit of lgnErrorWeights
- * into mem->ewt. */
+ * into mem->ec.ewt. */
 /* Index 3 with constraints that depend on time: the hidden constraint of
  * the new state, u = B(q1) v1 + Phi_t(q1, t1) (zero on the exact solution),
  * in the units of the test: for the Newmark family (error per unit step) a
@@ -174,7 +174,7 @@ int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm)
 {
   const sunindextype m = mem->m;
-  const sunrealtype hs = mem->family == LGN_FAMILY_BDF ? c->h : SUN_RCONST(1.0);
+  const sunrealtype hs = mem->fam->error_per_step ? c->h : SUN_RCONST(1.0);
   sunrealtype s[2] = {SUN_RCONST(0.0), SUN_RCONST(0.0)}, w; /* sum, rows */
   sunindextype i;
   int ret = LGN_SUCCESS;
@@ -199,7 +199,7 @@ static int VelocityConstraintNorm(LGNMem mem, const LGNStepCoeffs *c, sunrealtyp
   return LGN_SUCCESS;
 }
 
-/* mem->ele projected on the constraints' tangent space (index 3, GGL), as
+/* mem->ec.ele projected on the constraints' tangent space (index 3, GGL), as
  * the error test projects it; unchanged at index 2 and without constraints. */
 int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c)
 {
@@ -214,9 +214,9 @@ int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
     int flag = ProjectOnConstraints(mem, c);
     if (flag != LGN_SUCCESS) return flag;
   }
-  lgnErrorWeights(mem, incr, unit, mem->ewt);
-  *norm = lgnWrmsNorm(mem, mem->ele, mem->ewt);
-  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3 && mem->any_constr_time) {
+  lgnErrorWeights(mem, incr, unit, mem->ec.ewt);
+  *norm = lgnWrmsNorm(mem, mem->ec.ele, mem->ec.ewt);
+  if (mem->m > 0 && mem->constr_index == LGN_CONSTR_INDEX3 && mem->ranks.any_constr_time) {
     sunrealtype vnorm;
     int flag = VelocityConstraintNorm(mem, c, &vnorm);
     if (flag != LGN_SUCCESS) return flag;

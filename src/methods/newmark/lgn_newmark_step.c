@@ -29,6 +29,7 @@ LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h)
   c.scale   = mem->beta * h * h;
   c.qscale  = SUN_RCONST(1.0);
   c.hmat    = h;
+  c.beta_n  = mem->beta;
   for (i = 0; i < mem->nq; i++) c.qscale = SUNMAX(c.qscale, fabs(q[i]));
   c.qscale = lgnMaxAll(mem, c.qscale); /* the same Newton test on every rank */
   return c;
@@ -59,7 +60,7 @@ static int Predict(LGNMem mem, const LGNStepCoeffs *c)
 {
   sunindextype i, nv = mem->nv, m = mem->m;
   const sunrealtype am = mem->alpha_m, af = mem->alpha_f;
-  const sunrealtype *vdot = lgnData(mem->vdot), *a = mem->a_step;
+  const sunrealtype *vdot = lgnData(mem->vdot), *a = mem->ec.a_step;
   const sunbooleantype extrapolate = mem->predictor == LGN_PREDICTOR_EXTRAPOLATE &&
                                      mem->kin->extrapolates;
   const sunrealtype r = mem->h_prev > SUN_RCONST(0.0) ? c->h / mem->h_prev
@@ -118,11 +119,11 @@ void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c)
     tmp = mem->lambda; mem->lambda = mem->lambda1; mem->lambda1 = tmp;
   }
   mem->pstart_pending = SUNFALSE;
-  mem->tprev = mem->tn;
+  mem->dense.tprev = mem->tn;
   mem->tn    = c->t1;
   mem->hlast = c->h;
   mem->nst++;
-  mem->dense_valid = SUNTRUE; /* q1, v1, vdot1 now hold the step's start */
+  mem->dense.valid = SUNTRUE; /* q1, v1, vdot1 now hold the step's start */
   /* ghost bodies: the copies took the owners' corrections; now they take
    * the owners' values exactly (lgn_ghosts.c) */
   lgnGhostsRefreshState(mem);
@@ -141,7 +142,7 @@ static void RestoreStart(LGNMem mem, const sunrealtype *saved)
  * perturbed start, if it made one, so that the state is as before. */
 void lgnStepRejected(LGNMem mem)
 {
-  if (mem->pstart_pending) RestoreStart(mem, mem->dense_work);
+  if (mem->pstart_pending) RestoreStart(mem, mem->dense.work);
 }
 
 /* Predict and Newton, with one retry with a fresh matrix when modified
@@ -154,9 +155,9 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
   int flag;
 
   sunbooleantype perturbed = SUNFALSE;
-  sunrealtype *saved = mem->dense_work; /* free while dense_valid is false */
+  sunrealtype *saved = mem->dense.work; /* free while dense_valid is false */
 
-  mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
+  mem->dense.valid = SUNFALSE; /* the iterate overwrites the last step's start */
   if (lgnPerturbedStartDue(mem)) {
     /* once, with the first step size tried (lgn_consistent_ic.c): v_0 and a_0 change
      * here; saved, so that a failed attempt leaves the state as it was and
@@ -197,7 +198,7 @@ int lgnCheckProgress(LGNMem mem, sunrealtype h)
 {
   const sunrealtype hfloor = SUNRpowerR(SUN_SMALL_REAL, SUN_RCONST(1.0) / SUN_RCONST(3.0));
   if (fabs(h) < hfloor) {
-    mem->hnext = SUN_RCONST(0.0); /* error control estimates anew next time */
+    mem->ec.hnext = SUN_RCONST(0.0); /* error control estimates anew next time */
     LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
               MSG_TIME "the step size h = %g is below %g: the scaling of the "
               "equations by h^2 would leave the floating-point range.",
@@ -207,7 +208,7 @@ int lgnCheckProgress(LGNMem mem, sunrealtype h)
   if (mem->tn + h != mem->tn) return LGN_SUCCESS;
   /* h collapsed (a callback failing recoverably from some t on): the next
    * LGNSolve starts error control anew (LGNSetInitStep, or the estimate) */
-  mem->hnext = SUN_RCONST(0.0);
+  mem->ec.hnext = SUN_RCONST(0.0);
   LGN_ERROR(mem, LGN_STEP_TOO_SMALL,
             MSG_TIME "the step size h = %g cannot advance t in floating point "
             "(t + h == t).", (double)mem->tn, (double)h);
@@ -221,7 +222,7 @@ int lgnStep(LGNMem mem, sunrealtype h)
   int flag = lgnCheckProgress(mem, h);
   if (flag != LGN_SUCCESS) return flag;
 
-  mem->a_step    = lgnData(mem->a);
+  mem->ec.a_step    = lgnData(mem->a);
   lgnFixedNewtonTolerances(mem);
   flag = lgnStepAttempt(mem, &c);
   if (flag == LGN_CONV_FAILURE)
