@@ -41,7 +41,9 @@ typedef enum {
   LGN_GROUP_SO3,
   LGN_GROUP_R3XSO3,
   LGN_GROUP_SE3,
-  LGN_GROUP_PRODUCT
+  LGN_GROUP_PRODUCT,
+  LGN_GROUP_SE2,     /* planar groups: lignum_planar.h */
+  LGN_GROUP_R2XSO2
 } LGNGroupKind;
 
 /**
