@@ -157,6 +157,18 @@ int lgnPlanarJointsTimeDerivative(lgnPlanarJoints *P, sunrealtype t, N_Vector q,
                                   N_Vector phit, const char *func);
 int lgnPlanarJointsStiffness(lgnPlanarJoints *P, sunrealtype t, N_Vector q,
                              N_Vector lambda, SUNMatrix K, const char *func);
+/* The planar joints (lgn_planar_api.c has the public calls). */
+int lgnPlanarJointsAddRevolute2(lgnPlanarJoints *P, int a, const sunrealtype sa[2], int b,
+                                const sunrealtype sb[2], const char *func);
+int lgnPlanarJointsAddPrismatic(lgnPlanarJoints *P, int a, const sunrealtype sa[2],
+                                const sunrealtype axis_a[2], int b, const sunrealtype sb[2],
+                                sunrealtype theta0, const char *func);
+int lgnPlanarJointsAddRotationDriver(lgnPlanarJoints *P, int a, int b, LGNDriveFn f,
+                                     void *drive_data, const char *func);
+int lgnPlanarJointsAddTranslationDriver(lgnPlanarJoints *P, int a, const sunrealtype sa[2],
+                                        const sunrealtype axis_a[2], int b,
+                                        const sunrealtype sb[2], LGNDriveFn f,
+                                        void *drive_data, const char *func);
 /* The spatial LGNJoints_AddRevolute on a planar set: axes along z. */
 int lgnPlanarJointsAddRevolute3(lgnPlanarJoints *P, int a, const sunrealtype sa[3],
                                 const sunrealtype axis_a[3], int b,
@@ -164,7 +176,8 @@ int lgnPlanarJointsAddRevolute3(lgnPlanarJoints *P, int a, const sunrealtype sa[
                                 const char *func);
 
 /* The planar part of a joint or body set (NULL: a spatial set or NULL) and
- * its sink (NULL for NULL): defined in lgn_joints.c and lgn_bodies.c. */
+ * its sink (NULL for NULL): defined in lgn_joints.c and lgn_bodies.c, for
+ * the public planar calls (lgn_planar_api.c). */
 lgnPlanarJoints *lgnJointsPlanarPart(LGNJoints J);
 const LGNErrSink *lgnJointsSink(LGNJoints J);
 lgnPlanarBodies *lgnBodiesPlanarPart(LGNBodies B);
@@ -176,6 +189,11 @@ int lgnPlanarBodiesSetMass(lgnPlanarBodies *P, int k, sunrealtype m, sunrealtype
                            const char *func);
 int lgnPlanarBodiesSetGravity(lgnPlanarBodies *P, const sunrealtype gravity[3],
                               const char *func);
+int lgnPlanarBodiesAddSpring2(lgnPlanarBodies *P, int a, const sunrealtype sa[2], int b,
+                              const sunrealtype sb[2], sunrealtype k, sunrealtype c,
+                              sunrealtype L0, const char *func);
+int lgnPlanarBodiesAddRotSpring(lgnPlanarBodies *P, int a, int b, sunrealtype kr,
+                                sunrealtype cr, sunrealtype theta0, const char *func);
 int lgnPlanarBodiesAddSpring3(lgnPlanarBodies *P, int a, const sunrealtype sa[3], int b,
                               const sunrealtype sb[3], sunrealtype k, sunrealtype c,
                               sunrealtype L0, const char *func);

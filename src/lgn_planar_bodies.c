@@ -125,19 +125,6 @@ int lgnPlanarBodiesSetMass(lgnPlanarBodies *P, int k, sunrealtype m, sunrealtype
   return LGN_SUCCESS;
 }
 
-int LGNBodies_SetPlanarMass(LGNBodies B, int k, sunrealtype m, sunrealtype J)
-{
-  lgnPlanarBodies *P = lgnBodiesPlanarPart(B);
-  if (P == NULL) {
-    lgnReport(lgnBodiesSink(B), LGN_ILL_INPUT, __func__,
-              B == NULL ? "B = NULL illegal."
-                        : "B: a planar body needs a body set on a planar group (SE(2), "
-                          "R^2 x SO(2) or a product of them).");
-    return LGN_ILL_INPUT;
-  }
-  return lgnPlanarBodiesSetMass(P, k, m, J, __func__);
-}
-
 int lgnPlanarBodiesSetGravity(lgnPlanarBodies *P, const sunrealtype gravity[3],
                               const char *func)
 {
@@ -226,23 +213,15 @@ static int CheckPoint2(const lgnPlanarBodies *P, const sunrealtype *x, const cha
   return LGN_SUCCESS;
 }
 
-int LGNBodies_AddPlanarSpringDamper(LGNBodies B, int a, const sunrealtype sa[2], int b,
-                                    const sunrealtype sb[2], sunrealtype k, sunrealtype c,
-                                    sunrealtype L0)
+int lgnPlanarBodiesAddSpring2(lgnPlanarBodies *P, int a, const sunrealtype sa[2], int b,
+                              const sunrealtype sb[2], sunrealtype k, sunrealtype c,
+                              sunrealtype L0, const char *func)
 {
-  lgnPlanarBodies *P = lgnBodiesPlanarPart(B);
-  if (P == NULL) {
-    lgnReport(lgnBodiesSink(B), LGN_ILL_INPUT, __func__,
-              B == NULL ? "B = NULL illegal."
-                        : "B: a planar element needs a body set on a planar group (SE(2), "
-                          "R^2 x SO(2) or a product of them).");
+  if (CheckPair(P, a, b, func) != LGN_SUCCESS ||
+      CheckPoint2(P, sa, "sa", func) != LGN_SUCCESS ||
+      CheckPoint2(P, sb, "sb", func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (CheckPair(P, a, b, __func__) != LGN_SUCCESS ||
-      CheckPoint2(P, sa, "sa", __func__) != LGN_SUCCESS ||
-      CheckPoint2(P, sb, "sb", __func__) != LGN_SUCCESS)
-    return LGN_ILL_INPUT;
-  return AddSpring(P, a, sa, b, sb, k, c, L0, __func__);
+  return AddSpring(P, a, sa, b, sb, k, c, L0, func);
 }
 
 int lgnPlanarBodiesAddSpring3(lgnPlanarBodies *P, int a, const sunrealtype sa[3], int b,
@@ -284,18 +263,10 @@ static int AddRotSpring(lgnPlanarBodies *P, int a, int b, sunrealtype kr, sunrea
   return LGN_SUCCESS;
 }
 
-int LGNBodies_AddPlanarRotationalSpringDamper(LGNBodies B, int a, int b, sunrealtype kr,
-                                              sunrealtype cr, sunrealtype theta0)
+int lgnPlanarBodiesAddRotSpring(lgnPlanarBodies *P, int a, int b, sunrealtype kr,
+                                sunrealtype cr, sunrealtype theta0, const char *func)
 {
-  lgnPlanarBodies *P = lgnBodiesPlanarPart(B);
-  if (P == NULL) {
-    lgnReport(lgnBodiesSink(B), LGN_ILL_INPUT, __func__,
-              B == NULL ? "B = NULL illegal."
-                        : "B: a planar element needs a body set on a planar group (SE(2), "
-                          "R^2 x SO(2) or a product of them).");
-    return LGN_ILL_INPUT;
-  }
-  return AddRotSpring(P, a, b, kr, cr, theta0, __func__);
+  return AddRotSpring(P, a, b, kr, cr, theta0, func);
 }
 
 int lgnPlanarBodiesAddRotSpringQuat(lgnPlanarBodies *P, int a, int b, sunrealtype kr,

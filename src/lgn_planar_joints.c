@@ -178,22 +178,14 @@ static int AddRevolute(lgnPlanarJoints *P, int a, const sunrealtype sa[2], int b
   return LGN_SUCCESS;
 }
 
-int LGNJoints_AddPlanarRevolute(LGNJoints J, int a, const sunrealtype sa[2], int b,
-                                const sunrealtype sb[2])
+int lgnPlanarJointsAddRevolute2(lgnPlanarJoints *P, int a, const sunrealtype sa[2], int b,
+                                const sunrealtype sb[2], const char *func)
 {
-  lgnPlanarJoints *P = lgnJointsPlanarPart(J);
-  if (P == NULL) {
-    lgnReport(lgnJointsSink(J), LGN_ILL_INPUT, __func__,
-              J == NULL ? "J = NULL illegal."
-                        : "J: a planar joint needs a joint set on a planar group "
-                          "(SE(2), R^2 x SO(2) or a product of them).");
+  if (CheckBodies(P, a, b, func) != LGN_SUCCESS ||
+      CheckVec2(P, sa, "sa", SUNFALSE, func) != LGN_SUCCESS ||
+      CheckVec2(P, sb, "sb", SUNFALSE, func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (CheckBodies(P, a, b, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sa, "sa", SUNFALSE, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sb, "sb", SUNFALSE, __func__) != LGN_SUCCESS)
-    return LGN_ILL_INPUT;
-  return AddRevolute(P, a, sa, b, sb, __func__);
+  return AddRevolute(P, a, sa, b, sb, func);
 }
 
 int lgnPlanarJointsAddRevolute3(lgnPlanarJoints *P, int a, const sunrealtype sa[3],
@@ -225,31 +217,23 @@ int lgnPlanarJointsAddRevolute3(lgnPlanarJoints *P, int a, const sunrealtype sa[
   return AddRevolute(P, a, sa, b, sb, func);
 }
 
-int LGNJoints_AddPlanarPrismatic(LGNJoints J, int a, const sunrealtype sa[2],
-                                 const sunrealtype axis_a[2], int b,
-                                 const sunrealtype sb[2], sunrealtype theta0)
+int lgnPlanarJointsAddPrismatic(lgnPlanarJoints *P, int a, const sunrealtype sa[2],
+                                const sunrealtype axis_a[2], int b, const sunrealtype sb[2],
+                                sunrealtype theta0, const char *func)
 {
-  lgnPlanarJoints *P = lgnJointsPlanarPart(J);
   sunrealtype len;
   Row *r;
-  if (P == NULL) {
-    lgnReport(lgnJointsSink(J), LGN_ILL_INPUT, __func__,
-              J == NULL ? "J = NULL illegal."
-                        : "J: a planar joint needs a joint set on a planar group "
-                          "(SE(2), R^2 x SO(2) or a product of them).");
-    return LGN_ILL_INPUT;
-  }
-  if (CheckBodies(P, a, b, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sa, "sa", SUNFALSE, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, axis_a, "axis_a", SUNTRUE, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sb, "sb", SUNFALSE, __func__) != LGN_SUCCESS)
+  if (CheckBodies(P, a, b, func) != LGN_SUCCESS ||
+      CheckVec2(P, sa, "sa", SUNFALSE, func) != LGN_SUCCESS ||
+      CheckVec2(P, axis_a, "axis_a", SUNTRUE, func) != LGN_SUCCESS ||
+      CheckVec2(P, sb, "sb", SUNFALSE, func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   if (!isfinite(theta0)) {
-    lgnReport(P->err, LGN_ILL_INPUT, __func__, "theta0 = %g illegal: not finite.",
+    lgnReport(P->err, LGN_ILL_INPUT, func, "theta0 = %g illegal: not finite.",
               (double)theta0);
     return LGN_ILL_INPUT;
   }
-  if (Reserve(P, 2, __func__) != LGN_SUCCESS) return LGN_MEM_FAIL;
+  if (Reserve(P, 2, func) != LGN_SUCCESS) return LGN_MEM_FAIL;
   len = hypot(axis_a[0], axis_a[1]);
   r   = NewRow(P, ROW_LINE, a, b, 0, 2, "planar prismatic");
   r->sa[0] = sa[0];
@@ -273,21 +257,13 @@ static int CheckDrive(const lgnPlanarJoints *P, LGNDriveFn f, const char *func)
   return LGN_SUCCESS;
 }
 
-int LGNJoints_AddPlanarRotationDriver(LGNJoints J, int a, int b, LGNDriveFn f,
-                                      void *drive_data)
+int lgnPlanarJointsAddRotationDriver(lgnPlanarJoints *P, int a, int b, LGNDriveFn f,
+                                     void *drive_data, const char *func)
 {
-  lgnPlanarJoints *P = lgnJointsPlanarPart(J);
   Row *r;
-  if (P == NULL) {
-    lgnReport(lgnJointsSink(J), LGN_ILL_INPUT, __func__,
-              J == NULL ? "J = NULL illegal."
-                        : "J: a planar joint needs a joint set on a planar group "
-                          "(SE(2), R^2 x SO(2) or a product of them).");
+  if (CheckBodies(P, a, b, func) != LGN_SUCCESS || CheckDrive(P, f, func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (CheckBodies(P, a, b, __func__) != LGN_SUCCESS || CheckDrive(P, f, __func__) != LGN_SUCCESS)
-    return LGN_ILL_INPUT;
-  if (Reserve(P, 1, __func__) != LGN_SUCCESS) return LGN_MEM_FAIL;
+  if (Reserve(P, 1, func) != LGN_SUCCESS) return LGN_MEM_FAIL;
   r = NewRow(P, ROW_ANGLE, a, b, 0, 1, "planar rotation driver");
   r->drive      = f;
   r->drive_data = drive_data;
@@ -296,28 +272,20 @@ int LGNJoints_AddPlanarRotationDriver(LGNJoints J, int a, int b, LGNDriveFn f,
   return LGN_SUCCESS;
 }
 
-int LGNJoints_AddPlanarTranslationDriver(LGNJoints J, int a, const sunrealtype sa[2],
-                                         const sunrealtype axis_a[2], int b,
-                                         const sunrealtype sb[2], LGNDriveFn f,
-                                         void *drive_data)
+int lgnPlanarJointsAddTranslationDriver(lgnPlanarJoints *P, int a, const sunrealtype sa[2],
+                                        const sunrealtype axis_a[2], int b,
+                                        const sunrealtype sb[2], LGNDriveFn f,
+                                        void *drive_data, const char *func)
 {
-  lgnPlanarJoints *P = lgnJointsPlanarPart(J);
   sunrealtype len;
   Row *r;
-  if (P == NULL) {
-    lgnReport(lgnJointsSink(J), LGN_ILL_INPUT, __func__,
-              J == NULL ? "J = NULL illegal."
-                        : "J: a planar joint needs a joint set on a planar group "
-                          "(SE(2), R^2 x SO(2) or a product of them).");
+  if (CheckBodies(P, a, b, func) != LGN_SUCCESS ||
+      CheckVec2(P, sa, "sa", SUNFALSE, func) != LGN_SUCCESS ||
+      CheckVec2(P, axis_a, "axis_a", SUNTRUE, func) != LGN_SUCCESS ||
+      CheckVec2(P, sb, "sb", SUNFALSE, func) != LGN_SUCCESS ||
+      CheckDrive(P, f, func) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
-  }
-  if (CheckBodies(P, a, b, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sa, "sa", SUNFALSE, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, axis_a, "axis_a", SUNTRUE, __func__) != LGN_SUCCESS ||
-      CheckVec2(P, sb, "sb", SUNFALSE, __func__) != LGN_SUCCESS ||
-      CheckDrive(P, f, __func__) != LGN_SUCCESS)
-    return LGN_ILL_INPUT;
-  if (Reserve(P, 1, __func__) != LGN_SUCCESS) return LGN_MEM_FAIL;
+  if (Reserve(P, 1, func) != LGN_SUCCESS) return LGN_MEM_FAIL;
   len = hypot(axis_a[0], axis_a[1]);
   r   = NewRow(P, ROW_LINE, a, b, 0, 1, "planar translation driver");
   r->sa[0]      = sa[0];
