@@ -233,7 +233,7 @@ int LGNBodies_SetErrFile(LGNBodies B, FILE *errfp)
 
 int LGNBodies_NumBodies(LGNBodies B) { return B != NULL ? B->nb : 0; }
 
-/* The planar part (lgn_planar.h) and the sink, for lgn_planar_bodies.c. */
+/* The planar part (lgn_planar.h) and the sink, for lgn_planar_api.c. */
 lgnPlanarBodies *lgnBodiesPlanarPart(LGNBodies B) { return B != NULL ? B->planar : NULL; }
 const LGNErrSink *lgnBodiesSink(LGNBodies B) { return B != NULL ? &B->err : NULL; }
 

@@ -359,7 +359,7 @@ sunindextype LGNJoints_NumConstraints(LGNJoints J)
   return J != NULL ? J->m : 0;
 }
 
-/* The planar part (lgn_planar.h) and the sink, for lgn_planar_joints.c. */
+/* The planar part (lgn_planar.h) and the sink, for lgn_planar_api.c. */
 lgnPlanarJoints *lgnJointsPlanarPart(LGNJoints J) { return J != NULL ? J->planar : NULL; }
 const LGNErrSink *lgnJointsSink(LGNJoints J) { return J != NULL ? &J->err : NULL; }
 
