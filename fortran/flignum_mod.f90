@@ -128,6 +128,7 @@ module flignum_mod
     enumerator :: LGN_GROUP_CUSTOM = 0
     enumerator :: LGN_GROUP_RN, LGN_GROUP_SO3, LGN_GROUP_R3XSO3
     enumerator :: LGN_GROUP_SE3, LGN_GROUP_PRODUCT
+    enumerator :: LGN_GROUP_SE2, LGN_GROUP_R2XSO2
   end enum
 
   ! ===========================================================================

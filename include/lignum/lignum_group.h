@@ -34,14 +34,17 @@ extern "C" {
 
 typedef struct LGNGroupRec *LGNGroup;
 
-/** Group kinds of the built-in groups; LGN_GROUP_CUSTOM for user-supplied ones. */
+/** Group kinds of the built-in groups; LGN_GROUP_CUSTOM for user-supplied ones.
+ *  LGN_GROUP_SE2 and LGN_GROUP_R2XSO2 are the planar groups (lignum_planar.h). */
 typedef enum {
   LGN_GROUP_CUSTOM = 0,
   LGN_GROUP_RN,
   LGN_GROUP_SO3,
   LGN_GROUP_R3XSO3,
   LGN_GROUP_SE3,
-  LGN_GROUP_PRODUCT
+  LGN_GROUP_PRODUCT,
+  LGN_GROUP_SE2,
+  LGN_GROUP_R2XSO2
 } LGNGroupKind;
 
 /**

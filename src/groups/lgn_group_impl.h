@@ -24,6 +24,12 @@ int lgnGroupProductFactors(LGNGroup G, int *nf, const LGNGroup **factors,
 int lgnGroupRigidBodies(LGNGroup G, sunindextype *qoff, sunindextype *voff,
                         sunbooleantype *se3);
 
+/* The planar bodies of G (lignum_planar.h): its leaves in order, each
+ * SE(2) or R^2 x SO(2), as lgnGroupRigidBodies (se2: an SE(2) body).
+ * Returns the count, or -1 if a leaf is another group. */
+int lgnGroupPlanarBodies(LGNGroup G, sunindextype *qoff, sunindextype *voff,
+                         sunbooleantype *se2);
+
 /* Fused operations of the built-in leaves for the exact kinematics
  * (lgn_tangent.c), one sine and cosine per rotation for all of them
  * (lgnSO3_CoefsExp). Each returns 1, doing nothing, when G is not that

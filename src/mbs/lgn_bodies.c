@@ -46,6 +46,7 @@
 #include "groups/lgn_so3.h"
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
+#include "lgn_planar.h"
 
 #ifdef LGN_IMPL_H
 #error "lgn_bodies.c is a pure helper: it must not see the integrator's memory record"
@@ -78,6 +79,8 @@ struct LGNBodiesRec {
    * bodies (itself included), and 36 values per block (row-major) */
   int *kptr, *kbody;
   sunrealtype *kblk;
+  lgnPlanarBodies *planar; /* a planar set (lgn_planar_bodies.c), which
+                              answers every call itself; else NULL        */
 };
 
 #define MSG_MEM_FAIL "A memory request failed."
@@ -145,11 +148,22 @@ LGNBodies LGNBodies_Create(LGNGroup G)
   }
   lgnErrSinkInit(&B->err);
   B->G = G;
-  nb   = lgnGroupRigidBodies(G, NULL, NULL, NULL);
+  nb   = lgnGroupPlanarBodies(G, NULL, NULL, NULL);
+  if (nb > 0) { /* planar bodies (lignum_planar.h) */
+    B->nb          = nb;
+    B->first_ghost = nb;
+    B->planar      = lgnPlanarBodiesCreate(G, &B->err, __func__);
+    if (B->planar == NULL) {
+      free(B);
+      return NULL;
+    }
+    return B;
+  }
+  nb = lgnGroupRigidBodies(G, NULL, NULL, NULL);
   if (nb < 1) {
     lgnReport(NULL, LGN_ILL_INPUT, __func__,
-              "G: the body helpers need bodies on R^3 x SO(3) or SE(3) (or a "
-              "product of them).");
+              "G: the body helpers need bodies on R^3 x SO(3) or SE(3), or "
+              "planar ones on SE(2) or R^2 x SO(2) (or a product of them).");
     free(B);
     return NULL;
   }
@@ -190,6 +204,7 @@ void LGNBodies_Destroy(LGNBodies *Bp)
   struct LGNBodiesRec *B;
   if (Bp == NULL || *Bp == NULL) return;
   B = *Bp;
+  lgnPlanarBodiesDestroy(B->planar);
   FreeStructure(B);
   free(B->qoff);
   free(B->voff);
@@ -218,6 +233,10 @@ int LGNBodies_SetErrFile(LGNBodies B, FILE *errfp)
 
 int LGNBodies_NumBodies(LGNBodies B) { return B != NULL ? B->nb : 0; }
 
+/* The planar part (lgn_planar.h) and the sink, for lgn_planar_api.c. */
+lgnPlanarBodies *lgnBodiesPlanarPart(LGNBodies B) { return B != NULL ? B->planar : NULL; }
+const LGNErrSink *lgnBodiesSink(LGNBodies B) { return B != NULL ? &B->err : NULL; }
+
 static int CheckBody(const struct LGNBodiesRec *B, int k, const char *func)
 {
   if (k < 0 || k >= B->nb) {
@@ -237,6 +256,10 @@ int LGNBodies_SetGhosts(LGNBodies B, int first_ghost)
 {
   int k;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) {
+    BErr(B, LGN_ILL_INPUT, __func__, "B is a planar body set: it has no ghost bodies.");
+    return LGN_ILL_INPUT;
+  }
   if (first_ghost < 1 || first_ghost > B->nb) {
     BErr(B, LGN_ILL_INPUT, __func__, "first_ghost = %d illegal (1..%d).", first_ghost, B->nb);
     return LGN_ILL_INPUT;
@@ -294,6 +317,13 @@ int LGNBodies_SetMass(LGNBodies B, int k, sunrealtype m, const sunrealtype inert
   sunrealtype scale = SUN_RCONST(0.0), d1, d2, d3;
   const sunrealtype *J = inertia;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) { /* the inertia about the plane's normal */
+    if (inertia == NULL) {
+      BErr(B, LGN_ILL_INPUT, __func__, "inertia = NULL illegal.");
+      return LGN_ILL_INPUT;
+    }
+    return lgnPlanarBodiesSetMass(B->planar, k, m, inertia[8], __func__);
+  }
   if (CheckBody(B, k, __func__) != LGN_SUCCESS || CheckMassValue(B, m, __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
   if (J == NULL) {
@@ -341,6 +371,13 @@ int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m, const sunre
 {
   sunrealtype In[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) { /* the moment about the plane's normal */
+    if (J == NULL) {
+      BErr(B, LGN_ILL_INPUT, __func__, "J = NULL illegal.");
+      return LGN_ILL_INPUT;
+    }
+    return lgnPlanarBodiesSetMass(B->planar, k, m, J[2], __func__);
+  }
   if (CheckBody(B, k, __func__) != LGN_SUCCESS || CheckMassValue(B, m, __func__) != LGN_SUCCESS ||
       lgnCheckVec3(&B->err, J, "J", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
@@ -374,6 +411,7 @@ int LGNBodies_SetPrincipalInertia(LGNBodies B, int k, sunrealtype m, const sunre
 int LGNBodies_SetGravity(LGNBodies B, const sunrealtype gravity[3])
 {
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) return lgnPlanarBodiesSetGravity(B->planar, gravity, __func__);
   if (lgnCheckVec3(&B->err, gravity, "gravity", __func__) != LGN_SUCCESS) return LGN_ILL_INPUT;
   memcpy(B->gravity, gravity, sizeof B->gravity);
   return LGN_SUCCESS;
@@ -422,6 +460,8 @@ int LGNBodies_AddSpringDamper(LGNBodies B, int a, const sunrealtype sa[3], int b
 {
   Element *e;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL)
+    return lgnPlanarBodiesAddSpring3(B->planar, a, sa, b, sb, k, c, L0, __func__);
   if (CheckPair(B, a, b, __func__) != LGN_SUCCESS || lgnCheckVec3(&B->err, sa, "sa", __func__) != LGN_SUCCESS ||
       lgnCheckVec3(&B->err, sb, "sb", __func__) != LGN_SUCCESS || CheckCoef(B, k, "k", __func__) != LGN_SUCCESS ||
       CheckCoef(B, c, "c", __func__) != LGN_SUCCESS || CheckCoef(B, L0, "L0", __func__) != LGN_SUCCESS)
@@ -446,6 +486,8 @@ int LGNBodies_AddRotationalSpringDamper(LGNBodies B, int a, int b, sunrealtype k
   sunrealtype nrm = SUN_RCONST(0.0);
   int i;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL)
+    return lgnPlanarBodiesAddRotSpringQuat(B->planar, a, b, kr, cr, rest, __func__);
   if (CheckPair(B, a, b, __func__) != LGN_SUCCESS || CheckCoef(B, kr, "kr", __func__) != LGN_SUCCESS ||
       CheckCoef(B, cr, "cr", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
@@ -569,13 +611,18 @@ static void AddRot(sunrealtype *blk, const Element *e, int sa, int sb, const sun
   AddSub(blk, 3, 3, Z, f);
 }
 
-sunindextype LGNBodies_MassNnz(LGNBodies B) { return B != NULL ? 12 * (sunindextype)B->nb : 0; }
+sunindextype LGNBodies_MassNnz(LGNBodies B)
+{
+  if (B != NULL && B->planar != NULL) return lgnPlanarBodiesMassNnz(B->planar);
+  return B != NULL ? 12 * (sunindextype)B->nb : 0;
+}
 
 sunindextype LGNBodies_TangentNnz(LGNBodies B)
 {
   sunindextype n = 0;
   int b, i;
   if (B == NULL) return 0;
+  if (B->planar != NULL) return lgnPlanarBodiesTangentNnz(B->planar);
   if (B->kptr == NULL && BuildStructure(B) != LGN_SUCCESS) return 0;
   for (b = 0; b < B->nb; b++)
     for (i = B->kptr[b]; i < B->kptr[b + 1] && B->kbody[i] >= 0; i++) n += 36;
@@ -794,6 +841,7 @@ static int WriteBlocks(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
 int LGNBodies_Mass(LGNBodies B, N_Vector q, SUNMatrix M)
 {
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) return lgnPlanarBodiesMass(B->planar, q, M, __func__);
   if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
       CheckMat(B, M, "M", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
@@ -806,6 +854,7 @@ int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g)
   sunrealtype *gd;
   int k, i, side;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) return lgnPlanarBodiesForce(B->planar, q, v, g, __func__);
   if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
       lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS ||
       lgnCheckSerialVector(&B->err, g, B->G->nv, "g", __func__) != LGN_SUCCESS)
@@ -874,6 +923,8 @@ int LGNBodies_Energy(LGNBodies B, N_Vector q, N_Vector v, sunrealtype *kinetic,
   sunrealtype T = SUN_RCONST(0.0), V = SUN_RCONST(0.0), Jw[3];
   int k;
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL)
+    return lgnPlanarBodiesEnergy(B->planar, q, v, kinetic, potential, __func__);
   if (lgnCheckSerialVector(&B->err, q, B->G->nq, "q", __func__) != LGN_SUCCESS ||
       lgnCheckSerialVector(&B->err, v, B->G->nv, "v", __func__) != LGN_SUCCESS)
     return LGN_ILL_INPUT;
@@ -1098,12 +1149,14 @@ static int TangentPublic(struct LGNBodiesRec *B, N_Vector q, N_Vector v, SUNMatr
 int LGNBodies_Stiffness(LGNBodies B, N_Vector q, N_Vector v, SUNMatrix K)
 {
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) return lgnPlanarBodiesTangent(B->planar, q, v, K, SUNFALSE, __func__);
   return TangentPublic(B, q, v, K, SUNTRUE, __func__);
 }
 
 int LGNBodies_Damping(LGNBodies B, N_Vector q, N_Vector v, SUNMatrix C)
 {
   if (B == NULL) return NullBodies(__func__);
+  if (B->planar != NULL) return lgnPlanarBodiesTangent(B->planar, q, v, C, SUNTRUE, __func__);
   return TangentPublic(B, q, v, C, SUNFALSE, __func__);
 }
 

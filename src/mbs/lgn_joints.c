@@ -40,6 +40,7 @@
 #include "groups/lgn_so3.h"
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
+#include "lgn_planar.h"
 
 #ifdef LGN_IMPL_H
 #error "lgn_joints.c is a pure helper: it must not see the integrator's memory record"
@@ -87,6 +88,8 @@ struct LGNJointsRec {
   int bfmt;
   sunindextype *bptr, *bind;  /* index pointers, index values              */
   sunindextype *bpos;         /* nnzB                                      */
+  lgnPlanarJoints *planar;    /* a planar set (lgn_planar_joints.c), which
+                                 answers every call itself; else NULL       */
   /* geometric stiffness: per body, the sorted list of coupled bodies */
   int *kptr, *kbody;          /* nb + 1, kptr[nb]                          */
   sunrealtype *kblk;          /* 36 per (body, coupled body), column-major */
@@ -257,11 +260,21 @@ LGNJoints LGNJoints_Create(LGNGroup G)
   }
   lgnErrSinkInit(&J->err);
   J->G = G;
-  nb   = lgnGroupRigidBodies(G, NULL, NULL, NULL);
+  nb   = lgnGroupPlanarBodies(G, NULL, NULL, NULL);
+  if (nb > 0) { /* planar bodies (lignum_planar.h) */
+    J->nb     = nb;
+    J->planar = lgnPlanarJointsCreate(G, &J->err, __func__);
+    if (J->planar == NULL) {
+      free(J);
+      return NULL;
+    }
+    return J;
+  }
+  nb = lgnGroupRigidBodies(G, NULL, NULL, NULL);
   if (nb < 1) {
     lgnReport(NULL, LGN_ILL_INPUT, __func__,
-              "G: the joint helpers need bodies on R^3 x SO(3) or SE(3) (or a "
-              "product of them).");
+              "G: the joint helpers need bodies on R^3 x SO(3) or SE(3), or "
+              "planar ones on SE(2) or R^2 x SO(2) (or a product of them).");
     free(J);
     return NULL;
   }
@@ -307,6 +320,7 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   struct LGNJointsRec *J;
   if (Jp == NULL || *Jp == NULL) return;
   J = *Jp;
+  lgnPlanarJointsDestroy(J->planar);
   FreeJacobianPattern(J);
   FreeStiffnessStructure(J);
   free(J->qoff);
@@ -339,7 +353,24 @@ int LGNJoints_SetErrFile(LGNJoints J, FILE *errfp)
 
 int LGNJoints_NumBodies(LGNJoints J) { return J != NULL ? J->nb : 0; }
 
-sunindextype LGNJoints_NumConstraints(LGNJoints J) { return J != NULL ? J->m : 0; }
+sunindextype LGNJoints_NumConstraints(LGNJoints J)
+{
+  if (J != NULL && J->planar != NULL) return lgnPlanarJointsNumConstraints(J->planar);
+  return J != NULL ? J->m : 0;
+}
+
+/* The planar part (lgn_planar.h) and the sink, for lgn_planar_api.c. */
+lgnPlanarJoints *lgnJointsPlanarPart(LGNJoints J) { return J != NULL ? J->planar : NULL; }
+const LGNErrSink *lgnJointsSink(LGNJoints J) { return J != NULL ? &J->err : NULL; }
+
+/* A spatial joint on a planar set (lignum_planar.h). */
+static int RefusePlanar(const struct LGNJointsRec *J, const char *func)
+{
+  JErr(J, LGN_ILL_INPUT, func,
+       "J is a planar joint set (SE(2) or R^2 x SO(2) bodies): use the planar "
+       "joints of lignum_planar.h.");
+  return LGN_ILL_INPUT;
+}
 
 /* The bodies a, b of a joint added by the public function func. */
 static int CheckBodies(const struct LGNJointsRec *J, int a, int b, const char *func)
@@ -413,6 +444,7 @@ int LGNJoints_AddSpherical(LGNJoints J, int a, const sunrealtype sa[3], int b,
 {
   int flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckBodies(J, a, b, __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sa, "sa", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, sb, "sb", __func__);
@@ -457,6 +489,8 @@ int LGNJoints_AddRevolute(LGNJoints J, int a, const sunrealtype sa[3],
   sunrealtype n[3], c[3], e1[3], e2[3], t[3];
   int flag, first;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL)
+    return lgnPlanarJointsAddRevolute3(J->planar, a, sa, axis_a, b, sb, axis_b, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
@@ -482,6 +516,7 @@ int LGNJoints_AddUniversal(LGNJoints J, int a, const sunrealtype sa[3],
   sunrealtype e[3], c[3];
   int flag, first;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, e, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
@@ -560,6 +595,7 @@ int LGNJoints_AddPrismatic(LGNJoints J, int a, const sunrealtype sa[3],
   sunrealtype n[3], c[3], d1[3], d2[3], k[3], R0[9], cs;
   int flag, i, j;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
@@ -599,6 +635,7 @@ int LGNJoints_AddPrismaticFrames(LGNJoints J, int a, const sunrealtype sa[3],
   sunrealtype n[3], ra[3], na[3], c[3], rb[3], nb[3], R0[9];
   int flag, i, j;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_a, "ref_a", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_b, "ref_b", __func__);
@@ -623,6 +660,7 @@ int LGNJoints_AddCylindrical(LGNJoints J, int a, const sunrealtype sa[3],
   sunrealtype n[3], c[3], e1[3], e2[3];
   int flag, first;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_b, __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_a, n, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = Normalised(J, axis_b, c, "axis_b", __func__);
@@ -646,6 +684,7 @@ int LGNJoints_AddRotationDriver(LGNJoints J, int a, const sunrealtype axis_a[3],
   int flag, i;
   Primitive *p;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckBodies(J, a, b, __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, axis_a, "axis_a", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckVec3(&J->err, ref_a, "ref_a", __func__);
@@ -684,6 +723,7 @@ int LGNJoints_AddTranslationDriver(LGNJoints J, int a, const sunrealtype sa[3],
   int flag;
   Primitive *p;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   flag = CheckJointArgs(J, a, sa, axis_a, b, sb, axis_a, __func__);
   if (flag == LGN_SUCCESS && f == NULL) {
     JErr(J, LGN_ILL_INPUT, __func__, "f = NULL illegal: the driver needs a time law.");
@@ -700,7 +740,11 @@ int LGNJoints_AddTranslationDriver(LGNJoints J, int a, const sunrealtype sa[3],
   return LGN_SUCCESS;
 }
 
-int LGNJoints_NumDrivers(LGNJoints J) { return J != NULL ? J->ndrivers : 0; }
+int LGNJoints_NumDrivers(LGNJoints J)
+{
+  if (J != NULL && J->planar != NULL) return lgnPlanarJointsNumDrivers(J->planar);
+  return J != NULL ? J->ndrivers : 0;
+}
 
 int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
                                  size_t len)
@@ -708,6 +752,7 @@ int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf,
   int k, first = -1, last = -1, joint;
   sunindextype r0, r1;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsDescribe(J->planar, row, buf, len, __func__);
   if (buf == NULL || len == 0) {
     JErr(J, LGN_ILL_INPUT, __func__, "buf = NULL or len = 0 illegal.");
     return LGN_ILL_INPUT;
@@ -785,6 +830,7 @@ int LGNJoints_Residual(LGNJoints J, sunrealtype t, N_Vector q, N_Vector phi)
   Pose A, B;
   int k, i, flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsResidual(J->planar, t, q, phi, __func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phi, J->m, "phi", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
@@ -1017,7 +1063,11 @@ static int SparseJacobian(struct LGNJointsRec *J, const sunrealtype *qd, SUNMatr
   return LGN_SUCCESS;
 }
 
-sunindextype LGNJoints_JacobianNnz(LGNJoints J) { return J != NULL ? J->nnzB : 0; }
+sunindextype LGNJoints_JacobianNnz(LGNJoints J)
+{
+  if (J != NULL && J->planar != NULL) return lgnPlanarJointsJacobianNnz(J->planar);
+  return J != NULL ? J->nnzB : 0;
+}
 
 int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
 {
@@ -1025,6 +1075,7 @@ int LGNJoints_Jacobian(LGNJoints J, sunrealtype t, N_Vector q, SUNMatrix B)
   const sunrealtype *qd;
   int flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsJacobian(J->planar, t, q, B, __func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag != LGN_SUCCESS) return flag;
   if (B == NULL ||
@@ -1067,6 +1118,8 @@ int LGNJoints_ConstraintForce(LGNJoints J, sunrealtype t, N_Vector q, N_Vector l
   Pose P[2];
   int k, i, side, flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL)
+    return lgnPlanarJointsConstraintForce(J->planar, t, q, lambda, f, __func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   /* no joints: lambda has no entries (and may have no data) */
   if (flag == LGN_SUCCESS && J->m > 0) flag = lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__);
@@ -1185,6 +1238,7 @@ int LGNJoints_Curvature(LGNJoints J, sunrealtype t, N_Vector q, N_Vector v, N_Ve
   Pose A, B;
   int k, i, flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsCurvature(J->planar, t, q, v, z, __func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, v, J->G->nv, "v", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, z, J->m, "z", __func__);
@@ -1258,6 +1312,7 @@ int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q, N_Vector ph
   Pose A, B;
   int k, flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsTimeDerivative(J->planar, t, q, phit, __func__);
   flag = lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__);
   if (flag == LGN_SUCCESS) flag = lgnCheckSerialVector(&J->err, phit, J->m, "phit", __func__);
   if (flag == LGN_SUCCESS) flag = EvalDrivers(J, t, __func__);
@@ -1520,6 +1575,7 @@ static int StiffnessFirstCol(const struct LGNJointsRec *J, int r, int c)
 sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
 {
   if (J == NULL) return 0;
+  if (J->planar != NULL) return lgnPlanarJointsStiffnessNnz(J->planar);
   if (J->kptr == NULL && BuildStiffnessStructure(J) != LGN_SUCCESS) return 0;
   {
     sunindextype n = 0;
@@ -1538,6 +1594,7 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
   sunindextype nv, nnz, pos = 0;
   int k, b, i, r, c, flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return lgnPlanarJointsStiffness(J->planar, t, q, lambda, K, __func__);
   nv = J->G->nv;
   if (lgnCheckSerialVector(&J->err, q, J->G->nq, "q", __func__) != LGN_SUCCESS ||
       (J->m > 0 && lgnCheckSerialVector(&J->err, lambda, J->m, "lambda", __func__) != LGN_SUCCESS))
@@ -1624,6 +1681,7 @@ int LGNJoints_PointPlaneContact(LGNJoints J, N_Vector q, int b, const sunrealtyp
   sunindextype i;
   int flag;
   if (J == NULL) return NullJoints(__func__);
+  if (J->planar != NULL) return RefusePlanar(J, __func__);
   if (b < 0 || b >= J->nb) {
     JErr(J, LGN_ILL_INPUT, __func__, "body b = %d illegal (0..%d).", b, J->nb - 1);
     return LGN_ILL_INPUT;

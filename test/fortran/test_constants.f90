@@ -125,6 +125,8 @@ program test_constants
   call check("LGN_GROUP_R3XSO3", LGN_GROUP_R3XSO3)
   call check("LGN_GROUP_SE3", LGN_GROUP_SE3)
   call check("LGN_GROUP_PRODUCT", LGN_GROUP_PRODUCT)
+  call check("LGN_GROUP_SE2", LGN_GROUP_SE2)
+  call check("LGN_GROUP_R2XSO2", LGN_GROUP_R2XSO2)
 
   ! --- lignum_joints.h (flignum_joints_mod) ------------------------------------------
   call check("LGN_GROUND", LGN_GROUND)

@@ -22,6 +22,7 @@ set(_files
   ${_moddir}/flignum_mod.mod
   ${_moddir}/flignum_joints_mod.mod
   ${_moddir}/flignum_bodies_mod.mod
+  ${_moddir}/flignum_planar_mod.mod
   ${_moddir}/flignum_sundials_mod.mod
   ${LGN_LIBDIR}/cmake/Lignum/LignumConfig.cmake
   ${LGN_LIBDIR}/cmake/Lignum/LignumTargets.cmake)

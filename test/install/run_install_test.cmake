@@ -24,6 +24,7 @@ lgn_expect_files(
   ${LGN_INCDIR}/lignum/lignum_group.h
   ${LGN_INCDIR}/lignum/lignum_joints.h
   ${LGN_INCDIR}/lignum/lignum_bodies.h
+  ${LGN_INCDIR}/lignum/lignum_planar.h
   ${LGN_INCDIR}/lignum/lignum_ls.h
   ${LGN_INCDIR}/lignum/lignum_config.h
   ${LGN_INCDIR}/lignum/lignum_export.h
