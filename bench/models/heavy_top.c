@@ -910,7 +910,7 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
     flag = opt->method == HT_GENALPHA ? LGNSetGenAlpha(o->mem, opt->rho_inf)
                                       : LGNSetNewmark(o->mem, opt->beta, opt->gamma);
   if (flag == 0) flag = LGNSetConstraintIndex(o->mem, opt->constraints);
-  if (flag == 0) flag = LGNSetKinematics(o->mem, opt->kinematics);
+  if (flag == 0 && opt->bdf_maxord == 0) flag = LGNSetKinematics(o->mem, opt->kinematics);
   if (flag == 0 && opt->bdf_maxord > 0) flag = LGNSetBDF(o->mem, opt->bdf_maxord);
   if (flag == 0) flag = LGNSetStepSize(o->mem, opt->h);
   if (flag == 0 && (opt->rtol > 0.0 || opt->atol > 0.0 || opt->adaptive))
@@ -919,6 +919,7 @@ static int SetupRun(const HeavyTopOptions *opt, RunObjects *o)
     flag = LGNSetStepControl(o->mem, LGN_STEP_ADAPTIVE);
     if (flag == 0) flag = LGNSetStopTime(o->mem, opt->t_end);
   }
+  if (flag == 0 && opt->max_steps > 0) flag = LGNSetMaxNumSteps(o->mem, opt->max_steps);
   /* the heavy top's studies measure the method itself: the step's own
    * vdot_n and lambda_n, and the step's q, v (not the consistent and
    * projected outputs of LGNSetConsistentOutputs / LGNSetProjectOutputs) */

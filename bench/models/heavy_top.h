@@ -49,6 +49,8 @@ typedef struct {
                               rtol, atol as the error test's tolerances;
                               h is then the output interval and the run
                               stops at t_end exactly (LGNSetStopTime)    */
+  long int max_steps;      /* > 0: LGNSetMaxNumSteps (steps per LGNSolve
+                              call; 0: Lignum's default)                 */
   int bdf_maxord;          /* > 0: the BDF family of this highest order
                               (LGNSetBDF) instead of method             */
   SUNLinearSolver (*make_ls)(N_Vector y, SUNMatrix A, SUNContext ctx);

@@ -538,7 +538,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   if (flag == 0)
     flag = opt->method == 1 ? LGNSetGenAlpha(mem, opt->rho_inf)
                             : LGNSetNewmark(mem, opt->beta, opt->gamma);
-  if (flag == 0) flag = LGNSetKinematics(mem, opt->kinematics);
+  if (flag == 0 && opt->bdf_maxord == 0) flag = LGNSetKinematics(mem, opt->kinematics);
   if (flag == 0 && opt->bdf_maxord > 0) flag = LGNSetBDF(mem, opt->bdf_maxord);
   if (flag == 0) flag = LGNSetNewtonMode(mem, opt->newton);
   if (flag == 0) flag = LGNSetLSetupFrequency(mem, opt->msbp);
@@ -556,6 +556,7 @@ int rigid_run(RigidSystem *sys, const RigidRunOptions *opt, RigidRunResult *res)
   } else if (flag == 0 && opt->rtol > 0) {
     flag = LGNSStolerances(mem, opt->rtol, opt->atol);
   }
+  if (flag == 0 && opt->max_steps > 0) flag = LGNSetMaxNumSteps(mem, opt->max_steps);
 
   res->energy0 = rigid_energy(sys, sys->q0, sys->v0);
   res->energy  = res->energy0;

@@ -94,6 +94,8 @@ typedef struct {
                                interpolated, t_end is landed on exactly   */
   double hmax;              /* error control: largest step (0: none)       */
   int bdf_maxord;           /* > 0: the BDF family (LGNSetBDF) instead of method */
+  long int max_steps;       /* > 0: LGNSetMaxNumSteps (steps per LGNSolve
+                               call; 0: Lignum's default)                  */
   int own_dense_lu;         /* 1: LGNLinSol_Dense instead of SUNLinSol_Dense */
   FILE *step_log;           /* error control: "t,h,order" per accepted step
                                (LGN_ONE_STEP; NULL: none)                  */

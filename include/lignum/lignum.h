@@ -568,6 +568,11 @@ LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
  *  callback fails recoverably (> 0) is retried with a smaller h).
  *  In the adaptive mode LGN_NORMAL steps past tout and interpolates there
  *  (LGNGetDky), as IDA does; LGNSetStopTime lands on a time exactly.
+ *  At index 3 (LGN_CONSTR_INDEX3) LGNSolve refuses the adaptive mode with
+ *  LGN_ILL_INPUT for a method of the Newmark family that does not damp the
+ *  constraint mode (Newmark with gamma = 1/2, generalized-alpha with
+ *  rho_inf = 1): its multipliers oscillate without decay and its steps
+ *  would collapse (doc/user-guide.md §8.7).
  *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another value. */
 LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
 

@@ -281,6 +281,8 @@ static int CheckSettings(LGNMem mem)
               "only to Newton's tolerance ~ atol / h, which grows as h shrinks.");
     return LGN_ILL_INPUT;
   }
+  flag = lgnCheckIndex3Damping(mem); /* undamped index 3: refused (lgn_newmark_adapt.c) */
+  if (flag != LGN_SUCCESS) return flag;
   if (mem->LS == NULL || (mem->A == NULL && !mem->krylov)) {
     LGN_ERROR(mem, LGN_NO_LINSOL, "No linear solver: call LGNSetLinearSolver.");
     return LGN_NO_LINSOL;

@@ -712,6 +712,9 @@ int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);
 sunrealtype lgnInitialStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnFirstStep(LGNMem mem, sunrealtype tout);
+/* LGN_ILL_INPUT with a message when error control meets index 3 with a
+ * method that does not damp the constraint mode (rho_inf = 1) */
+int lgnCheckIndex3Damping(LGNMem mem);
 
 /* ---- lgn_bdf.c: the BDF family ------------------------------------------ */
 
