@@ -75,6 +75,25 @@ static const Method METHODS[] = {
 #define NMETHODS ((int)(sizeof METHODS / sizeof METHODS[0]))
 #define RHO_INF 0.9 /* generalized-alpha (Lignum's default) */
 
+/* --methods: the comma-separated list of the methods to run (NULL: all) */
+static const char *method_list = NULL;
+
+/* Is the method named in the comma-separated list (NULL: all)? */
+static int MethodListed(const char *list, const char *name)
+{
+  const size_t n = strlen(name);
+  const char *p = list;
+  if (list == NULL) return 1;
+  while (*p != '\0') {
+    const char *end = strchr(p, ',');
+    const size_t len = end != NULL ? (size_t)(end - p) : strlen(p);
+    if (len == n && strncmp(p, name, n) == 0) return 1;
+    if (end == NULL) break;
+    p = end + 1;
+  }
+  return 0;
+}
+
 static const char *const PROBLEMS[] = {"andrews", "caraxis", "pendulum", "top", "chain"};
 #define NPROBLEMS ((int)(sizeof PROBLEMS / sizeof PROBLEMS[0]))
 
@@ -263,6 +282,7 @@ static void PrintTable(int k, Cell cells[][MAXTOLS], int ntol)
          "mescd", "steps", "rej", "LU", "CPU ms",
          strcmp(PROBLEMS[k], "pendulum") == 0 ? "  energy drift" : "");
   for (j = 0; j < NMETHODS; j++) {
+    if (!MethodListed(method_list, METHODS[j].name)) continue;
     for (i = 0; i < ntol; i++) {
       const Cell *c = &cells[j][i];
       if (!c->done) {
@@ -303,7 +323,7 @@ static void WritePlot(const char *prefix, int k, Cell cells[][MAXTOLS], int ntol
 {
   char png[4096], script[4200];
   FILE *fp;
-  int j, i, panel;
+  int j, i, panel, first;
   snprintf(png, sizeof png, "%s_%s.png", prefix, PROBLEMS[k]);
   fp = bench_gnuplot_open("suite", png, script, sizeof script);
   if (fp == NULL) return;
@@ -324,9 +344,12 @@ static void WritePlot(const char *prefix, int k, Cell cells[][MAXTOLS], int ntol
     fprintf(fp, "set xlabel '%s'\nset ylabel 'error'\n", panel == 0 ? "CPU time (ms)" : "tol");
     if (panel == 1) fprintf(fp, "set xrange [*:*] reverse\n");
     fprintf(fp, "plot ");
-    for (j = 0; j < NMETHODS; j++)
-      fprintf(fp, "%s$m%d using %d:3 with linespoints lw 2 title '%s'", j ? ", " : "", j,
+    for (j = 0, first = 1; j < NMETHODS; j++) {
+      if (!MethodListed(method_list, METHODS[j].name)) continue;
+      fprintf(fp, "%s$m%d using %d:3 with linespoints lw 2 title '%s'", first ? "" : ", ", j,
               panel == 0 ? 2 : 1, METHODS[j].name);
+      first = 0;
+    }
     if (panel == 1) fprintf(fp, ", x with lines dt 2 lc 'black' title 'error = tol'");
     fprintf(fp, "\n");
   }
@@ -340,11 +363,12 @@ static void Usage(const char *prog)
 {
   printf("usage: %s [--problems a,b,...] [--tol-max T] [--tol-min T] [--reps N]\n"
          "          [--budget SECONDS] [--csv FILE] [--png PREFIX | --no-png]\n"
-         "          [--expect-sundials debian|O2] [--verbose]\n"
+         "          [--methods \"IDA,BDF5 mN,...\"] [--expect-sundials debian|O2] [--verbose]\n"
          "  The standard multibody suite (bench/suite/README.md): problems andrews,\n"
          "  caraxis, pendulum, top, chain (default all); tol = tol-max, tol-max / 10,\n"
          "  ... tol-min (default 1e-3 ... 1e-12); CPU = best of N runs (default 3).\n"
-         "  --verbose: one line per run on stderr.\n",
+         "  --methods: only the methods named (IDA, BDF5, BDF5 mN, BDF4, BDF4 mN,\n"
+         "  gen-alpha, gen-alpha mN; default all). --verbose: one line per run on stderr.\n",
          prog);
 }
 
@@ -367,6 +391,7 @@ int main(int argc, char **argv)
     else if (strcmp(argv[i], "--csv") == 0 && i + 1 < argc) csv = argv[++i];
     else if (strcmp(argv[i], "--png") == 0 && i + 1 < argc) prefix = argv[++i];
     else if (strcmp(argv[i], "--no-png") == 0) prefix = NULL;
+    else if (strcmp(argv[i], "--methods") == 0 && i + 1 < argc) method_list = argv[++i];
     else if (strcmp(argv[i], "--verbose") == 0) verbose = 1;
     else if (strcmp(argv[i], "--expect-sundials") == 0 && i + 1 < argc) expect = argv[++i];
     else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
@@ -405,7 +430,7 @@ int main(int argc, char **argv)
   for (k = 0; k < NPROBLEMS; k++) {
     if (list != NULL && strstr(list, PROBLEMS[k]) == NULL) continue;
     for (j = 0; j < NMETHODS; j++) {
-      int over = 0;
+      int over = !MethodListed(method_list, METHODS[j].name);
       for (i = 0; i < ntol; i++) {
         Cell *c = &cells[j][i];
         c->tol = tols[i];

@@ -189,7 +189,9 @@ extern "C" {
 /** Modified Newton iteration: the factorised iteration matrix is reused over
  *  iterations and steps while the iteration contracts fast, as in IDA. It is
  *  rebuilt at the first iterate of a step when the step size differs by more
- *  than 10% from the one it was built with, after LGNSetLSetupFrequency steps,
+ *  than 10% from the one it was built with (Newmark family) or the leading
+ *  coefficient c0 lies outside 0.75 ... 1/0.75 times the one it was built
+ *  with (BDF, IDA's test), after LGNSetLSetupFrequency steps,
  *  or after a change of the model or method; within a step when the
  *  contraction rate exceeds 0.9; and a step whose iteration fails with a
  *  reused matrix is retried once with a fresh one. */

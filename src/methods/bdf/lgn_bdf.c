@@ -472,11 +472,12 @@ static void ProjectOrderEstimate(LGNMem mem, const LGNStepCoeffs *c)
  * noise (PositionNoise) makes of it, at least 0. */
 static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const sunrealtype *y1,
                              const sunrealtype *Y, sunrealtype s, sunrealtype noise,
-                             sunrealtype E[4])
+                             sunbooleantype next, sunrealtype E[4])
 {
   const sunindextype nv = mem->nv;
   const sunbooleantype project = ProjectsOrderEstimates(mem, k);
-  const int npts = SUNMIN(mem->bdf.nhist + 1, k + 3);
+  /* E_{k+1} needs one point more than E_{k-1} and E_k */
+  const int npts = SUNMIN(mem->bdf.nhist + 1, next ? k + 3 : k + 2);
   sunrealtype tt[LGN_BDF_MAXHIST + 1], *a = mem->bdf.dd;
   sunrealtype den[LGN_BDF_MAXHIST + 1][LGN_BDF_MAXHIST + 1];
   sunindextype i;
@@ -511,10 +512,11 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   for (o = 0; o < 4; o++) {
     const int ord = k - 2 + o; /* E_ord uses [P_0 .. P_{ord+1}] */
     sunrealtype prod = s, c0 = SUN_RCONST(0.0), fac;
-    /* projected: E_{k-2}, and E_{k+1} at maxord, are left out (no rule of
-     * this form reads them) */
-    if (ord < 1 || ord + 1 >= npts) continue;
-    if (project && (o == 0 || (o == 3 && k >= mem->bdf.maxord))) continue;
+    /* E_{k-2} is read by no rule, E_{k+1} only when the order may rise
+     * (next): neither is computed otherwise (each costs a norm, and when
+     * projected a solve per kind) */
+    if (ord < 1 || ord + 1 >= npts || o == 0 || (o == 3 && !next)) continue;
+    if (project && o == 3 && k >= mem->bdf.maxord) continue;
     for (j = 1; j <= ord; j++) {
       prod *= c->t1 - tt[j];
       c0 += SUN_RCONST(1.0) / (c->t1 - tt[j]);
@@ -544,17 +546,20 @@ static void OrderEstimatesOf(LGNMem mem, const LGNStepCoeffs *c, int k, const su
   }
 }
 
-/* E_{k-2} ... E_{k+1} of the error test's kind (projected or not,
- * ProjectsOrderEstimates): positions x in the chart of q_n and velocities
- * times h. The step's own estimate in mem->ec.ele is kept. */
-static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunrealtype E[4])
+/* E_{k-1}, E_k and (next: when a rule may raise the order) E_{k+1} of the
+ * error test's kind (projected or not, ProjectsOrderEstimates): positions x
+ * in the chart of q_n and velocities times h; E[0] (E_{k-2}), and E[3]
+ * unless next, stay -1. The step's own estimate in mem->ec.ele is kept. */
+static void OrderEstimates(LGNMem mem, const LGNStepCoeffs *c, int k, sunbooleantype next,
+                           sunrealtype E[4])
 {
   const size_t bytes = (size_t)mem->nv * sizeof(sunrealtype);
   E[0] = E[1] = E[2] = E[3] = -SUN_RCONST(1.0);
   memcpy(mem->bdf.ele_keep, mem->ec.ele, bytes);
-  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf.x, SUN_RCONST(1.0), SUN_RCONST(0.0), E);
+  OrderEstimatesOf(mem, c, k, mem->sigma, mem->bdf.x, SUN_RCONST(1.0), SUN_RCONST(0.0), next,
+                   E);
   OrderEstimatesOf(mem, c, k, lgnData(mem->v1), mem->bdf.v, c->h,
-                   PositionNoise(mem, c, mem->ec.ewt), E);
+                   PositionNoise(mem, c, mem->ec.ewt), next, E);
   memcpy(mem->ec.ele, mem->bdf.ele_keep, bytes);
 }
 
@@ -605,7 +610,10 @@ static sunrealtype SelectOrderFLC(LGNMem mem, const LGNStepCoeffs *c, int k, sun
 {
   sunrealtype E[4], Enew, scale;
   int knew = k;
-  OrderEstimates(mem, c, k, E);
+  /* E_{k+1} is read in the start-up and once the step has been taken k + 2
+   * times */
+  OrderEstimates(mem, c, k, k < mem->bdf.maxord && (mem->bdf.phase0 || mem->bdf.ns >= k + 2),
+                 E);
   /* from the unprojected estimates to the projected sigma measure */
   scale = E[2] > SUN_RCONST(0.0) ? err * mem->bdf.sigck / E[2] : mem->bdf.sigck;
   Enew  = err * mem->bdf.sigck;
@@ -660,7 +668,9 @@ static sunrealtype SelectOrder(LGNMem mem, const LGNStepCoeffs *c, int k, sunrea
   sunbooleantype may_raise;
   int knew = k;
   if (mem->bdf.form == LGN_BDF_FIXED_LEADING) return SelectOrderFLC(mem, c, k, err);
-  OrderEstimates(mem, c, k, E);
+  /* E_{k+1} is read in the start-up and after k + 1 steps at order k */
+  OrderEstimates(mem, c, k,
+                 k < mem->bdf.maxord && (mem->bdf.phase0 || mem->bdf.nsteps_order >= k + 1), E);
   /* E[1], E[3] compared with E[2], their own kind (unprojected, or
    * projected at index 3 with maxord 5 from order 4 on: OrderEstimates),
    * and carried over to err's measure (projected, with the
@@ -827,7 +837,7 @@ int lgnBDFAdaptiveStep(LGNMem mem, sunrealtype tout)
       }
       if (nef == 1) {
         const sunbooleantype flc = mem->bdf.form == LGN_BDF_FIXED_LEADING;
-        OrderEstimates(mem, &c, k, E);
+        OrderEstimates(mem, &c, k, SUNFALSE, E);
         if (flc) err *= mem->bdf.sigck; /* IDA: the step from sigma_k, not ck */
         if ((flc ? LowerOrderFLC(E, k) : LowerOrder(E, k)) && E[2] > SUN_RCONST(0.0)) {
           mem->bdf.order = k - 1;
