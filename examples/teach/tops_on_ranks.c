@@ -157,10 +157,10 @@ int main(int argc, char **argv)
            "rtol = atol = 1e-6\n\n", NTOPS);
     printf("%4s %16s %12s %9s\n", "t", "energy", "max |z|", "max |Phi|");
   }
-  if (!flag) flag = Report(comm, rank, &md, t, q, v, phi, K);
+  if (!flag) flag = Report(comm, rank, md, t, q, v, phi, K);
   for (k = 1; k <= 5 && !flag; k++) {
     flag = LGNSolve(mem, 0.1 * k, &t, q, v, LGN_NORMAL);
-    if (!flag) flag = Report(comm, rank, &md, t, q, v, phi, K);
+    if (!flag) flag = Report(comm, rank, md, t, q, v, phi, K);
   }
   if (flag && rank == 0) fprintf(stderr, "failed at t = %g (%d)\n", t, flag);
 

@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * Unit test of the body helpers (lignum_bodies.h):
  *  1. M, g, K_t and C_t against the hand-written callbacks of the example
- *     model bench/models/rigid_bodies.c (a separate formulation), on
+ *     model models/rigid_bodies.c (a separate formulation), on
  *     R^3 x SO(3) and SE(3), at random states;
  *  2. on R^3xSO(3) x SE(3) x R^3xSO(3) x SE(3) with full inertia tensors,
  *     for the bodies alone, the translational spring-dampers alone (body -
