@@ -3,9 +3,18 @@
 #
 #   lgn_add_rank_tests(<prefix> <target> <label>)
 #     <prefix>_np1 runs <target> without mpiexec (one rank), <prefix>_np2
-#     and <prefix>_np4 under mpiexec (when MPIEXEC_EXECUTABLE is found;
-#     np4 not in the sanitizer builds: see LGN_RANK_TEST_TIMEOUT);
-#     the properties of lgn_rank_test_properties.
+#     and <prefix>_np4 under mpiexec (when MPIEXEC_EXECUTABLE is found and
+#     the count is at most LGN_RANK_TEST_MAX_NP, below); the properties of
+#     lgn_rank_test_properties.
+#   LGN_RANK_TEST_MAX_NP (cache option): the largest number of ranks a test
+#     runs on: 1, 2 or 4. Default 4 on a machine with at least 4 logical
+#     cores, else 2, and 2 in the sanitizer builds. Ranks beyond the cores
+#     wait for each other's collectives through the scheduler, so their
+#     time is the machine's load, not their work: at load 19 on 2 cores
+#     mpi_ranks took 1.4 s on one rank, 102 s on two and 247 s on four
+#     (Release). The 4-rank runs test the same code paths as the 2-rank
+#     runs (a rank with neighbours on both sides needs 3); pass
+#     -DLGN_RANK_TEST_MAX_NP=4 to run them on a small machine.
 #   lgn_rank_test_properties(<label> <tests...>)
 #     Open MPI refuses to run as root unless told (the variables below
 #     allow it and change nothing for other users) and --oversubscribe lets
@@ -49,13 +58,28 @@ function(lgn_rank_test_properties label)
     ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1;OMPI_MCA_rmaps_base_oversubscribe=1;OMPI_MCA_mpi_yield_when_idle=1;ASAN_OPTIONS=detect_leaks=0")
 endfunction()
 
+cmake_host_system_information(RESULT _lgn_host_cores QUERY NUMBER_OF_LOGICAL_CORES)
+if(LGN_ENABLE_SANITIZERS OR LGN_ENABLE_TSAN OR _lgn_host_cores LESS 4)
+  set(_lgn_default_max_np 2)
+else()
+  set(_lgn_default_max_np 4)
+endif()
+set(LGN_RANK_TEST_MAX_NP ${_lgn_default_max_np} CACHE STRING
+  "Largest number of MPI ranks a test runs on (1, 2 or 4)")
+set_property(CACHE LGN_RANK_TEST_MAX_NP PROPERTY STRINGS 1 2 4)
+if(NOT LGN_RANK_TEST_MAX_NP MATCHES "^(1|2|4)$")
+  message(FATAL_ERROR "LGN_RANK_TEST_MAX_NP must be 1, 2 or 4 (got '${LGN_RANK_TEST_MAX_NP}')")
+endif()
+
 function(lgn_add_rank_tests prefix target label)
   add_test(NAME ${prefix}_np1 COMMAND ${target})
   set(_tests ${prefix}_np1)
-  set(_nps 2 4)
-  if(LGN_ENABLE_SANITIZERS OR LGN_ENABLE_TSAN)
-    set(_nps 2)
-  endif()
+  set(_nps)
+  foreach(_np 2 4)
+    if(NOT _np GREATER LGN_RANK_TEST_MAX_NP)
+      list(APPEND _nps ${_np})
+    endif()
+  endforeach()
   if(MPIEXEC_EXECUTABLE)
     foreach(_np ${_nps})
       add_test(NAME ${prefix}_np${_np}
