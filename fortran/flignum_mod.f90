@@ -107,6 +107,8 @@ module flignum_mod
   ! BDF form (LGNSetBDFForm)
   integer(c_int), parameter :: LGN_BDF_VARIABLE_COEFF = 160
   integer(c_int), parameter :: LGN_BDF_FIXED_LEADING = 161
+  ! the highest BDF order (LGNSetBDF, LGNGetNumStepsAtOrder)
+  integer(c_int), parameter :: LGN_BDF_MAX_ORDER = 5
 
   ! Newton variants
   integer(c_int), parameter :: LGN_NEWTON_FULL     = 110
@@ -1062,9 +1064,9 @@ module flignum_mod
     !> BDF: steps taken at each order, nsteps(k + 1) for order k = 1 ... 5.
     integer(c_int) function LGNGetNumStepsAtOrder(lgn_mem, nsteps) &
         bind(c, name="LGNGetNumStepsAtOrder")
-      import :: c_int, c_long, c_ptr
+      import :: c_int, c_long, c_ptr, LGN_BDF_MAX_ORDER
       type(c_ptr), value :: lgn_mem
-      integer(c_long), intent(out) :: nsteps(6)
+      integer(c_long), intent(out) :: nsteps(LGN_BDF_MAX_ORDER + 1)
     end function LGNGetNumStepsAtOrder
 
     !> Select the BDF family of variable order 1 ... maxord (maxord <= 5).

@@ -48,6 +48,7 @@ extern "C" {
 
 #define LGN_SUCCESS             0   /**< success                                  */
 #define LGN_TSTOP_RETURN        1   /**< LGNSolve stopped at the stop time         */
+#define LGN_ROOT_RETURN         2   /**< LGNSolve returned at a root of g (LGNRootInit) */
 
 /* solver failures -1 .. -19 */
 #define LGN_TOO_MUCH_WORK      -1   /**< max number of steps reached before tout  */
@@ -62,7 +63,33 @@ extern "C" {
 #define LGN_REPTD_CALLBACK_ERR -10  /**< a recoverable callback error persisted   */
 #define LGN_IC_FAIL            -11  /**< consistent initial values not computable */
 #define LGN_ERR_FAILURE        -12  /**< the error test failed repeatedly or at hmin */
+#define LGN_RTFUNC_FAIL        -13  /**< the root function failed                 */
+/** Return flag (in the solver-failure range): the first LGNSolve after
+ *  LGNInit / LGNReInit found the initial state off the constraint the step
+ *  enforces by more than 100 times the tolerance scale,
+ *    index 3: |Phi_i(q0)| > 100 (atol + rtol max(1, |q0|_inf)),
+ *    index 2: |(B(q0) v0)_i| > 100 (atol + rtol |v0|_inf),
+ *  with rtol, atol of LGNSStolerances (defaults 1e-8). The message names the
+ *  violation, the constraint and the tolerance; nothing was integrated.
+ *  (At index 3, B v0 = 0 is not checked: the method keeps it only to O(h^2)
+ *  itself, so a restart from a computed state would fail; LGNCalcIC
+ *  projects v0 too.) Not checked when vdot_0 and lambda_0 are given with
+ *  LGNSetInitialAcceleration: whoever continues a run with its own initial
+ *  values vouches for them (a restart then equals the continued run bit
+ *  for bit).
+ *  An error rather than a warning: the first step would otherwise project
+ *  the start silently, with a jump of the size of the violation in q or v
+ *  and a multiplier spike of order violation / h^2 (index 3). Call
+ *  LGNCalcIC to project the start explicitly. */
+#define LGN_INCONSISTENT_IC    -14
 #define LGN_STEP_TOO_SMALL     -15  /**< t + h == t, or h < 3e-103 (h^2 scaling) */
+/** Return flag (solver failure): a constraint left out as redundant
+ *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
+ *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
+ *  the redundancy was not consistent (the mechanism cannot satisfy all its
+ *  constraints), or B(q) gained rank since the rows were selected. The
+ *  message names the constraint and the violation. */
+#define LGN_REDUNDANT_INCONSISTENT -16
 
 /* usage errors -20 .. -29 */
 #define LGN_MEM_NULL           -20  /**< the memory argument is NULL              */
@@ -88,10 +115,15 @@ extern "C" {
 
 #define LGN_UNRECOGNIZED_ERR   -99  /**< unknown failure                          */
 
+/* not a return flag: the error_code a warning is delivered with to the
+ * error handler (LGNSetErrHandlerFn) */
+#define LGN_WARNING             99  /**< error_code of a warning to the handler   */
+
 /* =============================================================================
  * Other constants. Each setter has its own range of values (kinematics
  * 100-102, Newton 110-111, predictor 120-121, constraint index 130s,
- * LGNCalcIC 141-143, step control 150-151), so a constant given to the
+ * LGNCalcIC 141-143, step control 150-151, BDF forms 160-161,
+ * redundant constraints 170-171), so a constant given to the
  * wrong setter is refused with a message naming the right ones.
  * ===========================================================================*/
 
@@ -131,6 +163,10 @@ extern "C" {
  *  unstable at index 3 for rho_inf >~ 0.7 unless h |Omega| is small. */
 #define LGN_KINEMATICS_SIGMA      102
 
+/** The highest order of the BDF family (LGNSetBDF); LGNGetNumStepsAtOrder
+ *  fills LGN_BDF_MAX_ORDER + 1 counts. */
+#define LGN_BDF_MAX_ORDER 5
+
 /** BDF form (LGNSetBDFForm): variable coefficients, the derivative at
  *  t_{n+1} of the polynomial through t_{n+1} and the last k points. */
 #define LGN_BDF_VARIABLE_COEFF 160
@@ -158,6 +194,25 @@ extern "C" {
  *  contraction rate exceeds 0.9; and a step whose iteration fails with a
  *  reused matrix is retried once with a fresh one. */
 #define LGN_NEWTON_MODIFIED 111
+
+/** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
+#define LGN_IC_PROJECT_Q  141
+/** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
+#define LGN_IC_PROJECT_V  142
+/** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
+#define LGN_IC_PROJECT_QV 143
+
+/* Which outputs LGNSetProjectOutputs projects. */
+#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
+#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
+#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
+
+/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
+ *  has dependent rows on a maximal independent set of them (default). */
+#define LGN_REDUNDANT_ELIMINATE 170
+/** LGNSetRedundantConstraints: refuse a model with dependent constraint
+ *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
+#define LGN_REDUNDANT_REFUSE    171
 
 /* =============================================================================
  * User callbacks. Return 0 on success, > 0 for a recoverable failure, < 0 for
@@ -221,8 +276,24 @@ typedef void (*LGNErrHandlerFn)(int error_code, const char *module,
                                 const char *function, const char *msg,
                                 void *eh_data);
 
+/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
+ *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
+ *  needed): row i the derivative of contact i's gap along the group,
+ *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
+ *  of a point against a plane). Returns 0, or nonzero on failure. */
+typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
+                               void *user_data);
+
+/** Root functions g(t, q, v) whose zeros are events (impacts, switches):
+ *  write the nrtfn values g_i(t, q, v) into gout. q and v are scratch
+ *  vectors holding the solution at t (the dense output between steps);
+ *  do not keep them. Return 0 on success; any other value stops LGNSolve
+ *  with LGN_RTFUNC_FAIL. */
+typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
+                         sunrealtype *gout, void *user_data);
+
 /* =============================================================================
- * Lifecycle
+ * Create and initialise
  * ===========================================================================*/
 
 /** Create an integrator memory block.
@@ -255,28 +326,8 @@ LGN_EXPORT int LGNInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0);
 LGN_EXPORT int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0,
                          N_Vector v0);
 
-/** Advance the solution.
- *  @param lgn_mem memory block
- *  @param tout    the output time (LGN_NORMAL) or a direction hint (LGN_ONE_STEP)
- *  @param tret    on return, the time reached
- *  @param q       on return, the configuration at tret (length nq)
- *  @param v       on return, the velocity at tret (length nv)
- *  @param itask   LGN_NORMAL: steps until tout (fixed steps: of size h, the
- *                 last one shortened to land on tout; error control: past
- *                 tout, which is then interpolated, unless a stop time is
- *                 set); LGN_ONE_STEP: one step
- *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
- *          last accepted state (tret, q, v are that state), so it can continue
- *          after the cause has been fixed (e.g. a smaller step size). */
-LGN_EXPORT int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret,
-                        N_Vector q, N_Vector v, int itask);
-
-/** Free the memory block and everything Lignum allocated; sets *lgn_mem = NULL.
- *  Objects the user created (group, vectors, matrix, linear solver) are not freed. */
-LGN_EXPORT void LGNFree(void **lgn_mem);
-
 /* =============================================================================
- * Model description
+ * Settings: the model
  * ===========================================================================*/
 
 /** Set the Lie group (configuration space). Required before LGNInit.
@@ -348,7 +399,9 @@ LGN_EXPORT int LGNSetConstraintForceFn(void *lgn_mem, LGNConstrForceFn F);
 LGN_EXPORT int LGNSetMassConstant(void *lgn_mem, sunbooleantype constant);
 
 /* =============================================================================
- * Method and solver settings (zero restores a default where stated)
+ * Settings: the method and the solver (zero restores a default where stated)
+ * A setting of one method family is refused under the other (LGN_ILL_INPUT
+ * naming the setting); see LGNSetBDF.
  * ===========================================================================*/
 
 /** Fixed step size h > 0: required with LGN_STEP_FIXED (the default step
@@ -404,7 +457,11 @@ LGN_EXPORT int LGNSetBDF(void *lgn_mem, int maxord);
  * of 1e-13 (doc/theory.md). A change starts the BDF history anew.
  * @param lgn_mem the integrator memory
  * @param form    LGN_BDF_VARIABLE_COEFF or LGN_BDF_FIXED_LEADING
- * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form
+ * BDF family only: a form other than the default is refused
+ * (LGN_ILL_INPUT) under the Newmark family, and makes LGNSolve and
+ * LGNCalcIC refuse when the Newmark family is selected afterwards.
+ * @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another form or
+ *         under the Newmark family
  */
 LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 
@@ -424,14 +481,19 @@ LGN_EXPORT int LGNSetBDFForm(void *lgn_mem, int form);
 LGN_EXPORT int LGNSetConstraintIndex(void *lgn_mem, int index);
 
 /** Kinematic relations used in each step: LGN_KINEMATICS_SIMPLIFIED (default),
- *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants). */
+ *  LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA (see the constants).
+ *  Newmark family only: a value other than the default is refused
+ *  (LGN_ILL_INPUT) under the BDF family, and makes LGNSolve and LGNCalcIC
+ *  refuse when the BDF family is selected afterwards (LGNSetBDF). */
 LGN_EXPORT int LGNSetKinematics(void *lgn_mem, int kinematics);
 
 /** Newton predictor: LGN_PREDICTOR_ZERO (default) or LGN_PREDICTOR_EXTRAPOLATE.
  *  The converged solution does not depend on it (to the Newton tolerance),
  *  the number of Newton iterations does. Extrapolation saves about one
  *  iteration per step on damped methods but amplifies the parasitic
- *  multiplier oscillation of undamped index-3 Newmark (which then may fail). */
+ *  multiplier oscillation of undamped index-3 Newmark (which then may fail).
+ *  Newmark family only: LGN_PREDICTOR_EXTRAPOLATE is refused under BDF as
+ *  LGNSetKinematics is (BDF predicts with its own polynomial). */
 LGN_EXPORT int LGNSetPredictor(void *lgn_mem, int predictor);
 
 /** Newton stop test tolerances: stop when the WRMS norm of the increment
@@ -476,30 +538,400 @@ LGN_EXPORT int LGNSetErrHandlerFn(void *lgn_mem, LGNErrHandlerFn ehfun,
 /** Set the stream of the default error handler (NULL silences it). */
 LGN_EXPORT int LGNSetErrFile(void *lgn_mem, FILE *errfp);
 
+/** Whether a Newton iteration may stop with stalled multipliers (default
+ *  SUNTRUE). At index 3 the multipliers of a long or stiff mechanism are
+ *  determined only to about cond(A) eps |q| / (beta h^2), which can exceed
+ *  the tolerance: their corrections then stop contracting while the
+ *  configuration has converged. With SUNTRUE such an iteration is accepted
+ *  (counted by LGNGetNumNewtonStalls, printed by LGNPrintAllStats, and a
+ *  warning (LGN_WARNING) is given once when most steps of an LGNSolve call
+ *  were accepted that way); a stall is never taken for convergence unless
+ *  the configuration part of the correction has converged, from the third
+ *  iteration on, and the multiplier corrections have stopped contracting
+ *  (a diverging iteration fails). With SUNFALSE the iteration goes on
+ *  until the correction is within the tolerance on the multipliers too
+ *  (more iterations; a convergence failure if it cannot).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
+LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
+
 /* =============================================================================
- * Parameter maps (pure functions, no memory block)
+ * Settings: error control, stop time, outputs between steps
  * ===========================================================================*/
 
-/** Chung-Hulbert generalized-alpha parameters from rho_inf in [0, 1]:
- *  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
- *  gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4.
- *  @return LGN_SUCCESS, or LGN_ILL_INPUT if rho_inf is outside [0, 1] or
- *          an output pointer is NULL. */
-LGN_EXPORT int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
-                                     sunrealtype *alpha_f, sunrealtype *beta,
-                                     sunrealtype *gamma);
+/** Select the step size control: LGN_STEP_FIXED (default: the step of
+ *  LGNSetStepSize, the last step of LGN_NORMAL shortened to land on tout)
+ *  or LGN_STEP_ADAPTIVE (the local error of every step is estimated and
+ *  kept within the tolerances of LGNSStolerances / LGNSVtolerances; a step
+ *  that fails the error test, whose Newton iteration fails or whose
+ *  callback fails recoverably (> 0) is retried with a smaller h).
+ *  In the adaptive mode LGN_NORMAL steps past tout and interpolates there
+ *  (LGNGetDky), as IDA does; LGNSetStopTime lands on a time exactly.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another value. */
+LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
+
+/** Tolerances with a vector of absolute tolerances, one per velocity
+ *  component (length nv, > 0 each; in the units of the configuration's
+ *  increment: lengths, angles). With error control the error test of a step
+ *  is sqrt( (1/nv) sum_i (e_i / (atol_i + rtol |s_i|))^2 ) <= 1, with e the
+ *  local error estimate and s the step's increment in the Lie algebra;
+ *  the Newton iteration then converges to epcon (LGNSetNonlinConvCoef) times
+ *  these. In the fixed-step mode the Newton iteration uses rtol and the mean
+ *  of atol, as with LGNSStolerances. The vector is copied. With ghost
+ *  bodies (LGNSetHalo, set before this call) only the owned bodies'
+ *  entries are read and checked.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
+ *          LGN_ILL_INPUT (rtol < 0 or below the smallest normal number,
+ *          atol NULL, of the wrong length, or an entry not finite or
+ *          below the smallest normal number), LGN_MEM_FAIL. */
+LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
+
+/** The first step size of error control (0: estimated from the initial
+ *  acceleration, the default); at most |tout - t0| of the first LGNSolve
+ *  (as the estimate). Called after steps, it also sets the size of
+ *  the next step (0: estimated anew), e.g. to go on after a failure.
+ *  @return LGN_ILL_INPUT if h0 < 0 or not finite. */
+LGN_EXPORT int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
+
+/** The smallest step size error control may take (default 0).
+ *  @return LGN_ILL_INPUT if hmin < 0, not finite or above hmax. */
+LGN_EXPORT int LGNSetMinStep(void *lgn_mem, sunrealtype hmin);
+
+/** The largest step size error control may take (0: no limit, the default).
+ *  @return LGN_ILL_INPUT if hmax < 0, not finite or below hmin. */
+LGN_EXPORT int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax);
+
+/** Error-test failures allowed in one step before LGN_ERR_FAILURE
+ *  (0: the default 10). @return LGN_ILL_INPUT if maxnef < 0. */
+LGN_EXPORT int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef);
+
+/** Newton convergence failures (and recoverable callback failures) allowed
+ *  in one step before LGN_CONV_FAILURE (or LGN_REPTD_CALLBACK_ERR)
+ *  (0: the default 10). @return LGN_ILL_INPUT if maxncf < 0. */
+LGN_EXPORT int LGNSetMaxConvFails(void *lgn_mem, int maxncf);
+
+/** The ratio of the Newton iteration's tolerances to the error test's with
+ *  error control (0: the default 0.33, as IDA's epcon).
+ *  @return LGN_ILL_INPUT unless 0 <= epcon <= 1 (0: default). */
+LGN_EXPORT int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon);
+
+/** A time LGNSolve must not step past (with error control or fixed steps:
+ *  the step that would cross it is shortened): LGNSolve lands on it exactly
+ *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared. A stop
+ *  time behind t (after LGNReInit to a later t0) makes LGNSolve return
+ *  LGN_ILL_INPUT, the state unchanged.
+ *  @return LGN_ILL_INPUT if tstop is not finite or behind the current time. */
+LGN_EXPORT int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
+
+/** Forget the stop time. */
+LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
+
+/** Consistent outputs (default SUNTRUE): at every output of LGNSolve (step
+ *  end, stop time, event, interpolated tout) Lignum solves the index-1 form
+ *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g(q, v, t), -z(q, v, t)) at the
+ *  returned (t, q, v) - one factorisation of the saddle-point matrix per
+ *  output, shared with the projection - and LGNGetAcceleration,
+ *  LGNGetMultipliers and LGNGetDky(t, 2) return that vdot and lambda,
+ *  accurate to the tolerance in both method families and every constraint
+ *  form. SUNFALSE: they return the step's own vdot_{n+1}, lambda_{n+1} at the
+ *  current time (cheaper; the multipliers are outside every error test).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
+ *          SUNFALSE). */
+LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
+
+/** Outputs on the constraints: the q and v that LGNSolve and LGNGetDky
+ *  return are projected onto Phi(q, t) = 0 (Newton on the group,
+ *  minimum-norm steps in the metric of M, to roundoff) and then onto
+ *  B(q, t) v + Phi_t = 0, so that they satisfy the position and velocity
+ *  constraints to roundoff, at every index:
+ *  - LGN_PROJECT_ALL (default): every output, the step ends (stop time,
+ *    LGN_ONE_STEP, a fixed step landing on tout) too: at index 3 their
+ *    B v + Phi_t is not at roundoff, at index 2 their Phi drifts, and the
+ *    consistent multipliers (LGNSetConsistentOutputs) of an unprojected
+ *    index-3 step end carry that velocity error;
+ *  - LGN_PROJECT_INTERPOLATED: the outputs between steps (an interpolated
+ *    tout, an event); a step end is returned as the integrator's state;
+ *  - LGN_PROJECT_NONE: no projection: the interpolant's or the step's q, v.
+ *  Only the returned values are projected: the integrator goes on from its
+ *  own state, and the results at later times do not change (a restart from
+ *  the returned q, v, e.g. LGNReInit, starts from the projected values).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another which). */
+LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
+
+/** The multipliers in the error test (as IDA's IDASetSuppressAlg(FALSE);
+ *  default off): every error-controlled step also computes the consistent
+ *  multipliers lambda_c of the index-1 system at its new (t, q, v) and
+ *  accepts the step only when its own multipliers agree with them,
+ *  sqrt((1/m) sum_i ((lambda_i - lambda_c_i) / (atol_lambda + rtol
+ *  |lambda_c_i|))^2) <= 1, with the rtol of LGNSStolerances. The step's
+ *  own multipliers (LGNSetConsistentOutputs off) are then accurate to the
+ *  tolerance, at the price of smaller steps where they are not and of one
+ *  more factorisation of [[M, B^T], [B, 0]] per attempt. Not needed for
+ *  accurate outputs: the consistent outputs (default) give them at every
+ *  output. Fixed steps are not affected. Index 2 and GGL only: at index 3
+ *  the multipliers are determined only to Newton's tolerance ~ atol / h,
+ *  and LGNSolve refuses the setting (LGN_ILL_INPUT).
+ *  @param lgn_mem     the integrator memory (LGNCreate)
+ *  @param on          SUNTRUE or SUNFALSE
+ *  @param atol_lambda the multipliers' absolute tolerance, > 0, in their
+ *                     units (forces, torques); ignored when off
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not a boolean, or
+ *          atol_lambda not > 0 and finite while on). */
+LGN_EXPORT int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on,
+                                            sunrealtype atol_lambda);
 
 /* =============================================================================
- * Outputs
+ * Settings: redundant constraints
  * ===========================================================================*/
 
-/** The order of the next step (BDF; 2 for the Newmark family). */
-LGN_EXPORT int LGNGetCurrentOrder(void *lgn_mem, int *order);
-/** The order of the last step taken (BDF; 2 for the Newmark family). */
-LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
-/** BDF: the number of steps taken at each order, nsteps[k] for k = 1 ... 5
- *  (nsteps[0] = 0); six entries. */
-LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6]);
+/** What to do with redundant constraints: rows of B(q) that depend on the
+ *  others, as in Bricard's mechanism or a planar four-bar built in space
+ *  from revolute joints.
+ *  - LGN_REDUNDANT_ELIMINATE (default): at the start (the first LGNSolve or
+ *    LGNCalcIC after LGNInit / LGNReInit or a change of the model) a
+ *    rank-revealing QR factorisation of B(q0)^T (column pivoting: LAPACK for
+ *    a dense B, SuiteSparseQR for a sparse one with KLU builds) selects a
+ *    maximal independent set of rows; the integrator uses those only. A
+ *    warning (LGN_WARNING, once per selection) names the rows left out, and
+ *    LGNGetRedundantConstraints lists them. After every step (and at the
+ *    start) the rows left out are checked: if one is violated,
+ *    LGNSolve returns LGN_REDUNDANT_INCONSISTENT. The multipliers of the
+ *    rows left out are 0 (LGNGetMultipliers): the kept rows carry the whole
+ *    constraint force B^T lambda, which the dynamics determines; its split
+ *    among dependent rows does not follow from rigid-body mechanics.
+ *    Not across MPI ranks (every row is kept there), nor for a dense B of
+ *    more than 4e6 entries. The user's dense or KLU solver, created for all
+ *    rows, is replaced by one of its kind for the kept rows.
+ *  - LGN_REDUNDANT_REFUSE: every row is used; dependent rows make the
+ *    matrix singular, and the start fails with LGN_IC_FAIL, naming them.
+ *  Takes effect at the next start (LGNInit / LGNReInit, LGNCalcIC).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another mode). */
+LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
+
+/* =============================================================================
+ * Settings: consistent initial values
+ * ===========================================================================*/
+
+/** Perturbed starting values (Arnold, Brüls and Cardona): at the first step
+ *  of size h after the initial values, vddot_0 from a central difference of
+ *  the consistent accelerations at q0 o exp(h(+-v0 + h vdot_0/2)),
+ *  v0 +- h vdot_0, then a_0 = vdot_0 + (alpha_m - alpha_f) h vddot_0 and, at
+ *  index 3, v0 += dv (an O(h^2) shift normal to the constraints, the
+ *  offset of the smooth numerical solution) with
+ *  [[M, B^T], [B, 0]] (dv, mu) = (0, B(q0) l),
+ *  l = h^2 [ (1/6 - (alpha_m - alpha_f)/2 - beta) vddot_0 + [v0, vdot_0]/12 ].
+ *  This removes the initial transient of vdot and lambda: their maximum
+ *  error over time becomes second order instead of first (measured on the
+ *  heavy top, doc/user-guide.md). Costs two extra evaluations of the
+ *  saddle-point system at the start.
+ *  Default: off. With fixed steps the results then stay those of earlier
+ *  versions bit for bit; with error control (LGN_STEP_ADAPTIVE; h is then
+ *  the first step size tried) it measured no consistent gain, since the
+ *  transients of the growing step sizes dominate the multipliers' error
+ *  there (doc/user-guide.md). Takes effect at the next start (before the
+ *  first step after LGNInit, LGNReInit or LGNCalcIC).
+ *  @param lgn_mem memory block
+ *  @param on SUNTRUE or SUNFALSE
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
+LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);
+
+/* =============================================================================
+ * Settings: events (root finding)
+ * ===========================================================================*/
+
+/** Root finding on nrtfn functions g (as IDARootInit). After every
+ *  accepted step (fixed or adaptive, LGN_NORMAL or LGN_ONE_STEP) LGNSolve
+ *  evaluates g at its end and looks for sign changes against the last point
+ *  checked; the earliest root is located on the dense output (LGNGetDky) by
+ *  the Illinois method to 100 eps (|t| + |h|) and LGNSolve returns
+ *  LGN_ROOT_RETURN there, with tret the root and q, v interpolated at it
+ *  (the integrator's own state stays at the step's end; the next LGNSolve
+ *  continues from there and first looks at the rest of the step, so close
+ *  roots come one by one, in order, each once). Which g_i have a root:
+ *  LGNGetRootInfo. A g_i exactly 0 at the start or at a root is ignored
+ *  until it moves away from 0, so no root is reported twice. With
+ *  LGN_NORMAL no root beyond tout is reported before tout.
+ *  Root finding starts at the next LGNSolve, with g evaluated at the
+ *  current time; LGNReInit (e.g. a velocity reversed at an impact) restarts
+ *  it from the new state. Must be called after LGNInit (the scratch vectors
+ *  are cloned from the state); it survives LGNInit and LGNReInit. Directions are reset
+ *  to 0 (both). nrtfn = 0 turns root finding off. Across MPI ranks g is
+ *  the sum of the ranks' returns: each rank returns its bodies' part (with
+ *  ghost bodies, nothing for a ghost, which its owner counts).
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
+ *          LGN_ILL_INPUT (nrtfn < 0, or g NULL with nrtfn > 0),
+ *          LGN_MEM_FAIL. */
+LGN_EXPORT int LGNRootInit(void *lgn_mem, int nrtfn, LGNRootFn g);
+
+/** Which sign changes count, per root function: rootdir[i] = +1 only
+ *  increasing g_i (from - to +), -1 only decreasing, 0 both (the default).
+ *  The nrtfn values are copied.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (root finding not initialised, rootdir NULL, or an entry not
+ *          -1, 0 or +1). */
+LGN_EXPORT int LGNSetRootDirection(void *lgn_mem, int *rootdir);
+
+/** No warning when a g_i is exactly 0 at the start of root finding and
+ *  still at the end of the first step (it stays ignored until it moves
+ *  away from 0). The warning goes to the error handler with LGN_WARNING. */
+LGN_EXPORT int LGNSetNoInactiveRootWarn(void *lgn_mem);
+
+/* =============================================================================
+ * Solve: consistent initial values, the time loop, output between
+ * steps, impacts
+ * ===========================================================================*/
+
+/** Make the initial state consistent, like IDACalcIC: project the state at
+ *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
+ *  then compute the consistent vdot_0, lambda_0 (and a_0 = vdot_0) from
+ *  [[M, B^T], [B, 0]] (vdot_0, lambda_0) = (-g, -Z(q0)(v0, v0)), as the first
+ *  LGNSolve would (values given with LGNSetInitialAcceleration /
+ *  LGNSetInitialAux are kept).
+ *  - LGN_IC_PROJECT_Q: Newton on the group, q <- q o exp(dq) with the
+ *    correction of least M-norm, [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
+ *    until |Phi(q)|_inf is at roundoff level (100 eps max(1, |q|_inf)), or
+ *    no longer decreases and is below a hundredth of the tolerance of the
+ *    check (LGN_INCONSISTENT_IC); at most 20 iterations.
+ *  - LGN_IC_PROJECT_V: the M-orthogonal projection, v <- v + dv with
+ *    [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v).
+ *  - LGN_IC_PROJECT_QV: both, q first.
+ *  Useful at both constraint indices (at index 2 the method enforces only
+ *  B v = 0, but a q0 off Phi = 0 stays off). Needs the model callbacks and
+ *  the linear solver (dense or KLU), as LGNSolve does. The result is the
+ *  state LGNSolve starts from (and returns for tout = t0); read it with
+ *  LGNGetConsistentIC.
+ *  @param lgn_mem memory block
+ *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
+ *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
+ *          did not converge or the saddle-point matrix is singular; the
+ *          message gives |Phi|), a callback's failure flag. On failure q0
+ *          and v0 are left as they were. Only before the first step after
+ *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
+LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
+
+/** Advance the solution.
+ *  @param lgn_mem memory block
+ *  @param tout    the output time (LGN_NORMAL) or a direction hint (LGN_ONE_STEP)
+ *  @param tret    on return, the time reached
+ *  @param q       on return, the configuration at tret (length nq)
+ *  @param v       on return, the velocity at tret (length nv)
+ *  @param itask   LGN_NORMAL: steps until tout (fixed steps: of size h, the
+ *                 last one shortened to land on tout; error control: past
+ *                 tout, which is then interpolated, unless a stop time is
+ *                 set); LGN_ONE_STEP: one step
+ *  @return LGN_SUCCESS or a negative flag. On failure the integrator keeps the
+ *          last accepted state (tret, q, v are that state), so it can continue
+ *          after the cause has been fixed (e.g. a smaller step size). */
+LGN_EXPORT int LGNSolve(void *lgn_mem, sunrealtype tout, sunrealtype *tret,
+                        N_Vector q, N_Vector v, int itask);
+
+/** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
+ *  the last step [t_n, t_{n+1}], from the dense output on the group: a
+ *  cubic Hermite interpolant in the chart of the step (BDF: its own
+ *  polynomials), matching q and v at both ends, of the order of the
+ *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
+ *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
+ *  consistent outputs (the default) vdot is the index-1 acceleration at
+ *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
+ *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
+ *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
+ *  not changed.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
+ *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
+ *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
+ *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
+ *          system at t singular, or the projection not converging). */
+LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
+
+/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
+ *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
+ *  contact rows
+ *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
+ *  e in [0, 1] (Newton's law at every contact), the velocity after the
+ *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
+ *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
+ *    G v+ = -e G v-
+ *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
+ *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
+ *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
+ *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
+ *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
+ *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
+ *  multipliers' sign
+ *  convention: a contact that pushes the bodies apart (its gap growing
+ *  along its row) has P < 0; one with P > 0 would have to pull, and a
+ *  unilateral contact should be released (solve again without it).
+ *  Nothing changes on failure.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
+ *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
+ *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
+ *  is singular: contacts dependent on each other or on the constraints),
+ *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
+LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
+                              sunrealtype e, N_Vector v, N_Vector P);
+
+/* =============================================================================
+ * Restart files (doc/restart-format.md)
+ * ===========================================================================*/
+
+/** Write the integrator's state at the current time to a restart file, so
+ *  that another integrator (or this one) can continue the run with
+ *  LGNReadRestart and take the same steps bit for bit: the state q, v,
+ *  vdot, a, lambda, the last step (dense output, GetDky), the Newmark
+ *  family's increments, predictor and error control, the BDF history,
+ *  order and controller, the perturbed start, root finding (the last g
+ *  values), the stop time and all counters; and the settings that decide
+ *  the steps, which LGNReadRestart compares. The format is versioned and
+ *  documented (doc/restart-format.md): header with magic, version, byte
+ *  order, type sizes, the model's sizes and the group's signature,
+ *  named entries, and a CRC-32 of the whole. The file is written to
+ *  filename.tmp and renamed, so a run stopped while writing leaves a
+ *  previous file whole. Across MPI ranks (a collective call) each rank
+ *  writes its own part: give each rank its own filename (e.g. with its
+ *  rank in it); the files are read on as many ranks. The user's own state
+ *  (callbacks' user data, e.g. a counter of impacts) is not in the file:
+ *  save it next to it.
+ *  Only after the first LGNSolve (before it, the state is q0, v0).
+ *  @param lgn_mem memory block
+ *  @param filename the file (overwritten)
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (filename NULL or empty, no step taken, or constraint rows
+ *          left out as redundant: not supported), LGN_MEM_FAIL,
+ *          LGN_IO_FAIL (the file could not be written). */
+LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
+
+/** Read a restart file of LGNWriteRestart into an integrator made as the
+ *  one that wrote it: LGNCreate, the same group, model callbacks, user
+ *  data, linear solver, root functions and settings, LGNInit (with any q0,
+ *  v0 of the right sizes), then LGNReadRestart and LGNSolve as before.
+ *  The run then continues as the uninterrupted one, bit for bit (with
+ *  modified Newton, LGN_NEWTON_MODIFIED, the factorised matrix is not in
+ *  the file: the first step sets one up, and the steps then differ at the
+ *  level of the Newton tolerance).
+ *  The settings that decide the steps (method and its parameters,
+ *  kinematics, constraint index, step control, step size, tolerances,
+ *  Newton's settings, limits, predictor, perturbed start, root directions,
+ *  the kind of linear solver) are not restored: they must equal the
+ *  file's and are compared, a difference refused with LGN_RESTART_MISMATCH
+ *  naming the setting. What is restored is the state (LGNWriteRestart);
+ *  the stop time is part of it.
+ *  A file that is not a restart file, of another format version, byte
+ *  order or type sizes, truncated or corrupt (CRC-32) is refused with
+ *  LGN_RESTART_BAD_FILE; a file of another problem (sizes, group, number
+ *  of root functions, rank or number of ranks, settings) with
+ *  LGN_RESTART_MISMATCH. A refused file leaves the state and every output
+ *  as they were. Across MPI ranks a collective call: each rank reads its
+ *  own file, and a refusal on one rank is returned on all.
+ *  @param lgn_mem memory block (after LGNInit)
+ *  @param filename the file
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
+ *          (filename NULL or empty), LGN_MEM_FAIL, LGN_IO_FAIL,
+ *          LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH. */
+LGN_EXPORT int LGNReadRestart(void *lgn_mem, const char *filename);
+
+/* =============================================================================
+ * Getters: the solution and the statistics
+ * ===========================================================================*/
 
 /** Acceleration vdot (length nv) at the last output of LGNSolve (its
  *  tret, whether a step end, a stop time, an event or an interpolated
@@ -574,152 +1006,21 @@ LGN_EXPORT int LGNPrintAllStats(void *lgn_mem, FILE *outfile,
 LGN_EXPORT const char *LGNGetReturnFlagName(long int flag);
 
 /* =============================================================================
- * Error control: adaptive steps, stop time, output between steps
+ * Getters: the BDF family
  * ===========================================================================*/
 
-/** Select the step size control: LGN_STEP_FIXED (default: the step of
- *  LGNSetStepSize, the last step of LGN_NORMAL shortened to land on tout)
- *  or LGN_STEP_ADAPTIVE (the local error of every step is estimated and
- *  kept within the tolerances of LGNSStolerances / LGNSVtolerances; a step
- *  that fails the error test, whose Newton iteration fails or whose
- *  callback fails recoverably (> 0) is retried with a smaller h).
- *  In the adaptive mode LGN_NORMAL steps past tout and interpolates there
- *  (LGNGetDky), as IDA does; LGNSetStopTime lands on a time exactly.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, or LGN_ILL_INPUT for another value. */
-LGN_EXPORT int LGNSetStepControl(void *lgn_mem, int control);
+/** The order of the next step (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetCurrentOrder(void *lgn_mem, int *order);
+/** The order of the last step taken (BDF; 2 for the Newmark family). */
+LGN_EXPORT int LGNGetLastOrder(void *lgn_mem, int *order);
+/** BDF: the number of steps taken at each order, nsteps[k] for k = 1 ... 5
+ *  (nsteps[0] = 0); LGN_BDF_MAX_ORDER + 1 entries. */
+LGN_EXPORT int LGNGetNumStepsAtOrder(void *lgn_mem,
+                                      long int nsteps[LGN_BDF_MAX_ORDER + 1]);
 
-/** Tolerances with a vector of absolute tolerances, one per velocity
- *  component (length nv, > 0 each; in the units of the configuration's
- *  increment: lengths, angles). With error control the error test of a step
- *  is sqrt( (1/nv) sum_i (e_i / (atol_i + rtol |s_i|))^2 ) <= 1, with e the
- *  local error estimate and s the step's increment in the Lie algebra;
- *  the Newton iteration then converges to epcon (LGNSetNonlinConvCoef) times
- *  these. In the fixed-step mode the Newton iteration uses rtol and the mean
- *  of atol, as with LGNSStolerances. The vector is copied. With ghost
- *  bodies (LGNSetHalo, set before this call) only the owned bodies'
- *  entries are read and checked.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
- *          LGN_ILL_INPUT (rtol < 0 or below the smallest normal number,
- *          atol NULL, of the wrong length, or an entry not finite or
- *          below the smallest normal number), LGN_MEM_FAIL. */
-LGN_EXPORT int LGNSVtolerances(void *lgn_mem, sunrealtype rtol, N_Vector atol);
-
-/** The first step size of error control (0: estimated from the initial
- *  acceleration, the default); at most |tout - t0| of the first LGNSolve
- *  (as the estimate). Called after steps, it also sets the size of
- *  the next step (0: estimated anew), e.g. to go on after a failure.
- *  @return LGN_ILL_INPUT if h0 < 0 or not finite. */
-LGN_EXPORT int LGNSetInitStep(void *lgn_mem, sunrealtype h0);
-
-/** The smallest step size error control may take (default 0).
- *  @return LGN_ILL_INPUT if hmin < 0, not finite or above hmax. */
-LGN_EXPORT int LGNSetMinStep(void *lgn_mem, sunrealtype hmin);
-
-/** The largest step size error control may take (0: no limit, the default).
- *  @return LGN_ILL_INPUT if hmax < 0, not finite or below hmin. */
-LGN_EXPORT int LGNSetMaxStep(void *lgn_mem, sunrealtype hmax);
-
-/** Error-test failures allowed in one step before LGN_ERR_FAILURE
- *  (0: the default 10). @return LGN_ILL_INPUT if maxnef < 0. */
-LGN_EXPORT int LGNSetMaxErrTestFails(void *lgn_mem, int maxnef);
-
-/** Newton convergence failures (and recoverable callback failures) allowed
- *  in one step before LGN_CONV_FAILURE (or LGN_REPTD_CALLBACK_ERR)
- *  (0: the default 10). @return LGN_ILL_INPUT if maxncf < 0. */
-LGN_EXPORT int LGNSetMaxConvFails(void *lgn_mem, int maxncf);
-
-/** The ratio of the Newton iteration's tolerances to the error test's with
- *  error control (0: the default 0.33, as IDA's epcon).
- *  @return LGN_ILL_INPUT unless 0 <= epcon <= 1 (0: default). */
-LGN_EXPORT int LGNSetNonlinConvCoef(void *lgn_mem, sunrealtype epcon);
-
-/** A time LGNSolve must not step past (with error control or fixed steps:
- *  the step that would cross it is shortened): LGNSolve lands on it exactly
- *  and returns LGN_TSTOP_RETURN there; the stop time is then cleared. A stop
- *  time behind t (after LGNReInit to a later t0) makes LGNSolve return
- *  LGN_ILL_INPUT, the state unchanged.
- *  @return LGN_ILL_INPUT if tstop is not finite or behind the current time. */
-LGN_EXPORT int LGNSetStopTime(void *lgn_mem, sunrealtype tstop);
-
-/** Forget the stop time. */
-LGN_EXPORT int LGNClearStopTime(void *lgn_mem);
-
-/** q (k = 0, length nq), v (k = 1) or vdot (k = 2, length nv) at any t of
- *  the last step [t_n, t_{n+1}], from the dense output on the group: a
- *  cubic Hermite interpolant in the chart of the step (BDF: its own
- *  polynomials), matching q and v at both ends, of the order of the
- *  method. As LGNSolve's outputs: projected onto Phi(q, t) = 0 and
- *  B v + Phi_t = 0 between steps (LGNSetProjectOutputs); with
- *  consistent outputs (the default) vdot is the index-1 acceleration at
- *  that (t, q, v), so LGNGetDky at a returned tret gives what LGNSolve and
- *  LGNGetAcceleration gave (without: the interpolant's vdot, first order).
- *  The last output's values of LGNGetAcceleration / LGNGetMultipliers are
- *  not changed.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_BAD_T (t outside
- *          the last step, or no step taken yet), LGN_BAD_K, LGN_ILL_INPUT
- *          (dky NULL or of the wrong length), LGN_GROUP_FAIL, and the flags
- *          of the model's callbacks and of LGN_IC_FAIL (the saddle-point
- *          system at t singular, or the projection not converging). */
-LGN_EXPORT int LGNGetDky(void *lgn_mem, sunrealtype t, int k, N_Vector dky);
-
-/** Consistent outputs (default SUNTRUE): at every output of LGNSolve (step
- *  end, stop time, event, interpolated tout) Lignum solves the index-1 form
- *  [[M, B^T], [B, 0]] (vdot, lambda) = (-g(q, v, t), -z(q, v, t)) at the
- *  returned (t, q, v) - one factorisation of the saddle-point matrix per
- *  output, shared with the projection - and LGNGetAcceleration,
- *  LGNGetMultipliers and LGNGetDky(t, 2) return that vdot and lambda,
- *  accurate to the tolerance in both method families and every constraint
- *  form. SUNFALSE: they return the step's own vdot_{n+1}, lambda_{n+1} at the
- *  current time (cheaper; the multipliers are outside every error test).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not SUNTRUE or
- *          SUNFALSE). */
-LGN_EXPORT int LGNSetConsistentOutputs(void *lgn_mem, sunbooleantype on);
-
-/* Which outputs LGNSetProjectOutputs projects. */
-#define LGN_PROJECT_NONE         0 /**< none: the interpolant or the step as it is */
-#define LGN_PROJECT_INTERPOLATED 1 /**< the interpolated ones (between steps)      */
-#define LGN_PROJECT_ALL          2 /**< all, the step ends too (default)          */
-
-/** Outputs on the constraints: the q and v that LGNSolve and LGNGetDky
- *  return are projected onto Phi(q, t) = 0 (Newton on the group,
- *  minimum-norm steps in the metric of M, to roundoff) and then onto
- *  B(q, t) v + Phi_t = 0, so that they satisfy the position and velocity
- *  constraints to roundoff, at every index:
- *  - LGN_PROJECT_ALL (default): every output, the step ends (stop time,
- *    LGN_ONE_STEP, a fixed step landing on tout) too: at index 3 their
- *    B v + Phi_t is not at roundoff, at index 2 their Phi drifts, and the
- *    consistent multipliers (LGNSetConsistentOutputs) of an unprojected
- *    index-3 step end carry that velocity error;
- *  - LGN_PROJECT_INTERPOLATED: the outputs between steps (an interpolated
- *    tout, an event); a step end is returned as the integrator's state;
- *  - LGN_PROJECT_NONE: no projection: the interpolant's or the step's q, v.
- *  Only the returned values are projected: the integrator goes on from its
- *  own state, and the results at later times do not change (a restart from
- *  the returned q, v, e.g. LGNReInit, starts from the projected values).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another which). */
-LGN_EXPORT int LGNSetProjectOutputs(void *lgn_mem, int which);
-
-/** The multipliers in the error test (as IDA's IDASetSuppressAlg(FALSE);
- *  default off): every error-controlled step also computes the consistent
- *  multipliers lambda_c of the index-1 system at its new (t, q, v) and
- *  accepts the step only when its own multipliers agree with them,
- *  sqrt((1/m) sum_i ((lambda_i - lambda_c_i) / (atol_lambda + rtol
- *  |lambda_c_i|))^2) <= 1, with the rtol of LGNSStolerances. The step's
- *  own multipliers (LGNSetConsistentOutputs off) are then accurate to the
- *  tolerance, at the price of smaller steps where they are not and of one
- *  more factorisation of [[M, B^T], [B, 0]] per attempt. Not needed for
- *  accurate outputs: the consistent outputs (default) give them at every
- *  output. Fixed steps are not affected. Index 2 and GGL only: at index 3
- *  the multipliers are determined only to Newton's tolerance ~ atol / h,
- *  and LGNSolve refuses the setting (LGN_ILL_INPUT).
- *  @param lgn_mem     the integrator memory (LGNCreate)
- *  @param on          SUNTRUE or SUNFALSE
- *  @param atol_lambda the multipliers' absolute tolerance, > 0, in their
- *                     units (forces, torques); ignored when off
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on not a boolean, or
- *          atol_lambda not > 0 and finite while on). */
-LGN_EXPORT int LGNSetMultiplierErrorControl(void *lgn_mem, sunbooleantype on,
-                                            sunrealtype atol_lambda);
+/* =============================================================================
+ * Getters: error control and outputs
+ * ===========================================================================*/
 
 /** The number of outputs made consistent or projected (LGNSolve's and
  *  LGNGetDky's), each one or more factorisations of the saddle-point
@@ -741,7 +1042,18 @@ LGN_EXPORT int LGNGetErrWeights(void *lgn_mem, N_Vector eweight);
 LGN_EXPORT int LGNGetLastErrNorm(void *lgn_mem, sunrealtype *errnorm);
 
 /* =============================================================================
- * Diagnostics of singular mechanisms
+ * Getters: consistent initial values
+ * ===========================================================================*/
+
+/** The initial state as LGNCalcIC corrected it (or as given, without
+ *  LGNCalcIC): q0 (length nq) and v0 (length nv); either may be NULL.
+ *  Only before the first step after LGNInit / LGNReInit.
+ *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (a vector
+ *          of the wrong length, both NULL, or a step already taken). */
+LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
+
+/* =============================================================================
+ * Getters: diagnostics of singular mechanisms
  * ===========================================================================*/
 
 /** After LGN_LSETUP_FAIL or LGN_IC_FAIL with a singular matrix: the
@@ -767,228 +1079,8 @@ LGN_EXPORT int LGNGetRedundantConstraints(void *lgn_mem, sunindextype *nred,
 LGN_EXPORT int LGNGetZeroPivot(void *lgn_mem, sunindextype *unknown);
 
 /* =============================================================================
- * Consistent initial values
+ * Getters: events
  * ===========================================================================*/
-
-/** Return flag (in the solver-failure range): the first LGNSolve after
- *  LGNInit / LGNReInit found the initial state off the constraint the step
- *  enforces by more than 100 times the tolerance scale,
- *    index 3: |Phi_i(q0)| > 100 (atol + rtol max(1, |q0|_inf)),
- *    index 2: |(B(q0) v0)_i| > 100 (atol + rtol |v0|_inf),
- *  with rtol, atol of LGNSStolerances (defaults 1e-8). The message names the
- *  violation, the constraint and the tolerance; nothing was integrated.
- *  (At index 3, B v0 = 0 is not checked: the method keeps it only to O(h^2)
- *  itself, so a restart from a computed state would fail; LGNCalcIC
- *  projects v0 too.) Not checked when vdot_0 and lambda_0 are given with
- *  LGNSetInitialAcceleration: whoever continues a run with its own initial
- *  values vouches for them (a restart then equals the continued run bit
- *  for bit).
- *  An error rather than a warning: the first step would otherwise project
- *  the start silently, with a jump of the size of the violation in q or v
- *  and a multiplier spike of order violation / h^2 (index 3). Call
- *  LGNCalcIC to project the start explicitly. */
-#define LGN_INCONSISTENT_IC    -14
-
-/* =============================================================================
- * Redundant constraints
- * ===========================================================================*/
-
-/** Return flag (solver failure): a constraint left out as redundant
- *  (LGN_REDUNDANT_ELIMINATE) is violated after a step or at the start by
- *  more than 100 max(|Phi| of the kept rows, atol + rtol max(1, |q|_inf)):
- *  the redundancy was not consistent (the mechanism cannot satisfy all its
- *  constraints), or B(q) gained rank since the rows were selected. The
- *  message names the constraint and the violation. */
-#define LGN_REDUNDANT_INCONSISTENT -16
-
-/** LGNSetRedundantConstraints: run a model whose constraint Jacobian B(q)
- *  has dependent rows on a maximal independent set of them (default). */
-#define LGN_REDUNDANT_ELIMINATE 170
-/** LGNSetRedundantConstraints: refuse a model with dependent constraint
- *  rows (a singular matrix, LGN_IC_FAIL, naming the rows). */
-#define LGN_REDUNDANT_REFUSE    171
-
-/** What to do with redundant constraints: rows of B(q) that depend on the
- *  others, as in Bricard's mechanism or a planar four-bar built in space
- *  from revolute joints.
- *  - LGN_REDUNDANT_ELIMINATE (default): at the start (the first LGNSolve or
- *    LGNCalcIC after LGNInit / LGNReInit or a change of the model) a
- *    rank-revealing QR factorisation of B(q0)^T (column pivoting: LAPACK for
- *    a dense B, SuiteSparseQR for a sparse one with KLU builds) selects a
- *    maximal independent set of rows; the integrator uses those only. A
- *    warning (LGN_WARNING, once per selection) names the rows left out, and
- *    LGNGetRedundantConstraints lists them. After every step (and at the
- *    start) the rows left out are checked: if one is violated,
- *    LGNSolve returns LGN_REDUNDANT_INCONSISTENT. The multipliers of the
- *    rows left out are 0 (LGNGetMultipliers): the kept rows carry the whole
- *    constraint force B^T lambda, which the dynamics determines; its split
- *    among dependent rows does not follow from rigid-body mechanics.
- *    Not across MPI ranks (every row is kept there), nor for a dense B of
- *    more than 4e6 entries. The user's dense or KLU solver, created for all
- *    rows, is replaced by one of its kind for the kept rows.
- *  - LGN_REDUNDANT_REFUSE: every row is used; dependent rows make the
- *    matrix singular, and the start fails with LGN_IC_FAIL, naming them.
- *  Takes effect at the next start (LGNInit / LGNReInit, LGNCalcIC).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (another mode). */
-LGN_EXPORT int LGNSetRedundantConstraints(void *lgn_mem, int mode);
-
-/* =============================================================================
- * Impacts
- * ===========================================================================*/
-
-/** Contact rows: G(q), nc x nv, of the type of the model's matrices (dense,
- *  or sparse CSC/CSR as A; a sparse G is empty on entry, reallocate it if
- *  needed): row i the derivative of contact i's gap along the group,
- *  G w = d/de gap(q o exp(e w)) (LGNJoints_PointPlaneContact gives the row
- *  of a point against a plane). Returns 0, or nonzero on failure. */
-typedef int (*LGNContactJacFn)(sunrealtype t, N_Vector q, SUNMatrix G,
-                               void *user_data);
-
-/** Apply an impact at the current state (t_n, q_n, v_n = v-) (at a root of
- *  LGNSolve, first LGNReInit(mem, t, q, v) with the root's state): with the
- *  contact rows
- *  G(q_n) (nc of them, all closing at once) and the restitution coefficient
- *  e in [0, 1] (Newton's law at every contact), the velocity after the
- *  impact v+ and the impulses Lambda (constraints) and P (contacts) solve
- *    M (v+ - v-) + B^T Lambda + G^T P = 0,  B v+ + Phi_t = 0,
- *    G v+ = -e G v-
- *  (M, B, Phi_t at (t_n, q_n); B's kept rows when rows are left out as
- *  redundant). Dense models are solved with LAPACK, sparse ones with KLU.
- *  The integrator then restarts from (t_n, q_n, v+) as after LGNReInit
- *  (counters kept). e = 1 keeps the kinetic energy of scleronomic
- *  constraints, e = 0 loses (v+ - v-)^T M (v+ - v-) / 2. v (length nv, or
- *  NULL) receives v+, P (length nc, or NULL) the contact impulses, in the
- *  multipliers' sign
- *  convention: a contact that pushes the bodies apart (its gap growing
- *  along its row) has P < 0; one with P > 0 would have to pull, and a
- *  unilateral contact should be released (solve again without it).
- *  Nothing changes on failure.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (not
- *  set up by LGNSolve or LGNCalcIC yet, nc <= 0, G NULL, e outside [0, 1],
- *  v or P of the wrong length, across MPI ranks), LGN_LSETUP_FAIL (the system
- *  is singular: contacts dependent on each other or on the constraints),
- *  a callback's flag, LGN_NONFINITE, LGN_MEM_FAIL. */
-LGN_EXPORT int LGNApplyImpact(void *lgn_mem, sunindextype nc, LGNContactJacFn G,
-                              sunrealtype e, N_Vector v, N_Vector P);
-
-/** icopt of LGNCalcIC: project q0 onto Phi(q) = 0 only. */
-#define LGN_IC_PROJECT_Q  141
-/** icopt of LGNCalcIC: project v0 onto B(q0) v + Phi_t = 0 only. */
-#define LGN_IC_PROJECT_V  142
-/** icopt of LGNCalcIC: project q0, then v0 at the projected q0. */
-#define LGN_IC_PROJECT_QV 143
-
-/** Make the initial state consistent, like IDACalcIC: project the state at
- *  the current time (q0, v0 after LGNInit / LGNReInit) onto the constraints,
- *  then compute the consistent vdot_0, lambda_0 (and a_0 = vdot_0) from
- *  [[M, B^T], [B, 0]] (vdot_0, lambda_0) = (-g, -Z(q0)(v0, v0)), as the first
- *  LGNSolve would (values given with LGNSetInitialAcceleration /
- *  LGNSetInitialAux are kept).
- *  - LGN_IC_PROJECT_Q: Newton on the group, q <- q o exp(dq) with the
- *    correction of least M-norm, [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q)),
- *    until |Phi(q)|_inf is at roundoff level (100 eps max(1, |q|_inf)), or
- *    no longer decreases and is below a hundredth of the tolerance of the
- *    check (LGN_INCONSISTENT_IC); at most 20 iterations.
- *  - LGN_IC_PROJECT_V: the M-orthogonal projection, v <- v + dv with
- *    [[M, B^T], [B, 0]] (dv, mu) = (0, -B(q) v).
- *  - LGN_IC_PROJECT_QV: both, q first.
- *  Useful at both constraint indices (at index 2 the method enforces only
- *  B v = 0, but a q0 off Phi = 0 stays off). Needs the model callbacks and
- *  the linear solver (dense or KLU), as LGNSolve does. The result is the
- *  state LGNSolve starts from (and returns for tout = t0); read it with
- *  LGNGetConsistentIC.
- *  @param lgn_mem memory block
- *  @param icopt LGN_IC_PROJECT_Q, LGN_IC_PROJECT_V or LGN_IC_PROJECT_QV
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (icopt),
- *          LGN_MISSING_FN, LGN_NO_LINSOL, LGN_IC_FAIL (the Newton iteration
- *          did not converge or the saddle-point matrix is singular; the
- *          message gives |Phi|), a callback's failure flag. On failure q0
- *          and v0 are left as they were. Only before the first step after
- *          LGNInit / LGNReInit: after steps LGN_ILL_INPUT, nothing changed. */
-LGN_EXPORT int LGNCalcIC(void *lgn_mem, int icopt);
-
-/** The initial state as LGNCalcIC corrected it (or as given, without
- *  LGNCalcIC): q0 (length nq) and v0 (length nv); either may be NULL.
- *  Only before the first step after LGNInit / LGNReInit.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT (a vector
- *          of the wrong length, both NULL, or a step already taken). */
-LGN_EXPORT int LGNGetConsistentIC(void *lgn_mem, N_Vector q0, N_Vector v0);
-
-/** Perturbed starting values (Arnold, Brüls and Cardona): at the first step
- *  of size h after the initial values, vddot_0 from a central difference of
- *  the consistent accelerations at q0 o exp(h(+-v0 + h vdot_0/2)),
- *  v0 +- h vdot_0, then a_0 = vdot_0 + (alpha_m - alpha_f) h vddot_0 and, at
- *  index 3, v0 += dv (an O(h^2) shift normal to the constraints, the
- *  offset of the smooth numerical solution) with
- *  [[M, B^T], [B, 0]] (dv, mu) = (0, B(q0) l),
- *  l = h^2 [ (1/6 - (alpha_m - alpha_f)/2 - beta) vddot_0 + [v0, vdot_0]/12 ].
- *  This removes the initial transient of vdot and lambda: their maximum
- *  error over time becomes second order instead of first (measured on the
- *  heavy top, doc/user-guide.md). Costs two extra evaluations of the
- *  saddle-point system at the start.
- *  Default: off. With fixed steps the results then stay those of earlier
- *  versions bit for bit; with error control (LGN_STEP_ADAPTIVE; h is then
- *  the first step size tried) it measured no consistent gain, since the
- *  transients of the growing step sizes dominate the multipliers' error
- *  there (doc/user-guide.md). Takes effect at the next start (before the
- *  first step after LGNInit, LGNReInit or LGNCalcIC).
- *  @param lgn_mem memory block
- *  @param on SUNTRUE or SUNFALSE
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (on neither). */
-LGN_EXPORT int LGNSetPerturbedStart(void *lgn_mem, sunbooleantype on);
-
-/* =============================================================================
- * Events (root finding)
- * ===========================================================================*/
-
-#define LGN_ROOT_RETURN         2   /**< LGNSolve returned at a root of g         */
-#define LGN_RTFUNC_FAIL        -13  /**< the root function failed                 */
-#define LGN_WARNING             99  /**< error_code of a warning to the handler   */
-
-/** Root functions g(t, q, v) whose zeros are events (impacts, switches):
- *  write the nrtfn values g_i(t, q, v) into gout. q and v are scratch
- *  vectors holding the solution at t (the dense output between steps);
- *  do not keep them. Return 0 on success; any other value stops LGNSolve
- *  with LGN_RTFUNC_FAIL. */
-typedef int (*LGNRootFn)(sunrealtype t, N_Vector q, N_Vector v,
-                         sunrealtype *gout, void *user_data);
-
-/** Root finding on nrtfn functions g (as IDARootInit). After every
- *  accepted step (fixed or adaptive, LGN_NORMAL or LGN_ONE_STEP) LGNSolve
- *  evaluates g at its end and looks for sign changes against the last point
- *  checked; the earliest root is located on the dense output (LGNGetDky) by
- *  the Illinois method to 100 eps (|t| + |h|) and LGNSolve returns
- *  LGN_ROOT_RETURN there, with tret the root and q, v interpolated at it
- *  (the integrator's own state stays at the step's end; the next LGNSolve
- *  continues from there and first looks at the rest of the step, so close
- *  roots come one by one, in order, each once). Which g_i have a root:
- *  LGNGetRootInfo. A g_i exactly 0 at the start or at a root is ignored
- *  until it moves away from 0, so no root is reported twice. With
- *  LGN_NORMAL no root beyond tout is reported before tout.
- *  Root finding starts at the next LGNSolve, with g evaluated at the
- *  current time; LGNReInit (e.g. a velocity reversed at an impact) restarts
- *  it from the new state. Must be called after LGNInit (the scratch vectors
- *  are cloned from the state); it survives LGNInit and LGNReInit. Directions are reset
- *  to 0 (both). nrtfn = 0 turns root finding off. Across MPI ranks g is
- *  the sum of the ranks' returns: each rank returns its bodies' part (with
- *  ghost bodies, nothing for a ghost, which its owner counts).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC (before LGNInit),
- *          LGN_ILL_INPUT (nrtfn < 0, or g NULL with nrtfn > 0),
- *          LGN_MEM_FAIL. */
-LGN_EXPORT int LGNRootInit(void *lgn_mem, int nrtfn, LGNRootFn g);
-
-/** Which sign changes count, per root function: rootdir[i] = +1 only
- *  increasing g_i (from - to +), -1 only decreasing, 0 both (the default).
- *  The nrtfn values are copied.
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
- *          (root finding not initialised, rootdir NULL, or an entry not
- *          -1, 0 or +1). */
-LGN_EXPORT int LGNSetRootDirection(void *lgn_mem, int *rootdir);
-
-/** No warning when a g_i is exactly 0 at the start of root finding and
- *  still at the end of the first step (it stays ignored until it moves
- *  away from 0). The warning goes to the error handler with LGN_WARNING. */
-LGN_EXPORT int LGNSetNoInactiveRootWarn(void *lgn_mem);
 
 /** After LGN_ROOT_RETURN: rootsfound[i] = +1 if g_i has a root there and
  *  increases, -1 if it decreases, 0 if it has none (nrtfn entries).
@@ -999,27 +1091,8 @@ LGN_EXPORT int LGNGetRootInfo(void *lgn_mem, int *rootsfound);
 LGN_EXPORT int LGNGetNumGEvals(void *lgn_mem, long int *ngevals);
 
 /* =============================================================================
- * Newton: stalled multipliers
- * ===========================================================================*/
-
-/** Whether a Newton iteration may stop with stalled multipliers (default
- *  SUNTRUE). At index 3 the multipliers of a long or stiff mechanism are
- *  determined only to about cond(A) eps |q| / (beta h^2), which can exceed
- *  the tolerance: their corrections then stop contracting while the
- *  configuration has converged. With SUNTRUE such an iteration is accepted
- *  (counted by LGNGetNumNewtonStalls, printed by LGNPrintAllStats, and a
- *  warning (LGN_WARNING) is given once when most steps of an LGNSolve call
- *  were accepted that way); a stall is never taken for convergence unless
- *  the configuration part of the correction has converged, from the third
- *  iteration on, and the multiplier corrections have stopped contracting
- *  (a diverging iteration fails). With SUNFALSE the iteration goes on
- *  until the correction is within the tolerance on the multipliers too
- *  (more iterations; a convergence failure if it cannot).
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_ILL_INPUT (accept neither). */
-LGN_EXPORT int LGNSetAcceptStalls(void *lgn_mem, sunbooleantype accept);
-
-/* =============================================================================
- * Aggregate outputs and the settings in use (as IDA's IDAGetIntegratorStats)
+ * Getters: aggregate outputs and the settings in use (as IDA's
+ * IDAGetIntegratorStats)
  * ===========================================================================*/
 
 /** Steps, residual evaluations, linear solver setups, error-test failures,
@@ -1047,63 +1120,25 @@ LGN_EXPORT int LGNGetStepControl(void *lgn_mem, int *control);
 LGN_EXPORT int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol);
 
 /* =============================================================================
- * Restart files (doc/restart-format.md)
+ * Parameter maps (pure functions, no memory block)
  * ===========================================================================*/
 
-/** Write the integrator's state at the current time to a restart file, so
- *  that another integrator (or this one) can continue the run with
- *  LGNReadRestart and take the same steps bit for bit: the state q, v,
- *  vdot, a, lambda, the last step (dense output, GetDky), the Newmark
- *  family's increments, predictor and error control, the BDF history,
- *  order and controller, the perturbed start, root finding (the last g
- *  values), the stop time and all counters; and the settings that decide
- *  the steps, which LGNReadRestart compares. The format is versioned and
- *  documented (doc/restart-format.md): header with magic, version, byte
- *  order, type sizes, the model's sizes and the group's signature,
- *  named entries, and a CRC-32 of the whole. The file is written to
- *  filename.tmp and renamed, so a run stopped while writing leaves a
- *  previous file whole. Across MPI ranks (a collective call) each rank
- *  writes its own part: give each rank its own filename (e.g. with its
- *  rank in it); the files are read on as many ranks. The user's own state
- *  (callbacks' user data, e.g. a counter of impacts) is not in the file:
- *  save it next to it.
- *  Only after the first LGNSolve (before it, the state is q0, v0).
- *  @param lgn_mem memory block
- *  @param filename the file (overwritten)
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
- *          (filename NULL or empty, no step taken, or constraint rows
- *          left out as redundant: not supported), LGN_MEM_FAIL,
- *          LGN_IO_FAIL (the file could not be written). */
-LGN_EXPORT int LGNWriteRestart(void *lgn_mem, const char *filename);
+/** Chung-Hulbert generalized-alpha parameters from rho_inf in [0, 1]:
+ *  alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1),
+ *  gamma = 1/2 + alpha_f - alpha_m, beta = (gamma + 1/2)^2 / 4.
+ *  @return LGN_SUCCESS, or LGN_ILL_INPUT if rho_inf is outside [0, 1] or
+ *          an output pointer is NULL. */
+LGN_EXPORT int LGNGenAlphaFromRhoInf(sunrealtype rho_inf, sunrealtype *alpha_m,
+                                     sunrealtype *alpha_f, sunrealtype *beta,
+                                     sunrealtype *gamma);
 
-/** Read a restart file of LGNWriteRestart into an integrator made as the
- *  one that wrote it: LGNCreate, the same group, model callbacks, user
- *  data, linear solver, root functions and settings, LGNInit (with any q0,
- *  v0 of the right sizes), then LGNReadRestart and LGNSolve as before.
- *  The run then continues as the uninterrupted one, bit for bit (with
- *  modified Newton, LGN_NEWTON_MODIFIED, the factorised matrix is not in
- *  the file: the first step sets one up, and the steps then differ at the
- *  level of the Newton tolerance).
- *  The settings that decide the steps (method and its parameters,
- *  kinematics, constraint index, step control, step size, tolerances,
- *  Newton's settings, limits, predictor, perturbed start, root directions,
- *  the kind of linear solver) are not restored: they must equal the
- *  file's and are compared, a difference refused with LGN_RESTART_MISMATCH
- *  naming the setting. What is restored is the state (LGNWriteRestart);
- *  the stop time is part of it.
- *  A file that is not a restart file, of another format version, byte
- *  order or type sizes, truncated or corrupt (CRC-32) is refused with
- *  LGN_RESTART_BAD_FILE; a file of another problem (sizes, group, number
- *  of root functions, rank or number of ranks, settings) with
- *  LGN_RESTART_MISMATCH. A refused file leaves the state and every output
- *  as they were. Across MPI ranks a collective call: each rank reads its
- *  own file, and a refusal on one rank is returned on all.
- *  @param lgn_mem memory block (after LGNInit)
- *  @param filename the file
- *  @return LGN_SUCCESS, LGN_MEM_NULL, LGN_NO_MALLOC, LGN_ILL_INPUT
- *          (filename NULL or empty), LGN_MEM_FAIL, LGN_IO_FAIL,
- *          LGN_RESTART_BAD_FILE, LGN_RESTART_MISMATCH. */
-LGN_EXPORT int LGNReadRestart(void *lgn_mem, const char *filename);
+/* =============================================================================
+ * Free
+ * ===========================================================================*/
+
+/** Free the memory block and everything Lignum allocated; sets *lgn_mem = NULL.
+ *  Objects the user created (group, vectors, matrix, linear solver) are not freed. */
+LGN_EXPORT void LGNFree(void **lgn_mem);
 
 #ifdef __cplusplus
 }

@@ -892,9 +892,12 @@ int main(void)
     CHECK(LGNSetBDFForm(r.mem, 0) == LGN_ILL_INPUT, "form 0 refused");
     CHECK(LGNSetBDFForm(r.mem, LGN_KINEMATICS_EXACT) == LGN_ILL_INPUT, "another constant refused");
     CHECK(LGNSetBDFForm(NULL, LGN_BDF_FIXED_LEADING) == LGN_MEM_NULL, "NULL memory (form)");
-    CHECK(LGNSetBDFForm(r.mem, LGN_BDF_VARIABLE_COEFF) == LGN_SUCCESS &&
+    CHECK(LGNSetBDFForm(r.mem, LGN_BDF_FIXED_LEADING) == LGN_ILL_INPUT,
+          "a form under the Newmark family refused (test_family_settings)");
+    CHECK(LGNSetBDF(r.mem, 3) == LGN_SUCCESS &&
+              LGNSetBDFForm(r.mem, LGN_BDF_VARIABLE_COEFF) == LGN_SUCCESS &&
               LGNSetBDFForm(r.mem, LGN_BDF_FIXED_LEADING) == LGN_SUCCESS,
-          "both forms accepted");
+          "both forms accepted under BDF");
     RunFree(&r);
     /* the statistics name the orders */
     {

@@ -17,7 +17,7 @@
  *     coordinate; reported on the SO(3) rotor of test_output_multipliers:
  *     steps doubling to about 1 s, Newton on the other root). Asserted:
  *     success and |theta(2) - f(2)| <= 1e-6 with no step limit. This R^1
- *     rotor passed before the range test of lgn_errtest.c too: a guard,
+ *     rotor passed before the range test of lgn_newmark_errtest.c too: a guard,
  *     not a reproduction.
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
@@ -162,7 +162,7 @@ static void DrivenRotorGGL(SUNContext ctx)
   LGNGroup_Destroy(G);
 }
 
-/* ---- (b) the pendulum ------------------------------------------------------ */
+/* ---- (b) the pendulum ---------------------------------------------------- */
 
 /* The pendulum at index 3, generalized-alpha (rho_inf 0.9), solved to tend:
  * fixed steps h > 0, or error control (tol) with the first step h0 (h <= 0).

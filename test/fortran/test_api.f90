@@ -465,7 +465,8 @@ contains
     call expect(LGNSetPredictor(mem, LGN_PREDICTOR_EXTRAPOLATE) == 0, "LGNSetPredictor")
     call expect_flag(LGNSetBDFForm(mem, 7_c_int), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
                      "LGNSetBDFForm(7)")
-    call expect(LGNSetBDFForm(mem, LGN_BDF_FIXED_LEADING) == 0, "LGNSetBDFForm")
+    call expect_flag(LGNSetBDFForm(mem, LGN_BDF_FIXED_LEADING), LGN_ILL_INPUT, "LGN_ILL_INPUT", &
+                     "LGNSetBDFForm under the Newmark family")
     call expect(LGNSStolerances(mem, 1.0e-10_c_double, 1.0e-12_c_double) == 0, &
                 "LGNSStolerances")
     call expect(LGNSetMaxNewtonIters(mem, 10_c_int) == 0, "LGNSetMaxNewtonIters")

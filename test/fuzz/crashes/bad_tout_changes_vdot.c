@@ -5,7 +5,7 @@
  * LGNGetAuxAcceleration) report: before the first LGNSolve after LGNInit
  * they return LGN_SUCCESS with vdot = 0 (nothing computed yet); an LGNSolve
  * that then fails with LGN_BAD_TOUT (tout behind t0) has computed and kept
- * the consistent initial values (CheckReadyToSolve in src/lgn.c runs
+ * the consistent initial values (CheckReadyToSolve in src/core/lgn.c runs
  * lgnInitialConditions before tout is checked), so afterwards the same
  * getter returns vdot_0 = -M^{-1} g. Time, q and v are unchanged; only the
  * reported acceleration differs, so "a failed call leaves the state as it

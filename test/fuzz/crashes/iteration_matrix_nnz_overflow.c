@@ -5,9 +5,9 @@
  * LGNSetConstraints accepts any m >= 0, e.g. m = 2^40 (it cannot know the
  * model; LGNInit and LGNSolve later fail on it, or run out of memory), and
  * LGNGetIterationMatrixNnz then computes (nv + m)^2 in long int
- * (lgnIterationMatrixNnz, src/lgn_mem.c: `return n * n;`): signed overflow,
+ * (lgnIterationMatrixNnz, src/core/lgn_mem.c: `return n * n;`): signed overflow,
  * undefined behaviour, reported by -fsanitize=undefined as
- *   src/lgn_mem.c:560:12: runtime error: signed integer overflow:
+ *   src/core/lgn_mem.c:560:12: runtime error: signed integer overflow:
  *   1099511627776 * 1099511627776 cannot be represented in type 'long'
  * (nv = 0 before LGNInit; any nv + m > 3.04e9 overflows). Without a sanitizer the
  * getter returns a wrapped, possibly negative count. Either refuse such m
@@ -18,7 +18,7 @@
  *     iteration_matrix_nnz_overflow.c -I<lignum>/include -I<build>/include \
  *     -L<build>/src -llignum -lsundials_nvecserial -lm && ./a.out
  * stops with the runtime error above (built from the UBSan objects of
- * build-clang-asan/ or build-fuzz/ it names src/lgn_mem.c).
+ * build-clang-asan/ or build-fuzz/ it names src/core/lgn_mem.c).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 #include <stdio.h>

@@ -12,10 +12,10 @@
  * lgnKluCopyFree at the LGNInit:
  *   ERROR: AddressSanitizer: attempting free on address which was not
  *   malloc()-ed ... klu_l_free_numeric <- SUNLinSolSetup_KLU
- *   <- lgnLsSetup src/lgn_ls.c:381 <- SaddlePointSolve src/lgn_ic.c:76
- *   <- lgnComputeIC <- lgnInitialConditions <- LGNSolve src/lgn.c:348
- *   the block: freed by lgnKluCopyFree src/lgn_klu_solve.c:69
- *   <- lgnFreeMatrices src/lgn_mem.c:357 (at the LGNInit)
+ *   <- lgnLsSetup src/linsys/lgn_ls.c:381 <- SaddlePointSolve src/core/lgn_consistent_ic.c:76
+ *   <- lgnComputeIC <- lgnInitialConditions <- LGNSolve src/core/lgn.c:348
+ *   the block: freed by lgnKluCopyFree src/linsol/klu_copy/lgn_klu_solve.c:69
+ *   <- lgnFreeMatrices src/core/lgn_mem.c:357 (at the LGNInit)
  * So KLU's Numeric object of the solver is left pointing into (or was
  * replaced by) memory of Lignum's freed copy of the factors. Leaving out
  * the second LGNInit, or the removal of the callbacks, makes it go away;

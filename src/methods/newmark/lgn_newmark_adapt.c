@@ -3,7 +3,7 @@
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * One error-controlled step (LGN_STEP_ADAPTIVE): try h, test the local
- * error (lgn_errtest.c), accept or retry with a smaller h, and propose the
+ * error (lgn_newmark_errtest.c), accept or retry with a smaller h, and propose the
  * next h. A rejected attempt writes only the iterate, so the state at t_n
  * stays as it was, bit for bit.
  *
@@ -46,7 +46,7 @@
 #define LAND_STRETCH SUN_RCONST(1.1) /* a step lands on tstop within 10 %   */
 
 /* The controller's factor for an error norm err: error per unit step, the
- * estimate over h, |e| / h ~ h^2 (order 2, lgn_errtest.c). */
+ * estimate over h, |e| / h ~ h^2 (order 2, lgn_newmark_errtest.c). */
 static sunrealtype ErrorFactor(sunrealtype err)
 {
   if (err <= SUN_RCONST(0.0)) return FMAX;

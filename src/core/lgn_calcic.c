@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * The public side of the consistent initial values (the top layer,
  * doc/architecture.md): LGNCalcIC, LGNGetConsistentIC, LGNSetPerturbedStart.
- * The numerics (projections, check, perturbed start) are lgn_ic.c's.
+ * The numerics (projections, check, perturbed start) are lgn_consistent_ic.c's.
  * ---------------------------------------------------------------------------*/
 
 #include "lgn_impl.h"
@@ -45,6 +45,7 @@ static int PrepareModel(LGNMem mem, const char *func)
 {
   int flag = lgnAgree(mem, CheckModel(mem, func));
   if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnGhostsCheck(mem));
+  if (flag == LGN_SUCCESS) flag = lgnAgree(mem, lgnCheckFamilySettings(mem, "LGNCalcIC"));
   /* (a halo on some ranks only is refused where the work space is made:
    * LGNSetHalo drops it, so lgnEnsureWork makes it anew on every rank) */
   /* the independent constraint rows at the current q (lgn_redundancy.c) */

@@ -176,7 +176,7 @@ void lgnNewtonTolerancesPerStep(LGNMem mem, sunrealtype h, sunrealtype share)
 }
 
 /* Newton's tolerances under the Newmark family's error test (error per
- * unit step, lgn_errtest.c), tied to it as IDA
+ * unit step, lgn_newmark_errtest.c), tied to it as IDA
  * ties them (idaNls: the correction in the error test's weights below
  * epcon): the velocity a correction d of the increment makes, gamma' d
  * (Newmark family: gamma / (beta h); BDF: c0), is at most epcon times the

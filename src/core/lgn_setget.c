@@ -267,6 +267,9 @@ int LGNSetBDFForm(void *lgn_mem, int form)
               "LGN_BDF_FIXED_LEADING.", form);
     return LGN_ILL_INPUT;
   }
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_BDF, form == LGN_BDF_VARIABLE_COEFF, __func__) !=
+      LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->bdf_form = form;
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
   return LGN_SUCCESS;
@@ -296,7 +299,7 @@ int LGNGetLastOrder(void *lgn_mem, int *order)
   return LGN_SUCCESS;
 }
 
-int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[6])
+int LGNGetNumStepsAtOrder(void *lgn_mem, long int nsteps[LGN_BDF_MAX_ORDER + 1])
 {
   LGNMem mem;
   int k;
@@ -380,6 +383,9 @@ int LGNSetKinematics(void *lgn_mem, int kinematics)
               "LGN_KINEMATICS_EXACT or LGN_KINEMATICS_SIGMA.", kinematics);
     return LGN_ILL_INPUT;
   }
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, kinematics == LGN_KINEMATICS_SIMPLIFIED,
+                           __func__) != LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->kinematics = kinematics;
   if (mem->family == LGN_FAMILY_NEWMARK) mem->kin = lgnKinematicsOps(kinematics);
   lgnInvalidate(mem, LGN_CHANGE_METHOD);
@@ -396,6 +402,9 @@ int LGNSetPredictor(void *lgn_mem, int predictor)
               "LGN_PREDICTOR_EXTRAPOLATE.", predictor);
     return LGN_ILL_INPUT;
   }
+  if (lgnRefuseOtherFamily(mem, LGN_FAMILY_NEWMARK, predictor == LGN_PREDICTOR_ZERO, __func__) !=
+      LGN_SUCCESS)
+    return LGN_ILL_INPUT;
   mem->predictor = predictor;
   return LGN_SUCCESS;
 }
@@ -923,32 +932,6 @@ int LGNGetAuxAcceleration(void *lgn_mem, N_Vector a)
   return LGN_SUCCESS;
 }
 
-/* Getters of one scalar: guard the memory block and the output pointer. */
-#define SCALAR_GETTER(NAME, TYPE, ARG, EXPR)              \
-  int NAME(void *lgn_mem, TYPE *ARG)                      \
-  {                                                       \
-    LGNMem mem;                                           \
-    ACCESS_MEM(lgn_mem, mem);                             \
-    if (ARG == NULL) {                                    \
-      LGN_ERROR(mem, LGN_ILL_INPUT, #ARG " = NULL illegal."); \
-      return LGN_ILL_INPUT;                               \
-    }                                                     \
-    *ARG = (EXPR);                                        \
-    return LGN_SUCCESS;                                   \
-  }
-
-SCALAR_GETTER(LGNGetCurrentTime, sunrealtype, tcur, mem->tn)
-SCALAR_GETTER(LGNGetLastStep, sunrealtype, hlast, mem->hlast)
-SCALAR_GETTER(LGNGetCurrentStep, sunrealtype, hcur,
-              mem->step_control == LGN_STEP_ADAPTIVE ? mem->hnext : mem->h)
-SCALAR_GETTER(LGNGetActualInitStep, sunrealtype, hinused,
-              mem->step_control == LGN_STEP_ADAPTIVE ? mem->h0_actual : mem->h)
-SCALAR_GETTER(LGNGetNumErrTestFails, long int, netfails, mem->netf)
-SCALAR_GETTER(LGNGetStepSize, sunrealtype, h, mem->h)
-SCALAR_GETTER(LGNGetKinematics, int, kinematics, mem->kinematics)
-SCALAR_GETTER(LGNGetConstraintIndex, int, index, mem->constr_index)
-SCALAR_GETTER(LGNGetNewtonMode, int, mode, mem->newton_mode)
-SCALAR_GETTER(LGNGetStepControl, int, control, mem->step_control)
 
 int LGNGetTolerances(void *lgn_mem, sunrealtype *rtol, sunrealtype *atol)
 {
@@ -1002,25 +985,6 @@ int LGNGetNewtonStats(void *lgn_mem, long int *nniters, long int *nncfails)
   *nncfails = mem->nncf;
   return LGN_SUCCESS;
 }
-SCALAR_GETTER(LGNGetLastErrNorm, sunrealtype, errnorm, mem->err_norm)
-SCALAR_GETTER(LGNGetNumSteps, long int, nsteps, mem->nst)
-SCALAR_GETTER(LGNGetNumNewtonIters, long int, nniters, mem->nni)
-SCALAR_GETTER(LGNGetNumNewtonConvFails, long int, nncfails, mem->nncf)
-SCALAR_GETTER(LGNGetNumStepFails, long int, nfails, mem->nfails)
-SCALAR_GETTER(LGNGetNumResEvals, long int, nres, mem->nre)
-SCALAR_GETTER(LGNGetNumDQEvals, long int, ndq, mem->ndq)
-SCALAR_GETTER(LGNGetNumJacEvals, long int, njevals, mem->nje)
-SCALAR_GETTER(LGNGetNumLinSolvSetups, long int, nlsetups, mem->nlsetup)
-SCALAR_GETTER(LGNGetNumLinSolves, long int, nlsolves, mem->nlsolve)
-SCALAR_GETTER(LGNGetLastLinFlag, long int, flag, mem->last_lin_flag)
-SCALAR_GETTER(LGNGetNumNewtonStalls, long int, nstalls, mem->nstall)
-SCALAR_GETTER(LGNGetNumMatrixReuses, long int, nreuses, mem->nreuse)
-SCALAR_GETTER(LGNGetNumNewtonRestarts, long int, nrestarts, mem->nrestart)
-SCALAR_GETTER(LGNGetNumSparsityAnalyses, long int, nanalyses,
-              mem->sp != NULL ? mem->sp->npattern : 0L)
-SCALAR_GETTER(LGNGetIterationMatrixNnz, long int, nnz, lgnIterationMatrixNnz(mem))
-SCALAR_GETTER(LGNGetNumDQColors, long int, ncolors,
-              mem->sp != NULL ? (long int)mem->sp->Kcol.ncolors : (long int)mem->nv)
 
 int LGNGetWorkSpace(void *lgn_mem, long int *lenrw, long int *leniw)
 {

@@ -87,7 +87,7 @@ static int ProjectOnConstraints(LGNMem mem, const LGNStepCoeffs *c)
 }
 
 /* The norm given to a step outside the estimate's range (OutOfRange): an
- * error-test failure, cut as one (lgn_adapt.c). */
+ * error-test failure, cut as one (lgn_newmark_adapt.c). */
 #define OUT_OF_RANGE_NORM SUN_RCONST(100.0)
 /* |e| / |s| above this: the step is outside the estimate's range, about
  * h w > 1 (the pendulum's h = 0.5: 0.23 = 0.09 (h w)^2); never reached in

@@ -10,7 +10,7 @@
  * too; LGN_PROJECT_INTERPOLATED those between steps): q onto Phi(q, t) = 0
  * by Newton on the group with minimum-norm steps in the metric of M,
  *   [[M, B^T], [B, 0]] (dq, mu) = (0, -Phi(q, t)),  q <- q o exp(dq),
- * down to roundoff (lgnProjectQAt, lgn_ic.c), then v onto B(q, t) v + Phi_t
+ * down to roundoff (lgnProjectQAt, lgn_consistent_ic.c), then v onto B(q, t) v + Phi_t
  * = 0 at the projected q,
  *   [[M, B^T], [B, 0]] (dv, mu) = (0, -(B v + Phi_t)),  v <- v + dv.
  * Only the returned q and v change: the integrator goes on from its own

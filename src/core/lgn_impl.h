@@ -43,7 +43,7 @@
 /* The method families (LGNSetNewmark ... / LGNSetBDF). */
 #define LGN_FAMILY_NEWMARK 0
 #define LGN_FAMILY_BDF     1
-#define LGN_BDF_MAXORD     5
+#define LGN_BDF_MAXORD     LGN_BDF_MAX_ORDER /* lignum.h */
 #define LGN_BDF_MAXHIST    (LGN_BDF_MAXORD + 2) /* points kept: order k + 2 */
 
 /* Which callback produced an error: used to pick the flag and message. */
@@ -309,7 +309,7 @@ typedef struct LGNMemRec {
   long int nklu_newpattern;      /* KLU factored: a new pattern of A        */
   long int nklu_nocopy;          /* no copy possible (sizes, memory, A)     */
 
-  /* ---- the factorised iteration matrix, for modified Newton (lgn_step.c) ---- */
+  /* ---- the factorised iteration matrix, for modified Newton (lgn_newmark_step.c) ---- */
   sunbooleantype lu_valid;  /* A holds a factorised iteration matrix of a step */
   sunrealtype lu_h;         /* the step size it was built with             */
   long int lu_nst;          /* nst when it was built                       */
@@ -323,7 +323,7 @@ typedef struct LGNMemRec {
   sunbooleantype mat_done;    /* model matrices allocated for the type of A */
   sunrealtype hlast;
 
-  /* ---- error control (LGN_STEP_ADAPTIVE; lgn_adapt.c, lgn_errtest.c) ---- */
+  /* ---- error control (LGN_STEP_ADAPTIVE; lgn_newmark_adapt.c, lgn_newmark_errtest.c) ---- */
   int step_control;         /* LGN_STEP_FIXED or LGN_STEP_ADAPTIVE         */
   sunbooleantype tols_set;  /* LGNSStolerances or LGNSVtolerances called  */
   sunrealtype *atol_vec;    /* per-component atol, nv (NULL: the scalar)   */
@@ -349,7 +349,7 @@ typedef struct LGNMemRec {
   sunrealtype nls_latol;
   long int netf;            /* error-test failures                         */
 
-  /* ---- the last step, for dense output (lgn_dense.c) ---- */
+  /* ---- the last step, for dense output (lgn_dense_output.c) ---- */
   sunrealtype tprev;        /* its start t_n; it ends at tn                */
   sunbooleantype dense_valid; /* q1, v1, vdot1 hold its start, and the    */
                               /* increment its chart coordinate            */
@@ -545,7 +545,7 @@ int lgnConstraintVelocityDQColored(LGNMem mem, sunrealtype t);
 
 /* ---- lgn_kinematics.c: the kinematics variants -------------------------- */
 
-/* Per-step constants (lgn_step.c sets them). */
+/* Per-step constants (lgn_newmark_step.c sets them). */
 typedef struct {
   sunrealtype h, t1;
   sunrealtype beta_p;  /* beta'  = (1-am)/(h^2 beta (1-af)): d sigma_ddot / d sigma */
@@ -601,6 +601,10 @@ const LGNKinematicsOps *lgnBDFOps(void);
 void lgnFormIncrement(LGNMem mem, const LGNStepCoeffs *c);
 void lgnSaddlePointTerms(LGNMatrixTerms *terms);
 
+/* ---- lgn_family_settings.c: settings of one method family only ---- */
+int lgnRefuseOtherFamily(LGNMem mem, int family, sunbooleantype is_default, const char *func);
+int lgnCheckFamilySettings(LGNMem mem, const char *func);
+
 /* ---- lgn_matrix_sparse.c, lgn_matrix.c: the iteration matrix ------------ */
 
 int lgnAssembleSparse(LGNMem mem, sunrealtype t, const LGNMatrixTerms *terms);
@@ -644,7 +648,7 @@ int lgnKrylovSetup(LGNMem mem);
 int lgnKrylovSolve(LGNMem mem, N_Vector x, N_Vector b);
 void lgnKrylovNewtonWeights(LGNMem mem, const LGNStepCoeffs *c);
 
-/* ---- lgn_ic.c: consistent initial values -------------------------------- */
+/* ---- lgn_consistent_ic.c: consistent initial values ---------------------- */
 
 int lgnInitialConditions(LGNMem mem); /* LGNSolve: the check, then lgnComputeIC */
 int lgnComputeIC(LGNMem mem);         /* vdot_0, lambda_0, a_0 at (q_n, v_n)    */
@@ -670,7 +674,7 @@ void lgnFixedNewtonTolerances(LGNMem mem);
 int lgnNewton(LGNMem mem, const LGNStepCoeffs *c, sunbooleantype force_setup,
               sunbooleantype *used_old);
 
-/* ---- lgn_errtest.c: the local error of a step --------------------------- */
+/* ---- lgn_newmark_errtest.c: the local error of a step -------------------- */
 
 int lgnLocalError(LGNMem mem, const LGNStepCoeffs *c, sunrealtype *norm);
 int lgnProjectEstimate(LGNMem mem, const LGNStepCoeffs *c);
@@ -679,7 +683,7 @@ int lgnErrorNorm(LGNMem mem, const LGNStepCoeffs *c, const sunrealtype *incr,
 sunrealtype lgnWrmsNorm(LGNMem mem, const sunrealtype *x, const sunrealtype *w);
 void lgnErrorWeights(LGNMem mem, const sunrealtype *incr, sunrealtype unit, sunrealtype *w);
 
-/* ---- lgn_dense.c: output between steps ---------------------------------- */
+/* ---- lgn_dense_output.c: output between steps ---------------------------- */
 
 int lgnDenseOutput(LGNMem mem, sunrealtype t, int k, sunrealtype *out);
 
@@ -692,7 +696,7 @@ int lgnOutputDky(LGNMem mem, sunrealtype t, int k, N_Vector dky);
  * when off; the slots are kept. */
 int lgnMultiplierError(LGNMem mem, sunrealtype t1, sunrealtype *norm);
 
-/* ---- lgn_step.c: one step ----------------------------------------------- */
+/* ---- lgn_newmark_step.c: one step ---------------------------------------- */
 
 LGNStepCoeffs lgnStepCoeffs(LGNMem mem, sunrealtype h);
 int lgnCheckProgress(LGNMem mem, sunrealtype h);
@@ -702,7 +706,7 @@ void lgnStepComplete(LGNMem mem, const LGNStepCoeffs *c);
 void lgnCommitStep(LGNMem mem, const LGNStepCoeffs *c);
 int lgnStep(LGNMem mem, sunrealtype h);
 
-/* ---- lgn_adapt.c: one error-controlled step ----------------------------- */
+/* ---- lgn_newmark_adapt.c: one error-controlled step ---------------------- */
 
 int lgnAdaptiveStep(LGNMem mem, sunrealtype tout);
 sunrealtype lgnLimitStep(LGNMem mem, sunrealtype h);

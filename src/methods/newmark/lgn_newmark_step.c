@@ -158,7 +158,7 @@ int lgnStepAttempt(LGNMem mem, const LGNStepCoeffs *c)
 
   mem->dense_valid = SUNFALSE; /* the iterate overwrites the last step's start */
   if (lgnPerturbedStartDue(mem)) {
-    /* once, with the first step size tried (lgn_ic.c): v_0 and a_0 change
+    /* once, with the first step size tried (lgn_consistent_ic.c): v_0 and a_0 change
      * here; saved, so that a failed attempt leaves the state as it was and
      * the next attempt perturbs again with its own h */
     memcpy(saved, lgnData(mem->v), (size_t)mem->nv * sizeof(sunrealtype));

@@ -602,18 +602,47 @@ static int Counter(void *lgn_mem, const char *func, long int *out,
   return LGN_SUCCESS;
 }
 
-#define KRYLOV_GETTER(NAME, ARG, FIELD)                               \
-  int NAME(void *lgn_mem, long int *ARG)                              \
-  {                                                                   \
-    LGNMem mem;                                                       \
-    int flag = Counter(lgn_mem, __func__, ARG, #ARG, &mem);           \
-    if (flag != LGN_SUCCESS) return flag;                             \
-    *ARG = mem->FIELD;                                                \
-    return LGN_SUCCESS;                                               \
-  }
+int LGNGetNumLinIters(void *lgn_mem, long int *nliters)
+{
+  LGNMem mem;
+  int flag = Counter(lgn_mem, __func__, nliters, "nliters", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *nliters = mem->nli;
+  return LGN_SUCCESS;
+}
 
-KRYLOV_GETTER(LGNGetNumLinIters, nliters, nli)
-KRYLOV_GETTER(LGNGetNumPrecEvals, npevals, npe)
-KRYLOV_GETTER(LGNGetNumPrecSolves, npsolves, nps)
-KRYLOV_GETTER(LGNGetNumJtimesEvals, njvevals, njtimes)
-KRYLOV_GETTER(LGNGetNumLinConvFails, nlcfails, nlcf)
+int LGNGetNumPrecEvals(void *lgn_mem, long int *npevals)
+{
+  LGNMem mem;
+  int flag = Counter(lgn_mem, __func__, npevals, "npevals", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *npevals = mem->npe;
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumPrecSolves(void *lgn_mem, long int *npsolves)
+{
+  LGNMem mem;
+  int flag = Counter(lgn_mem, __func__, npsolves, "npsolves", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *npsolves = mem->nps;
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumJtimesEvals(void *lgn_mem, long int *njvevals)
+{
+  LGNMem mem;
+  int flag = Counter(lgn_mem, __func__, njvevals, "njvevals", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *njvevals = mem->njtimes;
+  return LGN_SUCCESS;
+}
+
+int LGNGetNumLinConvFails(void *lgn_mem, long int *nlcfails)
+{
+  LGNMem mem;
+  int flag = Counter(lgn_mem, __func__, nlcfails, "nlcfails", &mem);
+  if (flag != LGN_SUCCESS) return flag;
+  *nlcfails = mem->nlcf;
+  return LGN_SUCCESS;
+}

@@ -188,7 +188,7 @@ int lgnCallbackFlag(LGNMem mem, LGNCallbackId cb, int retval, const char *func)
   int flag;
   if (retval == 0) return LGN_SUCCESS;
   if (retval > 0 && mem->step_control == LGN_STEP_ADAPTIVE) {
-    return LGN_RECOVERABLE; /* retried with a smaller step (lgn_adapt.c) */
+    return LGN_RECOVERABLE; /* retried with a smaller step (lgn_newmark_adapt.c) */
   }
   if (retval > 0) {
     flag = LGN_REPTD_CALLBACK_ERR;

@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * Events: root finding on user functions g(t, q, v), as IDA does it
  * (IDARcheck1-3, IDARootfind), located on the dense output of the last
- * step (lgn_dense.c):
+ * step (lgn_dense_output.c):
  *   - LGNSolve starts root finding at t_n (after LGNInit, LGNReInit or
  *     LGNRootInit): g at t_n becomes glo, the value at tlo, the last point
  *     checked;

@@ -223,6 +223,7 @@ int LGNReInit(void *lgn_mem, sunrealtype t0, N_Vector q0, N_Vector v0)
 static int CheckSettings(LGNMem mem)
 {
   int flag = lgnGhostsCheck(mem);
+  if (flag == LGN_SUCCESS) flag = lgnCheckFamilySettings(mem, "LGNSolve");
   if (flag != LGN_SUCCESS) return flag;
   if (mem->mass == NULL) {
     LGN_ERROR(mem, LGN_MISSING_FN, "No mass matrix function: call LGNSetMassFn.");
@@ -404,7 +405,7 @@ static void CopyOut(LGNMem mem, sunrealtype *tret, N_Vector q, N_Vector v)
 }
 
 /* The output at t of the last step: the state itself at its end, else the
- * dense output (lgn_dense.c). */
+ * dense output (lgn_dense_output.c). */
 static int OutputAt(LGNMem mem, sunrealtype t, sunrealtype *tret, N_Vector q,
                     N_Vector v)
 {
