@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * BDF on the heavy top (R^3 x SO(3), bench/models/heavy_top.c) with the
+ * BDF on the heavy top (R^3 x SO(3), models/heavy_top.c) with the
  * three constraint formulations: index 3 (LGN_CONSTR_INDEX3), the
  * stabilised index 2 (LGN_CONSTR_GGL) and index 2 (LGN_CONSTR_INDEX2),
  * under error control, maxord 4 and 5, tol = rtol = atol = 1e-4 ... 1e-10,

@@ -6,7 +6,7 @@
  *                 [--klu-solve lignum|klu]
  *                 [--csv FILE] [--memory-csv FILE] [--floor-csv FILE] [--quick]
  *
- * The chain of bench/models/chain.h (generalized-alpha rho_inf = 0.9,
+ * The chain of models/chain.h (generalized-alpha rho_inf = 0.9,
  * index 3, h = 1e-3, analytic K_t, C_t, Z from the joint helpers), S steps
  * per run, with KLU (CSC) for every N, full Newton ("klu") and modified
  * Newton with the extrapolating predictor ("klu-mN", LGNSetNewtonMode,

@@ -13,7 +13,7 @@
  *    Each call refills the matrix (the factorisation overwrites it); the
  *    refill, timed alone, is subtracted. Wall time, best of k repetitions
  *    (default 7) of a loop of about 20 ms.
- * 2. The heavy top (bench/models/heavy_top.c: R^3 x SO(3), generalized-
+ * 2. The heavy top (models/heavy_top.c: R^3 x SO(3), generalized-
  *    alpha rho = 0.9, index 3, h = 1e-3, 1000 steps, 9 x 9 iteration
  *    matrix), CPU time per step with full and modified Newton, with
  *    SUNLinSol_Dense and with LGNLinSol_Dense, best of k runs.

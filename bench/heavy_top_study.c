@@ -5,7 +5,7 @@
  * index 3 and index 2, rho_inf in {0.6, 0.9} for the generalized-alpha
  * methods (Newmark: beta = 1/4, gamma = 1/2, undamped), at
  * h = 2e-3 * 2^-k, k = 0..5, Newton tolerances rtol = atol = 1e-10, and
- * compares with the independent ARKODE reference (test/reference,
+ * compares with the independent ARKODE reference (models/lgn_reference.c,
  * Fehlberg 7(8), table 1).  Everything goes through heavy_top_run().
  *
  * Output
@@ -62,7 +62,7 @@
 
 /* ---------------------------------------------------------------------------
  * The methods.  ** Compile-time list: add rows here to extend the study. **
- * Name, formulation (bench/models/heavy_top.h), Newmark or
+ * Name, formulation (models/heavy_top.h), Newmark or
  * generalized-alpha, kinematics.  The ratio column compares each method with
  * "mod-lgnm" (Newmark) resp. "mod-lggalpha" (generalized-alpha); the figure
  * and the table follow this order.
@@ -563,7 +563,7 @@ int main(int argc, char **argv)
 
   printf("Heavy top accuracy study: t in [0, %g] s, h = %g * 2^-k, k = 0..%d,"
          " Newton rtol = atol = %g\n", T_END, H0, nk - 1, NEWTON_TOL);
-  printf("Reference: ARKODE Fehlberg 7(8) (test/reference), %d grid points, %.3f s\n",
+  printf("Reference: ARKODE Fehlberg 7(8) (models/lgn_reference.c), %d grid points, %.3f s\n",
          NGRID + 1, t_ref);
   fflush(stdout);
   for (i = 0; i < nruns; i++) RunOne(&runs[i], ref);

@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * Lignum benchmarks: the N-body spherical pendulum chain of
- * bench/models/chain.c (rods of 1 m, 1 kg, radius 0.02 m, spherical
+ * models/chain.c (rods of 1 m, 1 kg, radius 0.02 m, spherical
  * joints, the top of rod 0 at the origin, gravity -9.81 z, at rest in the
  * bent, slightly twisted initial configuration) for SUNDIALS IDA, formulated
  * like the heavy top of ida_heavy_top.c: the stabilised index-2 (GGL) DAE in

@@ -3,7 +3,7 @@
  * parameters for SUNDIALS IDA (see ida_heavy_top.h for the equations).
  *
  * The model formulas are those of HT_EULER_PARAMETERS in
- * bench/models/heavy_top.c (doc/accuracy-study.md), written out again here
+ * models/heavy_top.c (doc/accuracy-study.md), written out again here
  * together with their second derivatives, which IDA's analytic Jacobian
  * needs:  with G(p) = [-pbar, -pbar~ + p0 I] (linear in p, G(p) p = 0, hence
  * G(p) a = -G(a) p), and H(c) defined by G(d)^T c = H(c) d,

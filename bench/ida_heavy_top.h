@@ -2,7 +2,7 @@
  * Lignum benchmarks: the heavy top (doc/accuracy-study.md) for SUNDIALS IDA, as
  * the stabilised index-2 (GGL, Gear-Gupta-Leimkuhler) DAE in Euler parameters,
  * with the physics of Lignum's HT_EULER_PARAMETERS model
- * (bench/models/heavy_top.c, doc/theory.md §1.1): q = (x, p) in R^7, v = qdot,
+ * (models/heavy_top.c, doc/theory.md §1.1): q = (x, p) in R^7, v = qdot,
  *
  *   q' = v + B(q)^T mu                       (7, GGL: mu = 0 on the solution)
  *   M(q) v' + g(q, v) + B(q)^T lambda = 0    (7)

@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * mod. LGGalpha (generalized-alpha, rho_inf = 0.9, exact kinematics) on the
- * heavy top (R^3 x SO(3), bench/models/heavy_top.c) with the three
+ * heavy top (R^3 x SO(3), models/heavy_top.c) with the three
  * constraint formulations: index 3 (LGN_CONSTR_INDEX3), the stabilised
  * index 2 (LGN_CONSTR_GGL, doc/theory.md section 7.1) and index 2
  * (LGN_CONSTR_INDEX2), to t = 1, with fixed steps h = 2e-3 ... 2.5e-4 and

@@ -3,7 +3,7 @@
  * Error at equal fixed steps and CPU time of the modified generalized-alpha
  * (rho_inf 0.9, exact kinematics) and BDF2 / BDF3 (history started under
  * error control to t = 0.05 s, resp. 0.001 s for Andrews) on
- *   the slider-crank of bench/models/planar_mechanisms.c, t in [0, 1],
+ *   the slider-crank of models/planar_mechanisms.c, t in [0, 1],
  *     against the R^3 joint-coordinate model at BDF5, tol 1e-12 (also run
  *     at the same steps: the classical formulation as a third column);
  *   Andrews' squeezing mechanism, t in [0, 0.03], against the Test Set.

@@ -6,7 +6,7 @@
  *   restart_io [--n 1,100,10000] [--repeat R] [--csv FILE] [--dir DIR]
  *
  * Models: the heavy top (one body on R^3 x SO(3), spherical joint; the
- * heavy_top_study's), and the spherical-joint chain of bench/models/chain.c
+ * heavy_top_study's), and the spherical-joint chain of models/chain.c
  * with N rods (R^3 x SO(3), m = 3 N, KLU). Each integrator takes 5 fixed
  * steps of generalized-alpha at index 3 (h = 1e-3), then writes its
  * restart file R times and reads it R times into a fresh integrator made

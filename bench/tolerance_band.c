@@ -6,7 +6,7 @@
  * 2 in Euler parameters, dense, difference-quotient Jacobian, algebraic
  * variables suppressed, rtol = atol = tol on every differential component),
  * on the heavy top (t = 1, error of the centre of mass against the ARKODE
- * reference, test/reference) and the 3-rod chain (t = 1, error of the tip
+ * reference, models/lgn_reference.c) and the 3-rod chain (t = 1, error of the tip
  * against IDA at rtol 1e-12, bench/work_precision --chain-reference), and
  * the suite's Andrews mechanism, car axis and IFToMM A01 pendulum
  * (bench/suite: its error measures and references; IDA at index 2).

@@ -11,7 +11,7 @@
  *           Jacobian, KLU with the analytic Jacobian) at rtol = 1e-3..1e-10.
  *
  * Error: |x(1) - x_ref(1)|_2, centre of mass at t = 1 s, against the
- * independent ARKODE reference (test/reference, Fehlberg 7(8)).  CPU time:
+ * independent ARKODE reference (models/lgn_reference.c, Fehlberg 7(8)).  CPU time:
  * process CPU time (clock()) of the integration only, median of --reps runs
  * (failed runs are run once and recorded, not repeated).
  *
@@ -138,7 +138,7 @@ static const double LEVELS[] = {1e-2, 1e-3, 1e-4, 1e-5, 1e-6};
 #define NLEVELS 5
 
 /* ---------------------------------------------------------------------------
- * The second problem: the N-body chain of bench/models/chain.c (N rods,
+ * The second problem: the N-body chain of models/chain.c (N rods,
  * spherical joints, at rest in a bent configuration, falling and whipping),
  * N = CHAIN_N, t in [0, 1] s.  Lignum: the rows of LIGNUM[] named in
  * CHAIN_ROWS[] through rigid_run() (R^3 x SO(3) per body, dense, analytic
@@ -1432,7 +1432,7 @@ int main(int argc, char **argv)
     return 1;
   }
   printf("Heavy top and 3-rod chain work-precision, t in [0, %g] s; heavy top error =\n"
-         "|x(1) - x_ref(1)|_2 against ARKODE Fehlberg 7(8) (test/reference); chain error =\n"
+         "|x(1) - x_ref(1)|_2 against ARKODE Fehlberg 7(8) (models/lgn_reference.c); chain error =\n"
          "|tip(1) - tip_ref(1)|_2 against IDA at rtol 1e-12 (--chain-reference); CPU = best\n"
          "of %d run(s), process CPU time of the integration only.\n", T_END, reps);
   if (quick) fails = QuickChecks(&ref);

@@ -8,7 +8,8 @@
  *   - the partition: rank r owns the contiguous bodies [lo, hi) of the
  *     chain and holds one ghost, body lo - 1 (the last body of rank r - 1),
  *     because the joint and the spring between lo - 1 and lo are declared
- *     here. Its group, vectors and callbacks cover its bodies and its ghost;
+ *     here. Its group, vectors and model (bodies, joints: LGNModel_Attach)
+ *     cover its bodies and its ghost;
  *   - LGNHalo_Create (who owns the ghost), LGNBodies_SetGhosts (the ghost's
  *     mass and weight belong to its owner), LGNSetHalo (Lignum adds what
  *     each rank's joints and springs put on a ghost to the owner's rows, and
@@ -47,6 +48,7 @@
 #include <lignum/lignum_config.h>
 #include <lignum/lignum_halo.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <lignum/lignum_ls.h>
 #if defined(LGN_HAVE_PETSC)
 #include <lignum/lignum_petsc.h>
@@ -56,31 +58,11 @@
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_spgmr.h>
 
-/* This rank's bodies and ghost: the body set and the joint set. */
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
+/* B^T lambda without forming B (LGNSetConstraintForceFn); the model is the
+ * user data of every callback set on the integrator */
 static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
 {
-  return LGNJoints_ConstraintForce(((Model *)ud)->joints, t, q, lambda, f) ? -1 : 0;
+  return LGNJoints_ConstraintForce(LGNModel_GetJoints((LGNModel)ud), t, q, lambda, f) ? -1 : 0;
 }
 
 /* A flag every rank goes on with: nonzero if any rank's is (a local
@@ -94,13 +76,13 @@ static int Agreed(MPI_Comm comm, int flag)
 
 /* The free end (the far end of body N - 1, on the last rank), the total
  * energy and the largest |Phi|, reduced over the ranks to rank 0. */
-static void PrintRow(MPI_Comm comm, int rank, int nranks, const Model *md, sunrealtype t,
+static void PrintRow(MPI_Comm comm, int rank, int nranks, LGNModel md, sunrealtype t,
                      N_Vector q, N_Vector v, N_Vector phi, int nown, sunindextype m)
 {
   double mine[4] = {0.0, 0.0, 0.0, 0.0}, sum[4], pmax = 0.0, pall = 0.0;
   sunrealtype kin, pot;
   sunindextype i;
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
   mine[0] = kin + pot;
   if (rank == nranks - 1) { /* the end point: x + R (0.5, 0, 0) */
     const sunrealtype *x = N_VGetArrayPointer(q) + 7 * (nown - 1), *p = x + 3;
@@ -108,7 +90,7 @@ static void PrintRow(MPI_Comm comm, int rank, int nranks, const Model *md, sunre
     mine[2] = x[1] + 0.5 * 2.0 * (p[1] * p[2] + p[0] * p[3]);
     mine[3] = x[2] + 0.5 * 2.0 * (p[1] * p[3] - p[0] * p[2]);
   }
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   for (i = 0; i < m; i++) pmax = fmax(pmax, fabs(N_VGetArrayPointer(phi)[i]));
   MPI_Reduce(mine, sum, 4, MPI_DOUBLE, MPI_SUM, 0, comm);
   MPI_Reduce(&pmax, &pall, 1, MPI_DOUBLE, MPI_MAX, 0, comm);
@@ -128,7 +110,9 @@ int main(int argc, char **argv)
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, *factors = NULL;
   LGNHalo halo = NULL;
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, y = NULL, yloc = NULL;
   SUNMatrix A = NULL; /* MUMPS's matrix (NULL for Krylov) */
   SUNLinearSolver LS = NULL;
@@ -189,23 +173,24 @@ int main(int argc, char **argv)
     /* 2. The bodies (the ghost: no mass or weight of its own here), the
      *    joints and springs of this rank: those ending at one of its bodies
      *    (between lo - 1 and lo: the ghost and local body 0). */
-    md.bodies = LGNBodies_Create(G);
-    md.joints = LGNJoints_Create(G);
-    if (md.bodies == NULL || md.joints == NULL) flag = -1;
-    if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
-    for (k = 0; k < nown && !flag; k++) flag = LGNBodies_SetPrincipalInertia(md.bodies, k, mass, J);
-    if (!flag && nghost) flag = LGNBodies_SetGhosts(md.bodies, nown);
+    bodies = LGNBodies_Create(G);
+    joints = LGNJoints_Create(G);
+    md = LGNModel_Create(bodies, joints);
+    if (bodies == NULL || joints == NULL) flag = -1;
+    if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
+    for (k = 0; k < nown && !flag; k++) flag = LGNBodies_SetPrincipalInertia(bodies, k, mass, J);
+    if (!flag && nghost) flag = LGNBodies_SetGhosts(bodies, nown);
     for (k = 0; k < nown && !flag; k++) {
       const int prev = k > 0 ? k - 1 : nown; /* the local number of body lo + k - 1 */
       if (lo + k == 0) {
-        flag = LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, 0, left);
+        flag = LGNJoints_AddSpherical(joints, LGN_GROUND, origin, 0, left);
       } else {
-        flag = LGNJoints_AddSpherical(md.joints, prev, right, k, left);
-        if (!flag) flag = LGNBodies_AddRotationalSpringDamper(md.bodies, prev, k, 20.0, 0.5, NULL);
+        flag = LGNJoints_AddSpherical(joints, prev, right, k, left);
+        if (!flag) flag = LGNBodies_AddRotationalSpringDamper(bodies, prev, k, 20.0, 0.5, NULL);
       }
     }
   }
-  m = LGNJoints_NumConstraints(md.joints);
+  m = LGNJoints_NumConstraints(joints);
 
   /* 3. The state: MPIPlusX vectors over the rank's bodies and ghost. The
    *    chain lies along x at rest; the ghost's entries are filled by Lignum
@@ -223,13 +208,8 @@ int main(int argc, char **argv)
 
   /* 4. The integrator, as on one process, and the halo (collective). */
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNSetConstraintForceFn(mem, ConstrForce);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
   if (!flag) flag = LGNSetGenAlpha(mem, 0.8);
   if (!flag) flag = LGNSetStepSize(mem, h);
   if (!flag) flag = LGNSetNewtonMode(mem, LGN_NEWTON_MODIFIED);
@@ -286,7 +266,7 @@ int main(int argc, char **argv)
    * the vectors LGNSolve returns) */
   flag = Agreed(comm, flag);
   if (!flag) flag = LGNHalo_UpdateGhosts(halo, LGN_HALO_CONFIGURATION, N_VGetArrayPointer(q));
-  if (!flag) PrintRow(comm, rank, nranks, &md, t, q, v, phi, nown, m);
+  if (!flag) PrintRow(comm, rank, nranks, md, t, q, v, phi, nown, m);
   tsolve = 0.0;
   for (s = 10; !flag && s <= nsteps; s += 10) {
     const double t1 = MPI_Wtime();
@@ -295,7 +275,7 @@ int main(int argc, char **argv)
      * the work space, analyses the matrices' patterns and computes the
      * initial accelerations) */
     if (s > 10) tsolve += MPI_Wtime() - t1;
-    if (!flag) PrintRow(comm, rank, nranks, &md, t, q, v, phi, nown, m);
+    if (!flag) PrintRow(comm, rank, nranks, md, t, q, v, phi, nown, m);
   }
   if (flag) fprintf(stderr, "chain_mpi (rank %d): %s\n", rank, LGNGetReturnFlagName(flag));
 
@@ -338,8 +318,9 @@ int main(int argc, char **argv)
   N_VDestroy(q);
   N_VDestroy(v);
   N_VDestroy(phi);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   free(factors);

@@ -9,9 +9,9 @@
  * by a second spherical joint. They start horizontal along x, spinning
  * about their own axes, so the gyroscopic terms matter.
  *
- * M, g, K_t and C_t come from the body helpers (lignum_bodies.h), Phi, B,
- * the curvature and the joints' part of K_t from the joint helpers
- * (lignum_joints.h); LGNCalcIC makes the start consistent. Integrated with
+ * The bodies (lignum_bodies.h) and the joints (lignum_joints.h) make a
+ * model (lignum_model.h), which gives Lignum M, g, K_t, C_t, Phi, B and the
+ * curvature in one call; LGNCalcIC makes the start consistent. Integrated with
  * mod. LGGalpha (generalized-alpha, rho_inf = 0.9, exact kinematics, index
  * 3) with error control (rtol = atol = 1e-6) to t = 2 s. Output every
  * 0.2 s: time, the centre of rod 1, the energy, its relative drift and
@@ -29,68 +29,19 @@
 #include <lignum/lignum.h>        /* the integrator                       */
 #include <lignum/lignum_bodies.h> /* rigid bodies: M, g, K_t, C_t, energy */
 #include <lignum/lignum_joints.h> /* joints: Phi, B, curvature, K_t       */
+#include <lignum/lignum_model.h>  /* bodies + joints: every callback      */
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-/* ---- Step 5: the model callbacks --------------------------------------------
- * Lignum passes one pointer, user_data, to every callback: here both sets. */
-typedef struct {
-  LGNBodies bodies; /* masses, inertias, gravity */
-  LGNJoints joints; /* the two spherical joints  */
-} Model;
-
-/* M, g: the bodies; Phi, B and the curvature term: the joints */
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *user_data)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)user_data)->bodies);
-}
-
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *user_data)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)user_data)->bodies);
-}
-
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *user_data)
-{
-  return LGNJoints_Residual(((Model *)user_data)->joints, t, q, phi);
-}
-
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *user_data)
-{
-  return LGNJoints_Jacobian(((Model *)user_data)->joints, t, q, B);
-}
-
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *user_data)
-{
-  return LGNJoints_Curvature(((Model *)user_data)->joints, t, q, v, z);
-}
-
-/* K_t = d/dq (M vdot + g + B^T lambda), the bodies' part plus the joints'
- * part, both added to the dense K (which arrives zeroed); C_t = dg/dv */
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot, N_Vector lambda,
-                     SUNMatrix K, void *user_data)
-{
-  Model *md = (Model *)user_data;
-  int flag  = LGNBodies_Stiffness(md->bodies, q, v, K); /* dg/dq (M is constant) */
-  (void)vdot;
-  if (flag == 0) flag = LGNJoints_Stiffness(md->joints, t, q, lambda, K);
-  return flag;
-}
-
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *user_data)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)user_data)->bodies);
-}
-
 /* ---- Step 11: one line of output -------------------------------------------
  * the centre x_1 of rod 1, the energy E, its drift since E0 and |Phi|_inf */
-static int PrintOutput(const Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi,
+static int PrintOutput(LGNModel model, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi,
                        sunrealtype E0, sunrealtype *drift, sunrealtype *phimax)
 {
   const sunrealtype *qd = N_VGetArrayPointer(q);
   sunrealtype kin, pot, E, err;
-  int flag = LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  if (!flag) flag = LGNJoints_Residual(md->joints, t, q, phi);
+  int flag = LGNBodies_Energy(LGNModel_GetBodies(model), q, v, &kin, &pot);
+  if (!flag) flag = LGNJoints_Residual(LGNModel_GetJoints(model), t, q, phi);
   if (flag) return flag;
   E       = kin + pot;
   err     = N_VMaxNorm(phi);
@@ -118,7 +69,9 @@ int main(void)
   const int nout = 10;
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[2];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel model   = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, tmpl = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -136,16 +89,20 @@ int main(void)
   nv = G->nv;
 
   /* Step 3: the bodies: mass, inertia, gravity (M, g, K_t, C_t, energy) */
-  md.bodies = LGNBodies_Create(G);
-  flag = LGNBodies_SetPrincipalInertia(md.bodies, 0, mass, J);
-  if (!flag) flag = LGNBodies_SetPrincipalInertia(md.bodies, 1, mass, J);
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gravity);
+  bodies = LGNBodies_Create(G);
+  flag = LGNBodies_SetPrincipalInertia(bodies, 0, mass, J);
+  if (!flag) flag = LGNBodies_SetPrincipalInertia(bodies, 1, mass, J);
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gravity);
 
   /* Step 4: the joints: ground - rod 0 and rod 0 - rod 1 (Phi, B, Z) */
-  md.joints = LGNJoints_Create(G);
-  if (!flag) flag = LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, 0, end_a);
-  if (!flag) flag = LGNJoints_AddSpherical(md.joints, 0, end_b, 1, end_a);
-  if (!flag) m = LGNJoints_NumConstraints(md.joints); /* 3 + 3 = 6 */
+  joints = LGNJoints_Create(G);
+  if (!flag) flag = LGNJoints_AddSpherical(joints, LGN_GROUND, origin, 0, end_a);
+  if (!flag) flag = LGNJoints_AddSpherical(joints, 0, end_b, 1, end_a);
+  if (!flag) m = LGNJoints_NumConstraints(joints); /* 3 + 3 = 6 */
+
+  /* Step 5: the model: both sets, installed on the integrator in Step 7 */
+  model = LGNModel_Create(bodies, joints);
+  if (model == NULL) return 1;
 
   /* Step 6: the initial state: both rods along x (R = I), spinning */
   q   = N_VNew_Serial(G->nq, ctx);
@@ -165,15 +122,7 @@ int main(void)
   /* Step 7: the integrator and the model */
   mem = LGNCreate(ctx);
   if (mem == NULL) return 1;
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE); /* M does not depend on q */
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
+  if (!flag) flag = LGNModel_Attach(model, mem); /* group and every callback */
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
 
   /* Step 8: the linear solver for the (nv + m) x (nv + m) iteration matrix */
@@ -191,7 +140,7 @@ int main(void)
   /* Step 10: consistent initial values: project q_0, then v_0 */
   if (!flag) flag = LGNCalcIC(mem, LGN_IC_PROJECT_QV);
   if (!flag) flag = LGNGetConsistentIC(mem, q, v);
-  if (!flag) flag = LGNBodies_Energy(md.bodies, q, v, &kin, &pot);
+  if (!flag) flag = LGNBodies_Energy(bodies, q, v, &kin, &pot);
   if (flag) {
     fprintf(stderr, "set-up failed: %s\n", LGNGetReturnFlagName(flag));
     return 1;
@@ -202,10 +151,10 @@ int main(void)
   printf("Double spherical pendulum: mod. LGGalpha(0.9), index 3, rtol = atol = %.0e\n\n", rtol);
   printf("%5s %10s %10s %10s %12s %10s %9s\n", "t", "x_1", "y_1", "z_1", "energy", "drift",
          "|Phi|");
-  flag = PrintOutput(&md, t, q, v, phi, E0, &drift, &phimax);
+  flag = PrintOutput(model, t, q, v, phi, E0, &drift, &phimax);
   for (k = 1; k <= nout && flag == 0; k++) {
     flag = LGNSolve(mem, k * dt_out, &t, q, v, LGN_NORMAL);
-    if (flag == 0) flag = PrintOutput(&md, t, q, v, phi, E0, &drift, &phimax);
+    if (flag == 0) flag = PrintOutput(model, t, q, v, phi, E0, &drift, &phimax);
   }
   if (flag) fprintf(stderr, "failed at t = %g: %s\n", t, LGNGetReturnFlagName(flag));
 
@@ -216,15 +165,16 @@ int main(void)
          drift_bound, phimax, phi_bound);
 
   /* Step 13: free what we created, in reverse order */
-  LGNFree(&mem);
+  LGNFree(&mem); /* first: it uses the model */
   SUNLinSolFree(LS);
   SUNMatDestroy(A);
   N_VDestroy(tmpl);
   N_VDestroy(phi);
   N_VDestroy(v);
   N_VDestroy(q);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&model);
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

@@ -8,8 +8,8 @@
  *   andrews   Andrews' squeezing mechanism (Test Set), t = 0.03   R^7
  *   caraxis   the car axis (Test Set), t = 3                      R^4
  *   pendulum  IFToMM A01, the simple pendulum over 2000 s         R^2
- *   top       the heavy top (bench/models/heavy_top.c), t = 1     R^3 x SO(3)
- *   chain     the 3-rod chain (bench/models/chain.c), t = 1       (R^3 x SO(3))^3
+ *   top       the heavy top (models/heavy_top.c), t = 1     R^3 x SO(3)
+ *   chain     the 3-rod chain (models/chain.c), t = 1       (R^3 x SO(3))^3
  *
  * IDA: index 2 with IDASetId / IDASetSuppressAlg (suite_ida.c) on the R^n
  * problems; on the top and the chain the GGL peers in Euler parameters

@@ -3,7 +3,7 @@
  *
  *   chain_movie [--n 6] [--t-end 4] [--tol 1e-6] [--fps 25] [--prefix chain_movie]
  *
- * The spherical-joint chain of bench/models/chain.c with n rods, released
+ * The spherical-joint chain of models/chain.c with n rods, released
  * from rest, integrated with error control (rtol = atol = tol) by
  * generalized-alpha (rho_inf = 0.9) and by BDF (orders 1-5), both at index
  * 3 with KLU-free dense LU. Each accepted step is taken with LGN_ONE_STEP;

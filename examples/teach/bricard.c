@@ -30,46 +30,9 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
-
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
-                     N_Vector lambda, SUNMatrix K, void *ud)
-{
-  Model *md = (Model *)ud;
-  (void)vdot; /* lambda has all 30 rows (0 on the one left out) */
-  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1; /* dense: added */
-  return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
-}
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)ud)->bodies);
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
 
 /* The warning names the row left out: printed to stdout. */
 static void Handler(int code, const char *module, const char *func, const char *msg, void *d)
@@ -79,13 +42,13 @@ static void Handler(int code, const char *module, const char *func, const char *
 }
 
 /* P3: the end (0, 0, 1/2) of rod 2, which runs along z. */
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
 {
   const sunrealtype *q2 = N_VGetArrayPointer(q) + 14;
   sunrealtype R[9], kin, pot;
   LGNQuaternionToRotation(q2 + 3, R);
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   printf("%5.1f %10.6f %10.6f %10.6f %14.8f %10.1e\n", t, q2[0] + 0.5 * R[2],
          q2[1] + 0.5 * R[5], q2[2] + 0.5 * R[8], kin + pot, N_VMaxNorm(phi));
 }
@@ -101,7 +64,9 @@ int main(int argc, char **argv)
   const sunrealtype gvec[3] = {0.0, -9.81, 0.0}, tol = 1e-10, tend = quick ? 1.0 : 10.0;
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[5];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, lambda = NULL, y = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -116,8 +81,9 @@ int main(int argc, char **argv)
   body = LGNGroup_R3xSO3();
   for (k = 0; k < 5; k++) factors[k] = body;
   G = LGNGroup_Product(5, factors);
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
   q  = N_VNew_Serial(G->nq, ctx);
   v  = N_VNew_Serial(G->nv, ctx);
   qd = N_VGetArrayPointer(q);
@@ -130,35 +96,27 @@ int main(int argc, char **argv)
     for (i = 0; i < 3; i++) x[k][i] = 0.5 * (P[k][i] + P[k + 1][i]);
     qd[7 * k] = x[k][0]; qd[7 * k + 1] = x[k][1]; qd[7 * k + 2] = x[k][2];
     qd[7 * k + 3] = 1.0; qd[7 * k + 4] = qd[7 * k + 5] = qd[7 * k + 6] = 0.0;
-    flag = LGNBodies_SetPrincipalInertia(md.bodies, k, 1.0, J);
+    flag = LGNBodies_SetPrincipalInertia(bodies, k, 1.0, J);
   }
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
 
   /* six revolute joints: ground-rod 0 at P0, rod k-1 - rod k at Pk, rod 4 - ground at P5 */
   for (i = 0; i < 3; i++) sb[i] = P[0][i] - x[0][i];
-  if (!flag) flag = LGNJoints_AddRevolute(md.joints, LGN_GROUND, P[0], axis[0], 0, sb, axis[0]);
+  if (!flag) flag = LGNJoints_AddRevolute(joints, LGN_GROUND, P[0], axis[0], 0, sb, axis[0]);
   for (k = 1; !flag && k < 5; k++) {
     for (i = 0; i < 3; i++) { sa[i] = P[k][i] - x[k - 1][i]; sb[i] = P[k][i] - x[k][i]; }
-    flag = LGNJoints_AddRevolute(md.joints, k - 1, sa, axis[k], k, sb, axis[k]);
+    flag = LGNJoints_AddRevolute(joints, k - 1, sa, axis[k], k, sb, axis[k]);
   }
   for (i = 0; i < 3; i++) sa[i] = P[5][i] - x[4][i];
-  if (!flag) flag = LGNJoints_AddRevolute(md.joints, 4, sa, axis[5], LGN_GROUND, P[5], axis[5]);
-  m      = LGNJoints_NumConstraints(md.joints); /* 30 */
+  if (!flag) flag = LGNJoints_AddRevolute(joints, 4, sa, axis[5], LGN_GROUND, P[5], axis[5]);
+  m      = LGNJoints_NumConstraints(joints); /* 30 */
   n      = G->nv + m;                           /* the solver: all 30 rows */
   phi    = N_VNew_Serial(m, ctx);
   lambda = N_VNew_Serial(m, ctx);
 
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNSetErrHandlerFn(mem, Handler, NULL);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
   /* the default, written out: leave dependent rows out (with a warning) */
   if (!flag) flag = LGNSetRedundantConstraints(mem, LGN_REDUNDANT_ELIMINATE);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
@@ -177,7 +135,7 @@ int main(int argc, char **argv)
     if (!flag && tout == 1.0) /* after the warning */
       printf("%5s %10s %10s %10s %14s %10s\n", "t", "P3_x", "P3_y", "P3_z", "energy",
              "max|Phi|");
-    if (!flag) Print(&md, t, q, v, phi);
+    if (!flag) Print(md, t, q, v, phi);
   }
   if (flag) fprintf(stderr, "bricard: %s\n", LGNGetReturnFlagName(flag));
 
@@ -185,7 +143,7 @@ int main(int argc, char **argv)
   if (!flag) flag = LGNGetRedundantConstraints(mem, &nred, rows);
   if (!flag) flag = LGNGetMultipliers(mem, lambda);
   for (k = 0; !flag && k < (int)nred; k++) {
-    LGNJoints_DescribeConstraint(md.joints, rows[k], what, sizeof what);
+    LGNJoints_DescribeConstraint(joints, rows[k], what, sizeof what);
     printf("\nrow %ld left out (%s), multiplier %g\n", (long)rows[k], what,
            (double)N_VGetArrayPointer(lambda)[rows[k]]);
   }
@@ -200,8 +158,9 @@ int main(int argc, char **argv)
   N_VDestroy(v);
   N_VDestroy(phi);
   N_VDestroy(lambda);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

@@ -3,19 +3,17 @@
  *
  * Shows: a large model with sparse matrices. The iteration matrix is a
  * SUNSparseMatrix in CSC format solved by SUNLinSol_KLU (AMD ordering), and
- * every sparse callback comes from the helpers: the mass matrix and the
- * damping from the body set (lignum_bodies.h), the constraints, their
- * Jacobian B, B^T lambda, the curvature and the geometric stiffness from
- * the joint set (lignum_joints.h). Each writes its own fixed pattern into
- * the sparse matrix Lignum hands it.
+ * every sparse callback comes from the model object (lignum_model.h): the
+ * mass matrix and the damping from the body set, the constraints, their
+ * Jacobian B, the curvature and the geometric stiffness from the joint
+ * set; B^T lambda (LGNJoints_ConstraintForce) is added as one more
+ * callback. Each helper adds its term, with its fixed pattern, to the
+ * sparse matrix Lignum hands it, as it would to a dense one.
  *
  * Model: N = 10 slender bodies (length 1, mass 1, radius 0.02) on
  * (R^3 x SO(3))^N, initially in a horizontal line along x, released at
  * rest under gravity (0, 0, -9.81). A spherical joint holds the first body
  * at the origin, others join neighbours end to end (3N constraints).
- * On R^3 x SO(3) without springs g depends on q not at all, so K_t is the
- * joints' part alone (with force elements one would add LGNBodies_Stiffness
- * into a second sparse matrix and SUNMatScaleAdd them).
  * Generalized-alpha (rho_inf = 0.9), index 3, fixed h = 1e-3, t in [0, 1].
  *
  * Output: t, the free end's position, the energy and |Phi|_2.
@@ -29,73 +27,29 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #define NBODIES 10
 
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-/* sparse M, overwritten with the pattern of LGNBodies_MassNnz */
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-
-/* sparse C = dg/dv (the gyroscopic terms) */
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)ud)->bodies);
-}
-
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-
-/* sparse B, overwritten with the pattern of LGNJoints_JacobianNnz */
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-
-/* B^T lambda without forming B: the residual needs no Jacobian */
+/* B^T lambda without forming B (LGNSetConstraintForceFn): the model is the
+ * user data of every callback set on the integrator */
 static int ConstrForce(sunrealtype t, N_Vector q, N_Vector lambda, N_Vector f, void *ud)
 {
-  return LGNJoints_ConstraintForce(((Model *)ud)->joints, t, q, lambda, f) ? -1 : 0;
+  return LGNJoints_ConstraintForce(LGNModel_GetJoints((LGNModel)ud), t, q, lambda, f) ? -1 : 0;
 }
 
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
-
-/* sparse K_t = d/dq (B^T lambda) (the bodies add nothing here, see above) */
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
-                     N_Vector lambda, SUNMatrix K, void *ud)
-{
-  (void)v; (void)vdot;
-  return LGNJoints_Stiffness(((Model *)ud)->joints, t, q, lambda, K) ? -1 : 0;
-}
-
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
 {
   const sunrealtype *x = N_VGetArrayPointer(q) + 7 * (NBODIES - 1); /* last body */
   sunrealtype R[9], end[3], kin, pot;
   int i;
   LGNQuaternionToRotation(x + 3, R);
   for (i = 0; i < 3; i++) end[i] = x[i] + 0.5 * R[3 * i]; /* x + R (L/2, 0, 0) */
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   printf("%5.2f %12.6f %12.6f %12.6f %14.8f %10.1e\n", t, end[0], end[1], end[2], kin + pot,
          sqrt(N_VDotProd(phi, phi)));
 }
@@ -108,7 +62,9 @@ int main(void)
   const sunrealtype left[3] = {-0.5 * L, 0.0, 0.0}, right[3] = {0.5 * L, 0.0, 0.0};
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[NBODIES];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, y = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -124,15 +80,16 @@ int main(void)
   for (k = 0; k < NBODIES; k++) factors[k] = body;
   G = LGNGroup_Product(NBODIES, factors);
 
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
-  flag = LGNBodies_SetGravity(md.bodies, gvec);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
+  flag = LGNBodies_SetGravity(bodies, gvec);
   for (k = 0; k < NBODIES && !flag; k++) {
-    flag = LGNBodies_SetPrincipalInertia(md.bodies, k, mass, J);
-    if (!flag) flag = k == 0 ? LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, 0, left)
-                             : LGNJoints_AddSpherical(md.joints, k - 1, right, k, left);
+    flag = LGNBodies_SetPrincipalInertia(bodies, k, mass, J);
+    if (!flag) flag = k == 0 ? LGNJoints_AddSpherical(joints, LGN_GROUND, origin, 0, left)
+                             : LGNJoints_AddSpherical(joints, k - 1, right, k, left);
   }
-  m = LGNJoints_NumConstraints(md.joints); /* 3 N */
+  m = LGNJoints_NumConstraints(joints); /* 3 N */
   n = G->nv + m;
 
   /* bodies along x, R = I, at rest */
@@ -148,16 +105,8 @@ int main(void)
   }
 
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNSetConstraintForceFn(mem, ConstrForce);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
 
   /* KLU on a CSC matrix of size nv + m; Lignum sizes its nnz */
@@ -172,10 +121,10 @@ int main(void)
   printf("Chain of %d bodies, spherical joints, KLU (CSC, AMD), generalized-alpha(0.9), "
          "h = %.0e\n\n", NBODIES, h);
   printf("%5s %12s %12s %12s %14s %10s\n", "t", "x_end", "y_end", "z_end", "energy", "|Phi|");
-  if (!flag) Print(&md, t, q, v, phi);
+  if (!flag) Print(md, t, q, v, phi);
   for (tout = dtout; !flag && tout <= tend + 0.5 * dtout; tout += dtout) {
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
-    if (!flag) Print(&md, t, q, v, phi);
+    if (!flag) Print(md, t, q, v, phi);
   }
   if (flag) fprintf(stderr, "chain_klu: %s\n", LGNGetReturnFlagName(flag));
 
@@ -191,8 +140,9 @@ int main(void)
   N_VDestroy(phi);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

@@ -27,47 +27,22 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #define NB 5 /* rods */
 
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
 static const sunrealtype Tip[3]  = {0.0, -0.5, 0.0};  /* the last rod's lower end */
 static const sunrealtype Wall[3] = {-1.0, 0.0, 0.0};  /* n: the gap -x + 1.2 >= 0 */
 static const sunrealtype WallD   = -1.2;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
 
 /* the event: the tip's gap to the wall */
 static int Gap(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *gout, void *ud)
 {
   sunrealtype row[6 * NB];
   (void)t; (void)v;
-  return LGNJoints_PointPlaneContact(((Model *)ud)->joints, q, NB - 1, Tip, Wall, WallD, gout,
+  return LGNJoints_PointPlaneContact(LGNModel_GetJoints((LGNModel)ud), q, NB - 1, Tip, Wall, WallD, gout,
                                      row) ? -1 : 0;
 }
 
@@ -77,35 +52,35 @@ static int Contact(sunrealtype t, N_Vector q, SUNMatrix G, void *ud)
   sunrealtype row[6 * NB], gap;
   int k;
   (void)t;
-  if (LGNJoints_PointPlaneContact(((Model *)ud)->joints, q, NB - 1, Tip, Wall, WallD, &gap, row))
+  if (LGNJoints_PointPlaneContact(LGNModel_GetJoints((LGNModel)ud), q, NB - 1, Tip, Wall, WallD, &gap, row))
     return -1;
   for (k = 0; k < 6 * NB; k++) SM_ELEMENT_D(G, 0, k) = row[k];
   return 0;
 }
 
 /* the tip's normal velocity n . v_tip = G v */
-static sunrealtype NormalVelocity(Model *md, N_Vector q, N_Vector v)
+static sunrealtype NormalVelocity(LGNModel md, N_Vector q, N_Vector v)
 {
   sunrealtype row[6 * NB], gap, s = 0.0;
   int k;
-  LGNJoints_PointPlaneContact(md->joints, q, NB - 1, Tip, Wall, WallD, &gap, row);
+  LGNJoints_PointPlaneContact(LGNModel_GetJoints(md), q, NB - 1, Tip, Wall, WallD, &gap, row);
   for (k = 0; k < 6 * NB; k++) s += row[k] * N_VGetArrayPointer(v)[k];
   return s;
 }
 
-static sunrealtype Kinetic(Model *md, N_Vector q, N_Vector v)
+static sunrealtype Kinetic(LGNModel md, N_Vector q, N_Vector v)
 {
   sunrealtype kin, pot;
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
   return kin;
 }
 
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v)
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v)
 {
   const sunrealtype *qk = N_VGetArrayPointer(q) + 7 * (NB - 1);
   sunrealtype R[9], kin, pot;
   LGNQuaternionToRotation(qk + 3, R);
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
   printf("%5.2f %10.6f %10.6f %10.6f %12.6f\n", t, qk[0] + R[1] * Tip[1],
          qk[1] + R[4] * Tip[1], qk[2] + R[7] * Tip[1], kin + pot);
 }
@@ -117,7 +92,9 @@ int main(void)
   const sunrealtype top[3] = {0.0, 0.5, 0.0}, bottom[3] = {0.0, -0.5, 0.0}, O[3] = {0, 0, 0};
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[NB];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, y = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -131,8 +108,9 @@ int main(void)
   body = LGNGroup_R3xSO3();
   for (k = 0; k < NB; k++) factors[k] = body;
   G = LGNGroup_Product(NB, factors);
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
   q  = N_VNew_Serial(G->nq, ctx);
   v  = N_VNew_Serial(G->nv, ctx);
   qd = N_VGetArrayPointer(q);
@@ -145,25 +123,20 @@ int main(void)
     for (i = 0; i < 3; i++) qd[7 * k + i] = c[i];
     qd[7 * k + 3] = cos(0.5 * th); qd[7 * k + 4] = 0.0; qd[7 * k + 5] = 0.0;
     qd[7 * k + 6] = sin(0.5 * th);
-    flag = LGNBodies_SetPrincipalInertia(md.bodies, k, 1.0, J);
+    flag = LGNBodies_SetPrincipalInertia(bodies, k, 1.0, J);
     if (!flag)
-      flag = k == 0 ? LGNJoints_AddSpherical(md.joints, LGN_GROUND, O, 0, top)
-                    : LGNJoints_AddSpherical(md.joints, k - 1, bottom, k, top);
+      flag = k == 0 ? LGNJoints_AddSpherical(joints, LGN_GROUND, O, 0, top)
+                    : LGNJoints_AddSpherical(joints, k - 1, bottom, k, top);
   }
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
-  m = LGNJoints_NumConstraints(md.joints); /* 15 */
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
+  m = LGNJoints_NumConstraints(joints); /* 15 */
   n = G->nv + m;
   /* a push out of the plane, made consistent by LGNCalcIC */
   N_VConst(0.0, v);
   for (k = 0; k < NB; k++) vd[6 * k + 2] = 0.3 * (k + 1);
 
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   y  = N_VNew_Serial(n, ctx);
   A  = SUNDenseMatrix(n, n, ctx);
@@ -178,21 +151,21 @@ int main(void)
 
   printf("A chain of %d rods hitting the wall x = 1.2, restitution e = %.1f\n\n", NB, e);
   printf("%5s %10s %10s %10s %12s\n", "t", "tip_x", "tip_y", "tip_z", "energy");
-  if (!flag) Print(&md, t, q, v);
+  if (!flag) Print(md, t, q, v);
   for (tout = dtout; !flag && tout <= tend + 0.5 * dtout;) {
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
     if (flag == LGN_ROOT_RETURN) { /* the tip at the wall: q, v at the root */
-      vn_before  = NormalVelocity(&md, q, v);
-      kin_before = Kinetic(&md, q, v);
+      vn_before  = NormalVelocity(md, q, v);
+      kin_before = Kinetic(md, q, v);
       flag = LGNReInit(mem, t, q, v); /* the state at the root */
       if (!flag) flag = LGNApplyImpact(mem, 1, Contact, e, v, NULL);
       if (!flag)
         printf("impact %d at t = %.6f: tip velocity towards the wall %.6f -> %.6f, "
                "kinetic energy %.6f -> %.6f\n", ++impacts, t, -vn_before,
-               -NormalVelocity(&md, q, v), kin_before, Kinetic(&md, q, v));
+               -NormalVelocity(md, q, v), kin_before, Kinetic(md, q, v));
       continue;
     }
-    if (!flag) Print(&md, t, q, v);
+    if (!flag) Print(md, t, q, v);
     tout += dtout;
   }
   if (flag) fprintf(stderr, "chain_wall: %s\n", LGNGetReturnFlagName(flag));
@@ -205,8 +178,9 @@ int main(void)
   N_VDestroy(y);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

@@ -31,49 +31,12 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)ud)->bodies);
-}
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
-                     N_Vector lambda, SUNMatrix K, void *ud)
-{
-  Model *md = (Model *)ud;
-  (void)vdot;
-  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1; /* dense: added */
-  return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
-
 /* Rod k of length len: centre c, turned by angle a about z; inertia set. */
-static int PlaceRod(Model *md, sunrealtype *q, int k, const sunrealtype c[3], sunrealtype a,
+static int PlaceRod(LGNModel md, sunrealtype *q, int k, const sunrealtype c[3], sunrealtype a,
                     sunrealtype len)
 {
   const sunrealtype r = 0.05, m = len;
@@ -81,7 +44,7 @@ static int PlaceRod(Model *md, sunrealtype *q, int k, const sunrealtype c[3], su
   sunrealtype *qk = q + 7 * k;
   qk[0] = c[0]; qk[1] = c[1]; qk[2] = c[2];
   qk[3] = cos(0.5 * a); qk[4] = 0.0; qk[5] = 0.0; qk[6] = sin(0.5 * a);
-  return LGNBodies_SetPrincipalInertia(md->bodies, k, m, J);
+  return LGNBodies_SetPrincipalInertia(LGNModel_GetBodies(md), k, m, J);
 }
 
 /* Tip x + R (len/2, 0, 0) of rod k. */
@@ -94,14 +57,14 @@ static void Tip(N_Vector q, int k, sunrealtype len, sunrealtype tip[3])
   for (i = 0; i < 3; i++) tip[i] = qk[i] + 0.5 * len * R[3 * i];
 }
 
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi,
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi,
                   const sunrealtype len[3])
 {
   sunrealtype b[3], c[3], kin, pot;
   Tip(q, 0, len[0], b);
   Tip(q, 2, len[2], c);
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   printf("%5.2f %10.6f %10.6f %10.6f %10.6f %14.8f %10.1e\n", t, b[0], b[1], c[0], c[1],
          kin + pot, sqrt(N_VDotProd(phi, phi)));
 }
@@ -117,7 +80,9 @@ int main(void)
   sunrealtype lo[3][3], hi[3][3]; /* rod ends (-len/2, 0, 0), (len/2, 0, 0) */
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[3];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, y = NULL;
   SUNMatrix Amat = NULL;
   SUNLinearSolver LS = NULL;
@@ -131,8 +96,9 @@ int main(void)
   body = LGNGroup_R3xSO3();
   factors[0] = factors[1] = factors[2] = body;
   G = LGNGroup_Product(3, factors);
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
   q = N_VNew_Serial(G->nq, ctx);
   v = N_VNew_Serial(G->nv, ctx);
   qd = N_VGetArrayPointer(q);
@@ -143,17 +109,17 @@ int main(void)
   }
 
   /* bodies: crank, coupler, rocker */
-  flag = PlaceRod(&md, qd, 0, c0, 0.5 * pi, len[0]);
-  if (!flag) flag = PlaceRod(&md, qd, 1, c1, atan2(1.0, 3.0), len[1]);
-  if (!flag) flag = PlaceRod(&md, qd, 2, c2, 0.5 * pi, len[2]);
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
+  flag = PlaceRod(md, qd, 0, c0, 0.5 * pi, len[0]);
+  if (!flag) flag = PlaceRod(md, qd, 1, c1, atan2(1.0, 3.0), len[1]);
+  if (!flag) flag = PlaceRod(md, qd, 2, c2, 0.5 * pi, len[2]);
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
 
   /* joints: R, S, U, R (17 rows) */
-  if (!flag) flag = LGNJoints_AddRevolute(md.joints, LGN_GROUND, A, ez, 0, lo[0], ez);
-  if (!flag) flag = LGNJoints_AddSpherical(md.joints, 0, hi[0], 1, lo[1]);
-  if (!flag) flag = LGNJoints_AddUniversal(md.joints, 1, hi[1], ez, 2, hi[2], ex);
-  if (!flag) flag = LGNJoints_AddRevolute(md.joints, 2, lo[2], ez, LGN_GROUND, D, ez);
-  m = LGNJoints_NumConstraints(md.joints);
+  if (!flag) flag = LGNJoints_AddRevolute(joints, LGN_GROUND, A, ez, 0, lo[0], ez);
+  if (!flag) flag = LGNJoints_AddSpherical(joints, 0, hi[0], 1, lo[1]);
+  if (!flag) flag = LGNJoints_AddUniversal(joints, 1, hi[1], ez, 2, hi[2], ex);
+  if (!flag) flag = LGNJoints_AddRevolute(joints, 2, lo[2], ez, LGN_GROUND, D, ez);
+  m = LGNJoints_NumConstraints(joints);
   n = G->nv + m;
   phi = N_VNew_Serial(m, ctx);
 
@@ -164,15 +130,7 @@ int main(void)
   vd[5] = omega;          /* Omega = (0, 0, omega) in body axes */
 
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   y = N_VNew_Serial(n, ctx);
   Amat = SUNDenseMatrix(n, n, ctx);
@@ -190,10 +148,10 @@ int main(void)
   printf("generalized-alpha(0.9), h = %.0e\n\n", h);
   printf("%5s %10s %10s %10s %10s %14s %10s\n", "t", "B_x", "B_y", "C_x", "C_y", "energy",
          "|Phi|");
-  if (!flag) Print(&md, t, q, v, phi, len);
+  if (!flag) Print(md, t, q, v, phi, len);
   for (tout = dtout; !flag && tout <= tend + 0.5 * dtout; tout += dtout) {
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
-    if (!flag) Print(&md, t, q, v, phi, len);
+    if (!flag) Print(md, t, q, v, phi, len);
   }
   if (flag) fprintf(stderr, "four_bar: %s\n", LGNGetReturnFlagName(flag));
 
@@ -208,8 +166,9 @@ int main(void)
   N_VDestroy(phi);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

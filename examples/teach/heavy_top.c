@@ -2,7 +2,8 @@
  * Lignum teaching example: the heavy top with error control.
  *
  * Shows: a constrained rigid body written with the body and joint helpers
- * (lignum_bodies.h, lignum_joints.h) and adaptive steps (LGN_STEP_ADAPTIVE
+ * (lignum_bodies.h, lignum_joints.h), installed as a model object
+ * (lignum_model.h), and adaptive steps (LGN_STEP_ADAPTIVE
  * with LGNSStolerances).
  *
  * Model (Brüls and Cardona's heavy top): one body on R^3 x SO(3),
@@ -14,7 +15,7 @@
  *
  *   M = diag(m I, J),  g = (-m gvec, Omega x J Omega),  Phi = x - R X
  *
- * all from the helpers: the model callbacks below only forward to them.
+ * all from the helpers: LGNModel_Attach gives Lignum every callback.
  * Output: t, the centre of mass x, the energy and |Phi|_2 every 0.1 s, then
  * the step statistics. With error control LGNSolve (LGN_NORMAL) returns the
  * dense output at tout, interpolated inside a step, projected onto the
@@ -29,60 +30,15 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-/* The model: the body set and the joint set, passed as user_data. */
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
-
-/* K_t = d/dq (M vdot + g + B^T lambda): both parts added to the dense K. */
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
-                     N_Vector lambda, SUNMatrix K, void *ud)
-{
-  Model *md = (Model *)ud;
-  (void)vdot;
-  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1;
-  return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
-}
-
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)ud)->bodies);
-}
-
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
 {
   sunrealtype kin, pot;
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   printf("%5.2f %12.6f %12.6f %12.6f %14.6f %10.1e\n", t, NV_Ith_S(q, 0), NV_Ith_S(q, 1),
          NV_Ith_S(q, 2), kin + pot, sqrt(N_VDotProd(phi, phi)));
 }
@@ -96,7 +52,9 @@ int main(void)
   const sunrealtype rtol = 1e-6, atol = 1e-6, dtout = 0.1, tend = 1.0;
   SUNContext ctx = NULL;
   LGNGroup G = NULL;
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, y = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -110,12 +68,13 @@ int main(void)
   G = LGNGroup_R3xSO3(); /* q = (x, p): nq = 7, v = (u, Omega): nv = 6 */
 
   /* the model: one body, gravity, a spherical joint to the ground */
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
-  flag = LGNBodies_SetPrincipalInertia(md.bodies, 0, 15.0, J);
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
-  if (!flag) flag = LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, 0, mX);
-  m = LGNJoints_NumConstraints(md.joints); /* 3 */
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
+  flag = LGNBodies_SetPrincipalInertia(bodies, 0, 15.0, J);
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
+  if (!flag) flag = LGNJoints_AddSpherical(joints, LGN_GROUND, origin, 0, mX);
+  m = LGNJoints_NumConstraints(joints); /* 3 */
 
   /* initial state: x = R X = X, p = identity, u = R (Omega x X) */
   q = N_VNew_Serial(G->nq, ctx);
@@ -133,15 +92,7 @@ int main(void)
 
   /* the integrator */
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
 
   /* dense linear solver on the (nv + m) x (nv + m) iteration matrix */
@@ -161,10 +112,10 @@ int main(void)
   printf("Heavy top on R^3 x SO(3), spherical joint, generalized-alpha(0.9),\n");
   printf("error control with rtol = atol = %.0e\n\n", rtol);
   printf("%5s %12s %12s %12s %14s %10s\n", "t", "x", "y", "z", "energy", "|Phi|");
-  if (!flag) Print(&md, t, q, v, phi);
+  if (!flag) Print(md, t, q, v, phi);
   for (tout = dtout; !flag && tout <= tend + 0.5 * dtout; tout += dtout) {
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
-    if (!flag) Print(&md, t, q, v, phi);
+    if (!flag) Print(md, t, q, v, phi);
   }
   if (flag) fprintf(stderr, "heavy_top: %s\n", LGNGetReturnFlagName(flag));
 
@@ -180,8 +131,9 @@ int main(void)
   N_VDestroy(phi);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   SUNContext_Free(&ctx);
   return flag ? 1 : 0;

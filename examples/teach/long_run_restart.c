@@ -4,7 +4,7 @@
  *
  * Shows: LGNWriteRestart and LGNReadRestart. A run on a cluster ends at the
  * job's time limit; the next job makes the integrator exactly as the first
- * did (group, callbacks, user data, linear solver, root functions, the
+ * did (the model, LGNModel_Attach, linear solver, root functions, the
  * same settings), calls LGNInit with any q0, v0 of the right sizes, reads
  * the restart file and goes on. The continued run then equals the
  * uninterrupted one bit for bit: the file holds the state, the last step,
@@ -12,8 +12,8 @@
  * that the settings which decide the steps are the writer's.
  *
  * The user's own state is not in Lignum's file: here the callbacks count
- * the top's revolutions (a root function, LGNRootInit, and a counter in
- * the user data), and that counter is saved next to the restart file by
+ * the top's revolutions (a root function, LGNRootInit, and a counter the
+ * program keeps), and that counter is saved next to the restart file by
  * the program itself (SaveUserState, LoadUserState).
  *
  * Model: the heavy top of heavy_top.c (R^3 x SO(3), spherical joint),
@@ -30,38 +30,17 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #define RESTART_FILE "long_run_restart.lgr"
 #define USER_FILE    "long_run_restart.user"
 
-/* The model and the user's own state (the callbacks change it). */
+/* The user's own state (the callbacks change it). */
 typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
   long int crossings; /* the centre of mass crossing the x-z plane */
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
+} UserState;
 
 /* An event: the centre of mass crosses the plane y = 0 (the top precesses
  * about the z axis). */
@@ -78,7 +57,10 @@ static int Crossing(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *g, void 
 typedef struct {
   SUNContext ctx;
   LGNGroup G;
-  Model md;
+  LGNBodies bodies;
+  LGNJoints joints;
+  LGNModel model; /* the bodies and joints: every model callback */
+  UserState us;
   N_Vector q, v, y;
   SUNMatrix A;
   SUNLinearSolver LS;
@@ -97,12 +79,13 @@ static int StartJob(Job *job)
   memset(job, 0, sizeof *job);
   if (SUNContext_Create(NULL, &job->ctx) != 0) return -1;
   job->G = LGNGroup_R3xSO3();
-  job->md.bodies = LGNBodies_Create(job->G);
-  job->md.joints = LGNJoints_Create(job->G);
-  flag = LGNBodies_SetPrincipalInertia(job->md.bodies, 0, 15.0, J);
-  if (!flag) flag = LGNBodies_SetGravity(job->md.bodies, gvec);
-  if (!flag) flag = LGNJoints_AddSpherical(job->md.joints, LGN_GROUND, origin, 0, mX);
-  m = LGNJoints_NumConstraints(job->md.joints);
+  job->bodies = LGNBodies_Create(job->G);
+  job->joints = LGNJoints_Create(job->G);
+  job->model  = LGNModel_Create(job->bodies, job->joints);
+  flag = LGNBodies_SetPrincipalInertia(job->bodies, 0, 15.0, J);
+  if (!flag) flag = LGNBodies_SetGravity(job->bodies, gvec);
+  if (!flag) flag = LGNJoints_AddSpherical(job->joints, LGN_GROUND, origin, 0, mX);
+  m = LGNJoints_NumConstraints(job->joints);
 
   /* the initial state (a job that reads a restart file may give any q0,
    * v0 of these sizes: LGNReadRestart replaces them) */
@@ -119,12 +102,7 @@ static int StartJob(Job *job)
   vd[3] = omega0[0]; vd[4] = omega0[1]; vd[5] = omega0[2];
 
   job->mem = LGNCreate(job->ctx);
-  if (!flag) flag = LGNSetGroup(job->mem, job->G);
-  if (!flag) flag = LGNSetUserData(job->mem, &job->md);
-  if (!flag) flag = LGNSetMassFn(job->mem, Mass);
-  if (!flag) flag = LGNSetForceFn(job->mem, Force);
-  if (!flag) flag = LGNSetConstraints(job->mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetMassConstant(job->mem, SUNTRUE);
+  if (!flag) flag = LGNModel_Attach(job->model, job->mem);
   if (!flag) flag = LGNInit(job->mem, 0.0, job->q, job->v);
   if (!flag) flag = LGNRootInit(job->mem, 1, Crossing);
   job->y  = N_VNew_Serial(job->G->nv + m, job->ctx);
@@ -147,27 +125,28 @@ static void EndJob(Job *job)
   N_VDestroy(job->y);
   N_VDestroy(job->q);
   N_VDestroy(job->v);
-  LGNJoints_Destroy(&job->md.joints);
-  LGNBodies_Destroy(&job->md.bodies);
+  LGNModel_Destroy(&job->model);
+  LGNJoints_Destroy(&job->joints);
+  LGNBodies_Destroy(&job->bodies);
   LGNGroup_Destroy(job->G);
   SUNContext_Free(&job->ctx);
 }
 
 /* The user's state, saved and read by the user (here one number). */
-static int SaveUserState(const Model *md)
+static int SaveUserState(const UserState *us)
 {
   FILE *fp = fopen(USER_FILE, "w");
   if (fp == NULL) return -1;
-  fprintf(fp, "%ld\n", md->crossings);
+  fprintf(fp, "%ld\n", us->crossings);
   return fclose(fp) == 0 ? 0 : -1;
 }
 
-static int LoadUserState(Model *md)
+static int LoadUserState(UserState *us)
 {
   FILE *fp = fopen(USER_FILE, "r");
   int ok;
   if (fp == NULL) return -1;
-  ok = fscanf(fp, "%ld", &md->crossings) == 1;
+  ok = fscanf(fp, "%ld", &us->crossings) == 1;
   fclose(fp);
   return ok ? 0 : -1;
 }
@@ -180,13 +159,13 @@ static int Integrate(Job *job, sunrealtype tend, int jobno, sunbooleantype print
   for (tout = floor(t * 10.0 + 0.5) / 10.0 + 0.1; !flag && tout <= tend + 0.05;) {
     flag = LGNSolve(job->mem, tout, &t, job->q, job->v, LGN_NORMAL);
     if (flag == LGN_ROOT_RETURN) {
-      job->md.crossings++;
+      job->us.crossings++;
       flag = 0;
       continue;
     }
     if (!flag && print)
       printf("%4d %5.2f %12.6f %12.6f %12.6f %10ld\n", jobno, t, NV_Ith_S(job->q, 0),
-             NV_Ith_S(job->q, 1), NV_Ith_S(job->q, 2), job->md.crossings);
+             NV_Ith_S(job->q, 1), NV_Ith_S(job->q, 2), job->us.crossings);
     tout += 0.1;
   }
   return flag;
@@ -209,13 +188,13 @@ int main(void)
   flag = StartJob(&job1);
   if (!flag) flag = Integrate(&job1, 0.5, 1, SUNTRUE);
   if (!flag) flag = LGNWriteRestart(job1.mem, RESTART_FILE);
-  if (!flag) flag = SaveUserState(&job1.md);
+  if (!flag) flag = SaveUserState(&job1.us);
   EndJob(&job1);
 
   /* job 2: the same integrator, the files read, the run continued */
   if (!flag) flag = StartJob(&job2);
   if (!flag) flag = LGNReadRestart(job2.mem, RESTART_FILE);
-  if (!flag) flag = LoadUserState(&job2.md);
+  if (!flag) flag = LoadUserState(&job2.us);
   if (!flag) flag = Integrate(&job2, 1.0, 2, SUNTRUE);
 
   /* the run without a break, for comparison */
@@ -237,10 +216,10 @@ int main(void)
 
   printf("\nrestart file: %ld bytes\n", size);
   printf("steps: %ld (resumed), %ld (without a break)\n", nst2, nstw);
-  printf("crossings: %ld (resumed), %ld (without a break)\n", job2.md.crossings,
-         whole.md.crossings);
+  printf("crossings: %ld (resumed), %ld (without a break)\n", job2.us.crossings,
+         whole.us.crossings);
   flag = memcmp(q2, qw, sizeof q2) != 0 || memcmp(v2, vw, sizeof v2) != 0 || nst2 != nstw ||
-         job2.md.crossings != whole.md.crossings;
+         job2.us.crossings != whole.us.crossings;
   printf("q, v at t = 1 equal bit for bit: %s\n", flag ? "NO" : "yes");
   EndJob(&job2);
   EndJob(&whole);

@@ -30,47 +30,9 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
-
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Damping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
-{
-  return LGNBodies_DampingFn(t, q, v, C, ((Model *)ud)->bodies);
-}
-/* K_t: the joints' geometric stiffness plus the bodies' (here the spring) */
-static int Stiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
-                     N_Vector lambda, SUNMatrix K, void *ud)
-{
-  Model *md = (Model *)ud;
-  (void)vdot;
-  if (LGNJoints_Stiffness(md->joints, t, q, lambda, K)) return -1;
-  return LGNBodies_Stiffness(md->bodies, q, v, K) ? -1 : 0;
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
 
 /* Body k at centre c, turned by angle a about z. */
 static void Place(sunrealtype *q, int k, const sunrealtype c[3], sunrealtype a)
@@ -80,13 +42,13 @@ static void Place(sunrealtype *q, int k, const sunrealtype c[3], sunrealtype a)
   qk[3] = cos(0.5 * a); qk[4] = 0.0; qk[5] = 0.0; qk[6] = sin(0.5 * a);
 }
 
-static void Print(Model *md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
+static void Print(LGNModel md, sunrealtype t, N_Vector q, N_Vector v, N_Vector phi)
 {
   const sunrealtype *qd = N_VGetArrayPointer(q);
   sunrealtype R[9], kin, pot;
   LGNQuaternionToRotation(qd + 3, R);
-  LGNBodies_Energy(md->bodies, q, v, &kin, &pot);
-  LGNJoints_Residual(md->joints, t, q, phi);
+  LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot);
+  LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi);
   printf("%5.2f %10.6f %10.6f %10.6f %11.6f %14.8f %10.1e\n", t,
          qd[0] + 0.5 * R[0], qd[1] + 0.5 * R[3], /* crank tip x + R (1/2, 0, 0) */
          qd[14], NV_Ith_S(v, 12), kin + pot, sqrt(N_VDotProd(phi, phi)));
@@ -107,7 +69,9 @@ int main(void)
   sunrealtype a = 0.25 * pi, B[3], C[3], c[3];
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[3];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, y = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -121,8 +85,9 @@ int main(void)
   body = LGNGroup_R3xSO3();
   factors[0] = factors[1] = factors[2] = body;
   G = LGNGroup_Product(3, factors);
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
   q = N_VNew_Serial(G->nq, ctx);
   v = N_VNew_Serial(G->nv, ctx);
   qd = N_VGetArrayPointer(q);
@@ -137,17 +102,17 @@ int main(void)
   Place(qd, 1, c, atan2(C[1] - B[1], C[0] - B[0]));
   Place(qd, 2, C, 0.0);
 
-  flag = LGNBodies_SetPrincipalInertia(md.bodies, 0, 1.0, Jc);
-  if (!flag) flag = LGNBodies_SetPrincipalInertia(md.bodies, 1, 3.0, Jr);
-  if (!flag) flag = LGNBodies_SetPrincipalInertia(md.bodies, 2, 2.0, Js);
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gvec);
-  if (!flag) flag = LGNBodies_AddSpringDamper(md.bodies, LGN_GROUND, anchor, 2, o, 50.0, 0.0, 2.0);
+  flag = LGNBodies_SetPrincipalInertia(bodies, 0, 1.0, Jc);
+  if (!flag) flag = LGNBodies_SetPrincipalInertia(bodies, 1, 3.0, Jr);
+  if (!flag) flag = LGNBodies_SetPrincipalInertia(bodies, 2, 2.0, Js);
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gvec);
+  if (!flag) flag = LGNBodies_AddSpringDamper(bodies, LGN_GROUND, anchor, 2, o, 50.0, 0.0, 2.0);
 
-  if (!flag) flag = LGNJoints_AddRevolute(md.joints, LGN_GROUND, o, ez, 0, crank_lo, ez);
-  if (!flag) flag = LGNJoints_AddSpherical(md.joints, 0, crank_hi, 1, rod_lo);
-  if (!flag) flag = LGNJoints_AddUniversal(md.joints, 1, rod_hi, ez, 2, o, ey);
-  if (!flag) flag = LGNJoints_AddPrismatic(md.joints, LGN_GROUND, o, ex, 2, o, ex);
-  m = LGNJoints_NumConstraints(md.joints);
+  if (!flag) flag = LGNJoints_AddRevolute(joints, LGN_GROUND, o, ez, 0, crank_lo, ez);
+  if (!flag) flag = LGNJoints_AddSpherical(joints, 0, crank_hi, 1, rod_lo);
+  if (!flag) flag = LGNJoints_AddUniversal(joints, 1, rod_hi, ez, 2, o, ey);
+  if (!flag) flag = LGNJoints_AddPrismatic(joints, LGN_GROUND, o, ex, 2, o, ex);
+  m = LGNJoints_NumConstraints(joints);
   n = G->nv + m;
   phi = N_VNew_Serial(m, ctx);
 
@@ -158,15 +123,7 @@ int main(void)
   vd[5] = omega;
 
   mem = LGNCreate(ctx);
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetStiffnessFn(mem, Stiffness);
-  if (!flag) flag = LGNSetDampingFn(mem, Damping);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   y = N_VNew_Serial(n, ctx);
   A = SUNDenseMatrix(n, n, ctx);
@@ -181,10 +138,10 @@ int main(void)
   printf("generalized-alpha(0.9), h = %.0e\n\n", h);
   printf("%5s %10s %10s %10s %11s %14s %10s\n", "t", "B_x", "B_y", "x_slider", "u_slider",
          "energy", "|Phi|");
-  if (!flag) Print(&md, t, q, v, phi);
+  if (!flag) Print(md, t, q, v, phi);
   for (tout = dtout; !flag && tout <= tend + 0.5 * dtout; tout += dtout) {
     flag = LGNSolve(mem, tout, &t, q, v, LGN_NORMAL);
-    if (!flag) Print(&md, t, q, v, phi);
+    if (!flag) Print(md, t, q, v, phi);
   }
   if (flag) fprintf(stderr, "slider_crank: %s\n", LGNGetReturnFlagName(flag));
 
@@ -199,8 +156,9 @@ int main(void)
   N_VDestroy(phi);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

@@ -37,48 +37,23 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_mpiplusx.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #define NTOPS 8
 
-/* This rank's tops: the body set and the joint set, passed as user_data. */
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
-
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-
 /* The table's row: energy summed over all tops, the largest height change
  * and |Phi| over all ranks (each rank computes its part, MPI combines). */
-static int Report(MPI_Comm comm, int rank, const Model *md, sunrealtype t, N_Vector q,
+static int Report(MPI_Comm comm, int rank, LGNModel md, sunrealtype t, N_Vector q,
                   N_Vector v, N_Vector phi, int K)
 {
   const sunrealtype *qd = N_VGetArrayPointer(q), *ph = N_VGetArrayPointer(phi);
   double part[1], sum[1], mx[2], mxall[2], kin = 0.0, pot = 0.0;
   int k, i;
-  if (LGNBodies_Energy(md->bodies, q, v, &kin, &pot) ||
-      LGNJoints_Residual(md->joints, t, q, phi))
+  if (LGNBodies_Energy(LGNModel_GetBodies(md), q, v, &kin, &pot) ||
+      LGNJoints_Residual(LGNModel_GetJoints(md), t, q, phi))
     return -1;
   part[0] = kin + pot;
   mx[0] = mx[1] = 0.0;
@@ -100,7 +75,9 @@ int main(int argc, char **argv)
   MPI_Comm comm = MPI_COMM_WORLD;
   SUNContext ctx = NULL;
   LGNGroup body = NULL, G = NULL, factors[NTOPS];
-  Model md = {NULL, NULL};
+  LGNBodies bodies = NULL;
+  LGNJoints joints = NULL;
+  LGNModel md = NULL;
   N_Vector q = NULL, v = NULL, phi = NULL, tmpl = NULL;
   SUNMatrix A = NULL;
   SUNLinearSolver LS = NULL;
@@ -130,14 +107,15 @@ int main(int argc, char **argv)
   nv = G->nv;
 
   /* Step 3: its bodies and joints, from the helpers, as on one process */
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
   for (k = 0; k < K && !flag; k++) {
-    flag = LGNBodies_SetPrincipalInertia(md.bodies, k, 15.0, J);
-    if (!flag) flag = LGNJoints_AddSpherical(md.joints, LGN_GROUND, origin, k, tip);
+    flag = LGNBodies_SetPrincipalInertia(bodies, k, 15.0, J);
+    if (!flag) flag = LGNJoints_AddSpherical(joints, LGN_GROUND, origin, k, tip);
   }
-  if (!flag) flag = LGNBodies_SetGravity(md.bodies, gravity);
-  m = LGNJoints_NumConstraints(md.joints); /* 3 K */
+  if (!flag) flag = LGNBodies_SetGravity(bodies, gravity);
+  m = LGNJoints_NumConstraints(joints); /* 3 K */
 
   /* Step 4: its part of the state, in MPIPlusX vectors */
   q   = N_VMake_MPIPlusX(comm, N_VNew_Serial(G->nq, ctx), ctx);
@@ -158,12 +136,7 @@ int main(int argc, char **argv)
    * same on every rank */
   mem = LGNCreate(ctx);
   if (mem == NULL) return 1;
-  if (!flag) flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
+  if (!flag) flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNSetKinematics(mem, LGN_KINEMATICS_EXACT);
   if (!flag) flag = LGNSetStepControl(mem, LGN_STEP_ADAPTIVE);
   if (!flag) flag = LGNSStolerances(mem, 1e-6, 1e-6);
@@ -184,10 +157,10 @@ int main(int argc, char **argv)
            "rtol = atol = 1e-6\n\n", NTOPS);
     printf("%4s %16s %12s %9s\n", "t", "energy", "max |z|", "max |Phi|");
   }
-  if (!flag) flag = Report(comm, rank, &md, t, q, v, phi, K);
+  if (!flag) flag = Report(comm, rank, md, t, q, v, phi, K);
   for (k = 1; k <= 5 && !flag; k++) {
     flag = LGNSolve(mem, 0.1 * k, &t, q, v, LGN_NORMAL);
-    if (!flag) flag = Report(comm, rank, &md, t, q, v, phi, K);
+    if (!flag) flag = Report(comm, rank, md, t, q, v, phi, K);
   }
   if (flag && rank == 0) fprintf(stderr, "failed at t = %g (%d)\n", t, flag);
 
@@ -209,8 +182,9 @@ int main(int argc, char **argv)
   N_VDestroy(N_VGetLocalVector_MPIPlusX(v));
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
   SUNContext_Free(&ctx);

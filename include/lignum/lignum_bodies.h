@@ -40,11 +40,17 @@
  *     the opposite on a; potential k_r |theta|^2 / 2. At |theta| = pi the
  *     logarithm jumps to the other side.
  *
- * Matrices: a dense M, K or C gets the bodies' term ADDED (zero it first:
- * Lignum does before its callbacks), so that the joints' terms can be
- * added to the same matrix; a sparse one (CSC or CSR) is overwritten with
- * the pattern documented at LGNBodies_MassNnz and LGNBodies_TangentNnz,
- * reallocated if it has too few entries.
+ * Matrices: one rule for dense and sparse M, K and C, here and in the
+ * joint helpers (LGNJoints_Stiffness): the term is ADDED to what the matrix
+ * holds, so that the bodies' and the joints' terms sum in one matrix in
+ * either order. Start from an empty matrix: Lignum passes its callbacks a
+ * dense matrix zeroed and a sparse one (CSC or CSR) without entries (index
+ * pointers 0, as SUNSparseMatrix creates it); between own calls use
+ * SUNMatZero. An empty sparse matrix gets the term's pattern (documented at
+ * LGNBodies_MassNnz and LGNBodies_TangentNnz; reallocated if it has too few
+ * entries); a sparse matrix holding entries gets the union of its pattern
+ * and the term's (each column, or row, sorted by index; in place, without
+ * reallocation, when the term's pattern lies within it).
  *
  * Errors: the functions returning a flag return LGN_SUCCESS, LGN_ILL_INPUT
  * (bad argument, named in the message) or LGN_MEM_FAIL, and report through
@@ -180,21 +186,21 @@ LGN_EXPORT sunindextype LGNBodies_MassNnz(LGNBodies B);
  *  of bodies joined by a force element (both blocks (a, b) and (b, a)). */
 LGN_EXPORT sunindextype LGNBodies_TangentNnz(LGNBodies B);
 
-/** M (nv x nv): dense, added; sparse, overwritten (LGNBodies_MassNnz). */
+/** M (nv x nv), added (see "Matrices" at the top; LGNBodies_MassNnz). */
 LGN_EXPORT int LGNBodies_Mass(LGNBodies B, N_Vector q, SUNMatrix M);
 
 /** g = g(q, v) (length nv, overwritten): gyroscopic terms, gravity and the
  *  force elements, minus the applied forces. */
 LGN_EXPORT int LGNBodies_Force(LGNBodies B, N_Vector q, N_Vector v, N_Vector g);
 
-/** K = d/dq (M vdot + g) (nv x nv) along the group: dense, added; sparse,
- *  overwritten (LGNBodies_TangentNnz). The joints' part d/dq (B^T lambda)
- *  is LGNJoints_Stiffness. */
+/** K = d/dq (M vdot + g) (nv x nv) along the group, added (see "Matrices"
+ *  at the top; LGNBodies_TangentNnz). The joints' part d/dq (B^T lambda)
+ *  is LGNJoints_Stiffness, added to the same K. */
 LGN_EXPORT int LGNBodies_Stiffness(LGNBodies B, N_Vector q, N_Vector v,
                                    SUNMatrix K);
 
-/** C = dg/dv (nv x nv): dense, added; sparse, overwritten
- *  (LGNBodies_TangentNnz). */
+/** C = dg/dv (nv x nv), added (see "Matrices" at the top;
+ *  LGNBodies_TangentNnz). */
 LGN_EXPORT int LGNBodies_Damping(LGNBodies B, N_Vector q, N_Vector v,
                                  SUNMatrix C);
 

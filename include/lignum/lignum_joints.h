@@ -321,15 +321,16 @@ LGN_EXPORT int LGNJoints_TimeDerivative(LGNJoints J, sunrealtype t, N_Vector q,
 
 /**
  * K = d/dq (B(q)^T lambda), nv x nv: the joints' part of the tangent
- * stiffness K_t (the geometric stiffness). A dense K gets the term added;
- * a sparse K is overwritten with its pattern: the blocks of the bodies and
+ * stiffness K_t (the geometric stiffness), ADDED to what K holds, dense or
+ * sparse, by the body helpers' rule (lignum_bodies.h, "Matrices"), so that
+ * this and LGNBodies_Stiffness sum in one K in either order. Its sparse
+ * pattern: the blocks of the bodies and
  * of pairs coupled by a revolute, universal, prismatic or cylindrical
  * joint, in their rotation columns only (B^T lambda of the point and
  * perpendicularity rows does not depend on the translations) and their
  * rotation rows, plus the translation rows of an SE(3) body's own block;
  * a block with a body in a prismatic or cylindrical joint is stored whole
  * (6 x 6: the point-on-line rows depend on the translations).
- * Combine it with other terms with SUNMatScaleAdd.
  */
 LGN_EXPORT int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q,
                                    N_Vector lambda, SUNMatrix K);

@@ -47,6 +47,7 @@
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
 #include "lgn_planar.h"
+#include "lgn_mbs.h"
 
 #ifdef LGN_IMPL_H
 #error "lgn_bodies.c is a pure helper: it must not see the integrator's memory record"
@@ -81,6 +82,7 @@ struct LGNBodiesRec {
   sunrealtype *kblk;
   lgnPlanarBodies *planar; /* a planar set (lgn_planar_bodies.c), which
                               answers every call itself; else NULL        */
+  SUNMatrix work;        /* sparse terms added to a matrix with entries */
 };
 
 #define MSG_MEM_FAIL "A memory request failed."
@@ -206,6 +208,7 @@ void LGNBodies_Destroy(LGNBodies *Bp)
   B = *Bp;
   lgnPlanarBodiesDestroy(B->planar);
   FreeStructure(B);
+  if (B->work != NULL) SUNMatDestroy(B->work);
   free(B->qoff);
   free(B->voff);
   free(B->se3);
@@ -769,13 +772,32 @@ static void RotEval(const struct LGNBodiesRec *B, const Element *e, const sunrea
  * M, g, energies
  * ------------------------------------------------------------------------ */
 
-/* Write the block structure's values (blocks kblk, or the mass blocks when
- * mass) into A: dense, added; sparse, overwritten with the pattern. */
+static int WriteSparse(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
+                       const char *func);
+
+/* Add the block structure's values (blocks kblk, or the mass blocks when
+ * mass) to A, dense or sparse: an empty sparse A gets them written with
+ * the pattern, a sparse A holding entries gets them added through the work
+ * matrix (lgnSparseAdd). */
 static int WriteBlocks(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
                        const char *func)
 {
   int b, i, r, c;
-  if (lgnMatID(A) == SUNMATRIX_DENSE) {
+  if (lgnMatIsSparse(A)) {
+    int flag;
+    if (lgnMatIsEmpty(A)) return WriteSparse(B, A, mass, func);
+    if (lgnSparseWorkLike(&B->work, A) == NULL) {
+      BErr(B, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
+      return LGN_MEM_FAIL;
+    }
+    flag = WriteSparse(B, B->work, mass, func);
+    if (flag == LGN_SUCCESS && lgnSparseAdd(A, B->work) != LGN_SUCCESS) {
+      BErr(B, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
+      flag = LGN_MEM_FAIL;
+    }
+    return flag;
+  }
+  {
     if (mass) {
       for (b = 0; b < B->nb; b++) {
         const sunindextype o = B->voff[b];
@@ -794,6 +816,13 @@ static int WriteBlocks(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
                 B->kblk[36 * (size_t)i + 6 * r + c];
     return LGN_SUCCESS;
   }
+}
+
+/* Overwrite the sparse A with the block structure's values and pattern. */
+static int WriteSparse(struct LGNBodiesRec *B, SUNMatrix A, sunbooleantype mass,
+                       const char *func)
+{
+  int b, i, r, c;
   {
     const sunindextype nnz = mass ? LGNBodies_MassNnz(B) : LGNBodies_TangentNnz(B);
     const sunbooleantype csc = SUNSparseMatrix_SparseType(A) == CSC_MAT;
@@ -1190,3 +1219,5 @@ int LGNBodies_DampingFn(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void
   (void)t;
   return LGNBodies_Damping((LGNBodies)user_data, q, v, C) == LGN_SUCCESS ? 0 : -1;
 }
+
+LGNGroup lgnBodiesGroup(LGNBodies B) { return B != NULL ? B->G : NULL; }

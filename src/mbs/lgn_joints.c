@@ -41,6 +41,7 @@
 #include "lgn_argcheck.h"
 #include "lgn_err.h"
 #include "lgn_planar.h"
+#include "lgn_mbs.h"
 
 #ifdef LGN_IMPL_H
 #error "lgn_joints.c is a pure helper: it must not see the integrator's memory record"
@@ -93,6 +94,7 @@ struct LGNJointsRec {
   /* geometric stiffness: per body, the sorted list of coupled bodies */
   int *kptr, *kbody;          /* nb + 1, kptr[nb]                          */
   sunrealtype *kblk;          /* 36 per (body, coupled body), column-major */
+  SUNMatrix work;             /* the sparse K added to a matrix with entries */
 };
 
 #define NO_PATTERN (-1) /* bfmt before the first sparse B and after an Add */
@@ -323,6 +325,7 @@ void LGNJoints_Destroy(LGNJoints *Jp)
   lgnPlanarJointsDestroy(J->planar);
   FreeJacobianPattern(J);
   FreeStiffnessStructure(J);
+  if (J->work != NULL) SUNMatDestroy(J->work);
   free(J->qoff);
   free(J->voff);
   free(J->se3);
@@ -1587,11 +1590,13 @@ sunindextype LGNJoints_StiffnessNnz(LGNJoints J)
   }
 }
 
+static int WriteSparseStiffness(struct LGNJointsRec *J, SUNMatrix K, const char *func);
+
 int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
                         SUNMatrix K)
 {
   const sunrealtype *qd, *ld;
-  sunindextype nv, nnz, pos = 0;
+  sunindextype nv;
   int k, b, i, r, c, flag;
   if (J == NULL) return NullJoints(__func__);
   if (J->planar != NULL) return lgnPlanarJointsStiffness(J->planar, t, q, lambda, K, __func__);
@@ -1630,9 +1635,29 @@ int LGNJoints_Stiffness(LGNJoints J, sunrealtype t, N_Vector q, N_Vector lambda,
                 J->kblk[36 * (size_t)i + r + 6 * c];
     return LGN_SUCCESS;
   }
-  nnz = LGNJoints_StiffnessNnz(J);
-  if (SUNSparseMatrix_NNZ(K) < nnz && SUNSparseMatrix_Reallocate(K, nnz) != 0) {
+  if (lgnMatIsEmpty(K)) return WriteSparseStiffness(J, K, __func__);
+  /* K holds entries: add through the work matrix (lignum_bodies.h,
+   * "Matrices": the same rule as for a dense K) */
+  if (lgnSparseWorkLike(&J->work, K) == NULL) {
     JErr(J, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    return LGN_MEM_FAIL;
+  }
+  flag = WriteSparseStiffness(J, J->work, __func__);
+  if (flag == LGN_SUCCESS && lgnSparseAdd(K, J->work) != LGN_SUCCESS) {
+    JErr(J, LGN_MEM_FAIL, __func__, MSG_MEM_FAIL);
+    flag = LGN_MEM_FAIL;
+  }
+  return flag;
+}
+
+/* Overwrite the sparse K with the blocks kblk and their pattern. */
+static int WriteSparseStiffness(struct LGNJointsRec *J, SUNMatrix K, const char *func)
+{
+  const sunindextype nnz = LGNJoints_StiffnessNnz(J);
+  sunindextype pos = 0;
+  int b, i, r, c;
+  if (SUNSparseMatrix_NNZ(K) < nnz && SUNSparseMatrix_Reallocate(K, nnz) != 0) {
+    JErr(J, LGN_MEM_FAIL, func, MSG_MEM_FAIL);
     return LGN_MEM_FAIL;
   }
   {
@@ -1714,3 +1739,5 @@ int LGNJoints_PointPlaneContact(LGNJoints J, N_Vector q, int b, const sunrealtyp
   for (i = 0; i < 3; i++) row[J->voff[b] + 3 + i] = g[i];
   return LGN_SUCCESS;
 }
+
+LGNGroup lgnJointsGroup(LGNJoints J) { return J != NULL ? J->G : NULL; }

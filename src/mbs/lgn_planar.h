@@ -90,6 +90,8 @@ typedef struct {
   sunindextype nmajor;         /* columns (CSC) or rows (CSR)            */
   sunindextype *ptr, *ind;     /* the pattern                            */
   sunindextype *pos;           /* data position of each emitted entry    */
+  SUNMatrix work;              /* a sparse term added to a matrix that
+                                  holds entries (lgnSparseAdd)           */
 } lgnPlanarPattern;
 
 typedef enum { LGN_PA_COLLECT, LGN_PA_DENSE_ADD, LGN_PA_DENSE_SET, LGN_PA_SPARSE } lgnPlanarMode;
@@ -110,8 +112,11 @@ void lgnPlanarEmit(lgnPlanarSink *s, sunindextype r, sunindextype c, sunrealtype
  * LGN_SUCCESS or a failure flag (already reported). */
 typedef int (*lgnPlanarGenFn)(void *ctx, lgnPlanarSink *s);
 
-/* Write A (rows x cols) from gen: dense, added (set = SUNFALSE) or set
- * entry by entry; sparse, overwritten. LGN_MEM_FAIL is reported here. */
+/* Write A (rows x cols) from gen: set = SUNTRUE, A is overwritten (dense
+ * entry by entry, sparse with the pattern); set = SUNFALSE, the term is
+ * added, the helpers' one rule for dense and sparse matrices
+ * (lignum_bodies.h, "Matrices": a sparse A that holds entries gets the
+ * union of the patterns). LGN_MEM_FAIL is reported here. */
 int lgnPlanarWrite(lgnPlanarPattern *pat, SUNMatrix A, sunbooleantype set,
                    lgnPlanarGenFn gen, void *ctx, const LGNErrSink *err,
                    const char *func);

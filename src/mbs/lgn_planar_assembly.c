@@ -4,8 +4,10 @@
  * -----------------------------------------------------------------------------
  * Matrix assembly of the planar sets (lgn_planar.h): a generator emits the
  * entries of a matrix in a fixed order; a dense matrix gets them added or
- * set, a sparse one (CSC or CSR) is overwritten with the pattern collected
- * from the first evaluation in that format (duplicates summed).
+ * set, a sparse one (CSC or CSR) is written with the pattern collected
+ * from the first evaluation in that format (duplicates summed): an empty
+ * one (or any, for set) directly, one that holds entries through a work
+ * matrix added to it (lgnSparseAdd), as the spatial sets do.
  * ---------------------------------------------------------------------------*/
 
 #include <stdlib.h>
@@ -44,6 +46,7 @@ void lgnPlanarEmit(lgnPlanarSink *s, sunindextype r, sunindextype c, sunrealtype
 
 void lgnPlanarPatternFree(lgnPlanarPattern *pat)
 {
+  if (pat->work != NULL) SUNMatDestroy(pat->work);
   free(pat->ptr);
   free(pat->ind);
   free(pat->pos);
@@ -132,6 +135,22 @@ int lgnPlanarWrite(lgnPlanarPattern *pat, SUNMatrix A, sunbooleantype set,
   if (!lgnMatIsSparse(A)) {
     s.mode = set ? LGN_PA_DENSE_SET : LGN_PA_DENSE_ADD;
     return gen(ctx, &s);
+  }
+  if (!set && !lgnMatIsEmpty(A)) { /* A += the term, through pat->work */
+    SUNMatrix W = lgnSparseWorkLike(&pat->work, A);
+    int ret;
+    if (W == NULL) {
+      lgnReport(err, LGN_MEM_FAIL, func, "A memory request failed.");
+      return LGN_MEM_FAIL;
+    }
+    pat->work = NULL; /* held here: a new pattern frees pat's arrays */
+    ret = lgnPlanarWrite(pat, W, SUNTRUE, gen, ctx, err, func);
+    if (ret == LGN_SUCCESS && lgnSparseAdd(A, W) != LGN_SUCCESS) {
+      lgnReport(err, LGN_MEM_FAIL, func, "A memory request failed.");
+      ret = LGN_MEM_FAIL;
+    }
+    pat->work = W;
+    return ret;
   }
   {
     const int fmt = SUNSparseMatrix_SparseType(A);

@@ -8,6 +8,7 @@
  * ---------------------------------------------------------------------------*/
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <sunmatrix/sunmatrix_dense.h>
@@ -130,3 +131,125 @@ void lgnMatClear(SUNMatrix A)
   }
 }
 
+
+sunbooleantype lgnMatIsEmpty(SUNMatrix A)
+{
+  return lgnMatIsSparse(A) && SUNSparseMatrix_IndexPointers(A)[SUNSparseMatrix_NP(A)] == 0;
+}
+
+/* Sort the entries [lo, hi) of a compressed column (or row) by index
+ * (insertion sort: a column of the helpers holds a few dozen entries). */
+static void SortEntries(sunindextype *ind, sunrealtype *val, sunindextype lo, sunindextype hi)
+{
+  sunindextype p, r;
+  for (p = lo + 1; p < hi; p++) {
+    const sunindextype i = ind[p];
+    const sunrealtype x  = val[p];
+    for (r = p; r > lo && ind[r - 1] > i; r--) {
+      ind[r] = ind[r - 1];
+      val[r] = val[r - 1];
+    }
+    ind[r] = i;
+    val[r] = x;
+  }
+}
+
+int lgnSparseAdd(SUNMatrix A, SUNMatrix W)
+{
+  const sunindextype np = SUNSparseMatrix_NP(A);
+  const sunindextype ni = SUNSparseMatrix_SparseType(A) == CSC_MAT ? SUNSparseMatrix_Rows(A)
+                                                                    : SUNSparseMatrix_Columns(A);
+  const sunindextype *ap = SUNSparseMatrix_IndexPointers(A), *ai = SUNSparseMatrix_IndexValues(A);
+  const sunindextype *wp = SUNSparseMatrix_IndexPointers(W), *wi = SUNSparseMatrix_IndexValues(W);
+  const sunrealtype *wx  = SUNSparseMatrix_Data(W);
+  sunindextype *pos, *newp = NULL, *newi = NULL, j, p, extra = 0;
+  sunrealtype *newx = NULL;
+  /* pos[i]: where entry i of the current column sits in A (-1: absent) */
+  pos = (sunindextype *)malloc((size_t)(ni > 0 ? ni : 1) * sizeof *pos);
+  if (pos == NULL) return LGN_MEM_FAIL;
+  for (j = 0; j < ni; j++) pos[j] = -1;
+  for (j = 0; j < np; j++) {
+    for (p = ap[j]; p < ap[j + 1]; p++) pos[ai[p]] = p;
+    for (p = wp[j]; p < wp[j + 1]; p++)
+      if (pos[wi[p]] < 0) {
+        pos[wi[p]] = ap[j + 1]; /* counted once: no entry of A is there */
+        extra++;
+      }
+    for (p = ap[j]; p < ap[j + 1]; p++) pos[ai[p]] = -1;
+    for (p = wp[j]; p < wp[j + 1]; p++) pos[wi[p]] = -1;
+  }
+  if (extra == 0) { /* W's pattern within A's: add in place */
+    sunrealtype *ax = SUNSparseMatrix_Data(A);
+    for (j = 0; j < np; j++) {
+      for (p = ap[j]; p < ap[j + 1]; p++) pos[ai[p]] = p;
+      for (p = wp[j]; p < wp[j + 1]; p++) ax[pos[wi[p]]] += wx[p];
+      for (p = ap[j]; p < ap[j + 1]; p++) pos[ai[p]] = -1;
+    }
+    free(pos);
+    return LGN_SUCCESS;
+  }
+  {
+    const sunindextype nnz = ap[np] + extra;
+    const sunrealtype *ax  = SUNSparseMatrix_Data(A);
+    sunindextype q = 0;
+    newp = (sunindextype *)malloc((size_t)(np + 1) * sizeof *newp);
+    newi = (sunindextype *)malloc((size_t)nnz * sizeof *newi);
+    newx = (sunrealtype *)malloc((size_t)nnz * sizeof *newx);
+    if (newp == NULL || newi == NULL || newx == NULL) {
+      free(pos);
+      free(newp);
+      free(newi);
+      free(newx);
+      return LGN_MEM_FAIL;
+    }
+    newp[0] = 0;
+    for (j = 0; j < np; j++) {
+      const sunindextype first = q;
+      for (p = ap[j]; p < ap[j + 1]; p++) {
+        newi[q]     = ai[p];
+        newx[q]     = ax[p];
+        pos[ai[p]]  = q++;
+      }
+      for (p = wp[j]; p < wp[j + 1]; p++) {
+        if (pos[wi[p]] >= first) newx[pos[wi[p]]] += wx[p];
+        else {
+          newi[q]    = wi[p];
+          newx[q]    = wx[p];
+          pos[wi[p]] = q++;
+        }
+      }
+      for (p = first; p < q; p++) pos[newi[p]] = -1;
+      SortEntries(newi, newx, first, q);
+      newp[j + 1] = q;
+    }
+    free(pos);
+    if (SUNSparseMatrix_NNZ(A) < nnz && SUNSparseMatrix_Reallocate(A, nnz) != 0) {
+      free(newp);
+      free(newi);
+      free(newx);
+      return LGN_MEM_FAIL;
+    }
+    memcpy(SUNSparseMatrix_IndexPointers(A), newp, (size_t)(np + 1) * sizeof *newp);
+    memcpy(SUNSparseMatrix_IndexValues(A), newi, (size_t)nnz * sizeof *newi);
+    memcpy(SUNSparseMatrix_Data(A), newx, (size_t)nnz * sizeof *newx);
+    free(newp);
+    free(newi);
+    free(newx);
+  }
+  return LGN_SUCCESS;
+}
+
+SUNMatrix lgnSparseWorkLike(SUNMatrix *W, SUNMatrix A)
+{
+  if (*W != NULL && (SUNSparseMatrix_SparseType(*W) != SUNSparseMatrix_SparseType(A) ||
+                     SUNSparseMatrix_Rows(*W) != SUNSparseMatrix_Rows(A) ||
+                     SUNSparseMatrix_Columns(*W) != SUNSparseMatrix_Columns(A))) {
+    SUNMatDestroy(*W);
+    *W = NULL;
+  }
+  if (*W == NULL)
+    *W = SUNSparseMatrix(SUNSparseMatrix_Rows(A), SUNSparseMatrix_Columns(A), 1,
+                         SUNSparseMatrix_SparseType(A), A->sunctx);
+  if (*W != NULL) lgnMatClear(*W);
+  return *W;
+}

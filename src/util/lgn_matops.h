@@ -47,6 +47,20 @@ void lgnMatTvec(SUNMatrix A, const sunrealtype *x, sunrealtype *y,
                 sunbooleantype add);
 /* Zero a dense matrix; empty a sparse one (no stored entries). */
 void lgnMatClear(SUNMatrix A);
+/* Does A hold no entry (a sparse matrix as Lignum passes it to a callback,
+ * index pointers 0)? Always false for a dense matrix. */
+sunbooleantype lgnMatIsEmpty(SUNMatrix A);
+/* A += W for two sparse matrices of one type (CSC or CSR) and size: the
+ * helpers' rule for sparse matrices (lignum_bodies.h, "Matrices"). Where
+ * W's pattern lies within A's the values are added in place; otherwise A
+ * gets the union of the patterns (each compressed column or row sorted by
+ * index) and is reallocated. LGN_SUCCESS or LGN_MEM_FAIL (A unchanged). */
+int lgnSparseAdd(SUNMatrix A, SUNMatrix W);
+/* *W as an empty sparse matrix of A's type and size (made, or made again
+ * when A's type or size differs; SUNMatDestroy frees it): the work matrix
+ * a helper writes its term into before lgnSparseAdd. NULL if out of
+ * memory. */
+SUNMatrix lgnSparseWorkLike(SUNMatrix *W, SUNMatrix A);
 /* Are all n entries of x finite? */
 sunbooleantype lgnAllFinite(const sunrealtype *x, sunindextype n);
 

@@ -1,6 +1,6 @@
 /* Convergence of the heavy top (doc/accuracy-study.md) in the centre-of-mass
  * position at t = 1 s, against the independent reference (ARKODE Fehlberg
- * 7(8) at tol 1e-13 on the equivalent ODE, test/reference): Lie group
+ * 7(8) at tol 1e-13 on the equivalent ODE, models/lgn_reference.c): Lie group
  * generalized-alpha (rho_inf 0.9) and Euler-parameter generalized-alpha must
  * show an observed order 2.0 +- 0.1 (least-squares fit over four step sizes).
  * The table also lists the other methods for information. */

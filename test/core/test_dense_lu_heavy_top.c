@@ -1,5 +1,5 @@
 /* -----------------------------------------------------------------------------
- * The heavy top (bench/models/heavy_top.c) with Lignum's dense LU
+ * The heavy top (models/heavy_top.c) with Lignum's dense LU
  * (LGNLinSol_Dense) gives SUNLinSol_Dense's trajectory to roundoff: 1000
  * fixed steps (h = 1e-3, t = 1) with every formulation (R^3 x SO(3),
  * SE(3), Euler parameters), method (Newmark, generalized-alpha), kinematics

@@ -29,6 +29,7 @@
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_group.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <lignum/lignum_ls.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
@@ -37,11 +38,6 @@
 
 #define R_CRANK 0.2
 #define L_ROD   0.6
-
-typedef struct {
-  LGNBodies bodies;
-  LGNJoints joints;
-} Model;
 
 static int Motor(sunrealtype t, sunrealtype f[3], void *data)
 {
@@ -53,31 +49,6 @@ static int Motor(sunrealtype t, sunrealtype f[3], void *data)
   return 0;
 }
 
-static int Mass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
-{
-  return LGNBodies_MassFn(t, q, M, ((Model *)ud)->bodies);
-}
-static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
-{
-  return LGNBodies_ForceFn(t, q, v, g, ((Model *)ud)->bodies);
-}
-static int Constr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
-{
-  return LGNJoints_Residual(((Model *)ud)->joints, t, q, phi) ? -1 : 0;
-}
-static int ConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
-{
-  return LGNJoints_Jacobian(((Model *)ud)->joints, t, q, B) ? -1 : 0;
-}
-static int ConstrTime(sunrealtype t, N_Vector q, N_Vector phit, void *ud)
-{
-  return LGNJoints_TimeDerivative(((Model *)ud)->joints, t, q, phit) ? -1 : 0;
-}
-static int Curvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
-{
-  return LGNJoints_Curvature(((Model *)ud)->joints, t, q, v, z) ? -1 : 0;
-}
-
 /* Max slider position and velocity errors at t = 0.25 ... 1 (HUGE_VAL on a
  * failure), and the steps. */
 static void Run(SUNContext ctx, int bdf, int index, double tol, double *ex, double *ev,
@@ -87,7 +58,9 @@ static void Run(SUNContext ctx, int bdf, int index, double tol, double *ex, doub
   const double pin[3] = {R_CRANK, 0, 0}, rod_a[3] = {-L_ROD / 2, 0, 0}, rod_b[3] = {L_ROD / 2, 0, 0};
   const double Jc[3] = {0.01, 0.01, 0.01}, Jr[3] = {0.001, 0.03, 0.03};
   LGNGroup body = LGNGroup_R3xSO3(), f3[3], G;
-  Model md;
+  LGNBodies bodies;
+  LGNJoints joints;
+  LGNModel md;
   N_Vector q, v, y;
   SUNMatrix A;
   SUNLinearSolver LS;
@@ -99,17 +72,18 @@ static void Run(SUNContext ctx, int bdf, int index, double tol, double *ex, doub
 
   f3[0] = f3[1] = f3[2] = body;
   G = LGNGroup_Product(3, f3);
-  md.bodies = LGNBodies_Create(G);
-  md.joints = LGNJoints_Create(G);
-  LGNBodies_SetPrincipalInertia(md.bodies, 0, 1.0, Jc);
-  LGNBodies_SetPrincipalInertia(md.bodies, 1, 1.0, Jr);
-  LGNBodies_SetPrincipalInertia(md.bodies, 2, 1.0, Jc);
-  LGNJoints_AddRevolute(md.joints, LGN_GROUND, o, ez, 0, o, ez);
-  LGNJoints_AddRotationDriver(md.joints, LGN_GROUND, ez, ex_, 0, ex_, Motor, NULL);
-  LGNJoints_AddSpherical(md.joints, 0, pin, 1, rod_a);
-  LGNJoints_AddSpherical(md.joints, 1, rod_b, 2, o);
-  LGNJoints_AddPrismatic(md.joints, LGN_GROUND, o, ex_, 2, o, ex_);
-  m = LGNJoints_NumConstraints(md.joints);
+  bodies = LGNBodies_Create(G);
+  joints = LGNJoints_Create(G);
+  md = LGNModel_Create(bodies, joints);
+  LGNBodies_SetPrincipalInertia(bodies, 0, 1.0, Jc);
+  LGNBodies_SetPrincipalInertia(bodies, 1, 1.0, Jr);
+  LGNBodies_SetPrincipalInertia(bodies, 2, 1.0, Jc);
+  LGNJoints_AddRevolute(joints, LGN_GROUND, o, ez, 0, o, ez);
+  LGNJoints_AddRotationDriver(joints, LGN_GROUND, ez, ex_, 0, ex_, Motor, NULL);
+  LGNJoints_AddSpherical(joints, 0, pin, 1, rod_a);
+  LGNJoints_AddSpherical(joints, 1, rod_b, 2, o);
+  LGNJoints_AddPrismatic(joints, LGN_GROUND, o, ex_, 2, o, ex_);
+  m = LGNJoints_NumConstraints(joints);
 
   q = N_VNew_Serial(G->nq, ctx);
   v = N_VNew_Serial(G->nv, ctx);
@@ -121,14 +95,7 @@ static void Run(SUNContext ctx, int bdf, int index, double tol, double *ex, doub
   A   = SUNDenseMatrix(G->nv + m, G->nv + m, ctx);
   LS  = LGNLinSol_Dense(y, A, ctx);
   mem = LGNCreate(ctx);
-  flag = LGNSetGroup(mem, G);
-  if (!flag) flag = LGNSetUserData(mem, &md);
-  if (!flag) flag = LGNSetMassFn(mem, Mass);
-  if (!flag) flag = LGNSetForceFn(mem, Force);
-  if (!flag) flag = LGNSetMassConstant(mem, SUNTRUE);
-  if (!flag) flag = LGNSetConstraints(mem, m, Constr, ConstrJac);
-  if (!flag) flag = LGNSetConstraintTimeFn(mem, ConstrTime);
-  if (!flag) flag = LGNSetCurvatureFn(mem, Curvature);
+  flag = LGNModel_Attach(md, mem);
   if (!flag) flag = LGNInit(mem, 0.0, q, v);
   if (!flag) flag = LGNSetLinearSolver(mem, LS, A);
   if (!flag) flag = bdf ? LGNSetBDF(mem, 4) : LGNSetGenAlpha(mem, 0.9);
@@ -159,8 +126,9 @@ static void Run(SUNContext ctx, int bdf, int index, double tol, double *ex, doub
   N_VDestroy(y);
   N_VDestroy(q);
   N_VDestroy(v);
-  LGNJoints_Destroy(&md.joints);
-  LGNBodies_Destroy(&md.bodies);
+  LGNModel_Destroy(&md); /* after LGNFree */
+  LGNJoints_Destroy(&joints);
+  LGNBodies_Destroy(&bodies);
   LGNGroup_Destroy(G);
   LGNGroup_Destroy(body);
 }

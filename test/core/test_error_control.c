@@ -363,7 +363,7 @@ static void Proportionality(void)
   }
 }
 
-/* The chain of 5 bodies (bench/models/chain.h), error control: the
+/* The chain of 5 bodies (models/chain.h), error control: the
  * final state against a BDF run (maxord 5) at tolerance 1e-11, another
  * method (generalized-alpha at 1e-11 would take 10^6 steps). */
 static double ChainRun(double tol, int bdf, double *q, long int *nsteps)

@@ -1,5 +1,5 @@
 /* The heavy top in Euler parameters on R^7 (doc/accuracy-study.md),
- * formulation HT_EULER_PARAMETERS of bench/models/heavy_top.c, with its
+ * formulation HT_EULER_PARAMETERS of models/heavy_top.c, with its
  * analytic tangents EPStiffness, EPDamping, EPCurvature:
  *  (a) B, K_t, C_t and Z agree with central differences of the constraint,
  *      residual and force callbacks at random states (heavy_top_check_

@@ -1,5 +1,5 @@
 /* The heavy top on the Lie group SE(3) (doc/accuracy-study.md, the SE(3) variant,
- * §7.4), formulation HT_SE3 of bench/models/heavy_top.c:
+ * §7.4), formulation HT_SE3 of models/heavy_top.c:
  *  (a) the consistent start (vdot in inertial terms, lambda) equals the
  *      R^3 x SO(3) one and the published values to 1e-9;
  *  (b) analytic K_t, C_t, Z and difference quotients give the same solution

@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * Planar mechanisms on the planar groups (lignum_planar.h,
- * bench/models/planar_mechanisms.c), on SE(2) and on R^2 x SO(2) bodies:
+ * models/planar_mechanisms.c), on SE(2) and on R^2 x SO(2) bodies:
  *  (a) Andrews' squeezing mechanism (7 bodies, 10 revolute joints, a
  *      spring and a motor) under error control, BDF5 and the modified
  *      generalized-alpha, against the Test Set's reference at t = 0.03

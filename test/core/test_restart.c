@@ -1,5 +1,5 @@
 /* Restart files (LGNWriteRestart, LGNReadRestart) on a chain of three rods
- * (R^3 x SO(3), spherical joints, m = 9; bench/models/chain.c):
+ * (R^3 x SO(3), spherical joints, m = 9; models/chain.c):
  *
  *  (a) bit for bit: a run stopped after a random number of LGNSolve calls
  *      (LGN_ONE_STEP), written, read into a fresh integrator (LGNCreate,

@@ -152,7 +152,7 @@ static void Cross(const double *a, const double *b, double *c)
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-/* Gravity and the gyroscopic terms (as bench/models/rigid_bodies.c). */
+/* Gravity and the gyroscopic terms (as models/rigid_bodies.c). */
 static int Force(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 {
   Model *md = (Model *)ud;

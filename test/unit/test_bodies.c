@@ -4,7 +4,7 @@
  * -----------------------------------------------------------------------------
  * Unit test of the body helpers (lignum_bodies.h):
  *  1. M, g, K_t and C_t against the hand-written callbacks of the example
- *     model bench/models/rigid_bodies.c (a separate formulation), on
+ *     model models/rigid_bodies.c (a separate formulation), on
  *     R^3 x SO(3) and SE(3), at random states;
  *  2. on R^3xSO(3) x SE(3) x R^3xSO(3) x SE(3) with full inertia tensors,
  *     for the bodies alone, the translational spring-dampers alone (body -
@@ -236,12 +236,18 @@ static void DifferenceQuotients(SUNContext ctx)
       }
       for (fmt = 0; fmt < 2; fmt++) {
         const int type = fmt == 0 ? CSC_MAT : CSR_MAT;
+        /* each term into an empty matrix: the helpers add to what a
+         * matrix holds (lignum_bodies.h, "Matrices") */
         S = SUNSparseMatrix(nv, nv, 1, type, ctx);
         LGNBodies_Stiffness(Bd, q, v, S);
         eS = fmax(eS, SparseVsDense(S, K));
         if (SUNSparseMatrix_IndexPointers(S)[nv] != LGNBodies_TangentNnz(Bd)) eS = HUGE_VAL;
+        SUNMatDestroy(S);
+        S = SUNSparseMatrix(nv, nv, 1, type, ctx);
         LGNBodies_Damping(Bd, q, v, S);
         eS = fmax(eS, SparseVsDense(S, C));
+        SUNMatDestroy(S);
+        S = SUNSparseMatrix(nv, nv, 1, type, ctx);
         LGNBodies_Mass(Bd, q, S);
         eS = fmax(eS, SparseVsDense(S, M));
         if (SUNSparseMatrix_IndexPointers(S)[nv] != LGNBodies_MassNnz(Bd)) eS = HUGE_VAL;

@@ -179,10 +179,18 @@ static void JointChecks(SUNContext ctx, LGNGroup G, LGNJoints J, N_Vector q, N_V
       LGNJoints_Jacobian(J, t, q, Bs);
       SparseToArray(Bs, A, (int)m, NV);
       eb = fmax(eb, DenseDiff(B, A, (int)m, NV));
+      SUNMatZero(Ks); /* a sparse term is added to what Ks holds */
       LGNJoints_Stiffness(J, t, q, lam, Ks);
       SparseToArray(Ks, A, NV, NV);
       ek = fmax(ek, DenseDiff(K, A, NV, NV));
     }
+    /* the one rule: a second K added to the first = 2 K */
+    LGNJoints_Stiffness(J, t, q, lam, Ks);
+    SparseToArray(Ks, A, NV, NV);
+    for (i = 0; i < NV * NV; i++) A[i] *= 0.5;
+    Check(fmt == 0 ? "joints: K added to a sparse K (CSC) = 2 K"
+                   : "joints: K added to a sparse K (CSR) = 2 K",
+          DenseDiff(K, A, NV, NV), 1e-14);
     Check(fmt == 0 ? "joints: sparse B, K (CSC) = dense" : "joints: sparse B, K (CSR) = dense",
           fmax(eb, ek), 1e-15);
     Check("joints: JacobianNnz = stored entries of B",
@@ -256,9 +264,11 @@ static void BodyChecks(SUNContext ctx, LGNGroup G, LGNBodies Bd, N_Vector q, N_V
     LGNBodies_Mass(Bd, q, S);
     SparseToArray(S, A, NV, NV);
     em = DenseDiff(M, A, NV, NV);
+    SUNMatZero(S); /* a sparse term is added to what S holds */
     LGNBodies_Stiffness(Bd, q, v, S);
     SparseToArray(S, A, NV, NV);
     ek = DenseDiff(K, A, NV, NV);
+    SUNMatZero(S);
     LGNBodies_Damping(Bd, q, v, S);
     SparseToArray(S, A, NV, NV);
     ec = DenseDiff(C, A, NV, NV);
@@ -266,6 +276,21 @@ static void BodyChecks(SUNContext ctx, LGNGroup G, LGNBodies Bd, N_Vector q, N_V
           fmax(em, fmax(ek, ec)), 1e-15);
     Check("bodies: TangentNnz = stored entries",
           fabs((double)LGNBodies_TangentNnz(Bd) - (double)SUNSparseMatrix_IndexPointers(S)[NV]), 0);
+    /* the one rule: K_t then C_t into one sparse matrix = their dense sum */
+    SUNMatZero(S);
+    LGNBodies_Stiffness(Bd, q, v, S);
+    LGNBodies_Damping(Bd, q, v, S);
+    SparseToArray(S, A, NV, NV);
+    {
+      SUNMatrix KC = SUNDenseMatrix(NV, NV, ctx);
+      SUNMatZero(KC);
+      LGNBodies_Stiffness(Bd, q, v, KC);
+      LGNBodies_Damping(Bd, q, v, KC);
+      Check(fmt == 0 ? "bodies: K_t + C_t added into one sparse (CSC) = dense sum"
+                     : "bodies: K_t + C_t added into one sparse (CSR) = dense sum",
+            DenseDiff(KC, A, NV, NV), 1e-14);
+      SUNMatDestroy(KC);
+    }
     SUNMatDestroy(S);
   }
   N_VDestroy(qs); N_VDestroy(g); N_VDestroy(g1); N_VDestroy(g2); N_VDestroy(vs); N_VDestroy(v0);

@@ -11,7 +11,7 @@
 ! Same options, same defaults (N = 10, KLU CSC, generalized-alpha
 ! rho_inf = 0.9, simplified kinematics, index 3, analytic tangents,
 ! h = 1e-3, t_end = 1, 100 outputs), same calls in the same order as the C
-! program (rigid_run of bench/models/rigid_bodies.c) on the product group
+! program (rigid_run of models/rigid_bodies.c) on the product group
 ! (R^3 x SO(3))^N, with the joints of flignum_joints_mod and the sparse
 ! matrices written through flignum_klu_mod. Reports, like the C program,
 ! the work counters, the energy drift max |E(t) - E(0)| and the largest
@@ -71,7 +71,7 @@ program chain_f
     trim(merge("exact     ", "simplified", kinematics == LGN_KINEMATICS_EXACT)), &
     " kinematics, index ", constraints, ", h = ", h, ", t in [0, ", fixed(t_end, 3), "]"
 
-  ! --- the run of rigid_run (bench/models/rigid_bodies.c), call by call -------
+  ! --- the run of rigid_run (models/rigid_bodies.c), call by call -------
   mem = LGNCreate(ctx)
   qv = N_VNew_Serial(nq, ctx)
   vv = N_VNew_Serial(nv, ctx)

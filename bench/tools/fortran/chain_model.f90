@@ -1,7 +1,7 @@
 ! -----------------------------------------------------------------------------
 ! Lignum Fortran study tool: the N-body spherical pendulum chain of
-! bench/models/chain.{h,c} on (R^3 x SO(3))^N, with the callbacks of
-! bench/models/rigid_bodies.c (formulation RB_R3XSO3, analytic tangents)
+! models/chain.{h,c} on (R^3 x SO(3))^N, with the callbacks of
+! models/rigid_bodies.c (formulation RB_R3XSO3, analytic tangents)
 ! written as bind(C) Fortran functions for sparse matrices.
 !
 ! N identical rods (solid cylinders, length 1 m, mass 1 kg, radius 0.02 m,

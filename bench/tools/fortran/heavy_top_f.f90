@@ -29,7 +29,7 @@ program heavy_top_f
 
   real(c_double), parameter :: compare_tol = 1.0e-12_c_double
 
-  ! options, defaults as heavy_top_default_options (bench/models/heavy_top.c)
+  ! options, defaults as heavy_top_default_options (models/heavy_top.c)
   logical :: newmark = .false., analytic = .true.
   real(c_double) :: rho_inf = 0.9_c_double, beta = 0.25_c_double, gamma = 0.5_c_double
   real(c_double) :: h = 1.0e-3_c_double, t_end = 1.0_c_double
@@ -93,7 +93,7 @@ program heavy_top_f
   call check(LGNSetStepSize(mem, h), "LGNSetStepSize")
   if (rtol > 0.0_c_double .or. atol > 0.0_c_double) &
     call check(LGNSStolerances(mem, rtol, atol), "LGNSStolerances")
-  ! the step's own values, as the C model (bench/models/heavy_top.c)
+  ! the step's own values, as the C model (models/heavy_top.c)
   call check(LGNSetConsistentOutputs(mem, 0_c_int), "LGNSetConsistentOutputs")
   call check(LGNSetProjectOutputs(mem, LGN_PROJECT_NONE), "LGNSetProjectOutputs")
   call check(LGNSetPredictor(mem, predictor), "LGNSetPredictor")

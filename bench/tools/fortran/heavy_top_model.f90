@@ -1,6 +1,6 @@
 ! -----------------------------------------------------------------------------
 ! Lignum Fortran study tool: the heavy top (Brüls and Cardona 2010) on R^3 x SO(3),
-! the callbacks of bench/models/heavy_top.c (formulation HT_LIE) written
+! the callbacks of models/heavy_top.c (formulation HT_LIE) written
 ! as bind(C) Fortran functions. The model data reach them as user data:
 ! LGNSetUserData(mem, c_loc(model)), c_f_pointer(user_data, model) inside.
 !

@@ -1,110 +1,25 @@
 ! -----------------------------------------------------------------------------
 ! Lignum teaching example (Fortran twin of ../heavy_top.c): the heavy top
 ! with error control, through flignum_mod, flignum_bodies_mod,
-! flignum_joints_mod and flignum_sundials_mod.
+! flignum_joints_mod, flignum_model_mod and flignum_sundials_mod.
 !
 ! One body on R^3 x SO(3) (mass 15, J = diag(0.234375, 0.46875, 0.234375),
 ! centre of mass X = (0, 1, 0) in the body frame), its point -X held at the
 ! origin by a spherical joint, gravity (0, 0, -9.81); R = I and
-! Omega = (0, 150, -4.61538) at the start. The callbacks forward to the body
-! set and the joint set, which travel as user data in a derived type
-! (c_loc). Generalized-alpha (0.9), error control with rtol = atol = 1e-6.
+! Omega = (0, 150, -4.61538) at the start. The model object (LGNModel_Create,
+! LGNModel_Attach) gives Lignum every callback from the body set and the
+! joint set. Generalized-alpha (0.9), error control with rtol = atol = 1e-6.
 ! It prints the table of heavy_top.c (same answer file).
 ! SPDX-License-Identifier: BSD-3-Clause
 ! -----------------------------------------------------------------------------
-module heavy_top_teach_model
-  use, intrinsic :: iso_c_binding
-  use flignum_bodies_mod
-  use flignum_joints_mod
-  implicit none
-
-  !> the model: the body set and the joint set
-  type :: model_t
-    type(c_ptr) :: bodies = c_null_ptr
-    type(c_ptr) :: joints = c_null_ptr
-  end type model_t
-
-contains
-
-  integer(c_int) function mass_fn(t, q, M, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, M, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = LGNBodies_MassFn(t, q, M, md%bodies)
-  end function mass_fn
-
-  integer(c_int) function force_fn(t, q, v, g, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, v, g, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = LGNBodies_ForceFn(t, q, v, g, md%bodies)
-  end function force_fn
-
-  integer(c_int) function constr_fn(t, q, phi, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, phi, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Residual(md%joints, t, q, phi) /= 0)
-  end function constr_fn
-
-  integer(c_int) function constr_jac_fn(t, q, B, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, B, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Jacobian(md%joints, t, q, B) /= 0)
-  end function constr_jac_fn
-
-  integer(c_int) function curvature_fn(t, q, v, z, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, v, z, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = merge(-1_c_int, 0_c_int, LGNJoints_Curvature(md%joints, t, q, v, z) /= 0)
-  end function curvature_fn
-
-  !> K_t: the joints' and the bodies' parts, both added to the dense K
-  integer(c_int) function stiffness_fn(t, q, v, vdot, lambda, K, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, v, vdot, lambda, K, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = 0
-    if (LGNJoints_Stiffness(md%joints, t, q, lambda, K) /= 0) then
-      ierr = -1
-    else if (LGNBodies_Stiffness(md%bodies, q, v, K) /= 0) then
-      ierr = -1
-    end if
-  end function stiffness_fn
-
-  integer(c_int) function damping_fn(t, q, v, C, ud) result(ierr) bind(c)
-    real(c_double), value :: t
-    type(c_ptr), value :: q, v, C, ud
-    type(model_t), pointer :: md
-
-    call c_f_pointer(ud, md)
-    ierr = LGNBodies_DampingFn(t, q, v, C, md%bodies)
-  end function damping_fn
-
-end module heavy_top_teach_model
-
 program heavy_top_f
   use, intrinsic :: iso_c_binding
   use, intrinsic :: iso_fortran_env, only: error_unit
   use flignum_mod
   use flignum_bodies_mod
   use flignum_joints_mod
+  use flignum_model_mod
   use flignum_sundials_mod
-  use heavy_top_teach_model
   implicit none
 
   real(c_double), parameter :: X(3) = [0.0_c_double, 1.0_c_double, 0.0_c_double]
@@ -113,8 +28,7 @@ program heavy_top_f
   real(c_double), parameter :: omega0(3) = [0.0_c_double, 150.0_c_double, -4.61538_c_double]
   real(c_double), parameter :: rtol = 1.0e-6_c_double, atol = 1.0e-6_c_double
   real(c_double), parameter :: dtout = 0.1_c_double, tend = 1.0_c_double
-  type(model_t), target :: md
-  type(c_ptr) :: ctx, G, q, v, phi, y, A, LS, mem
+  type(c_ptr) :: ctx, G, bodies, joints, model, q, v, phi, y, A, LS, mem
   real(c_double), pointer :: qq(:), vv(:)
   real(c_double) :: t, tout
   integer(c_int64_t) :: m
@@ -125,13 +39,14 @@ program heavy_top_f
   G = LGNGroup_R3xSO3() ! q = (x, p): nq = 7, v = (u, Omega): nv = 6
 
   ! the model: one body, gravity, a spherical joint to the ground
-  md%bodies = LGNBodies_Create(G)
-  md%joints = LGNJoints_Create(G)
-  flag = LGNBodies_SetPrincipalInertia(md%bodies, 0_c_int, 15.0_c_double, J)
-  if (flag == LGN_SUCCESS) flag = LGNBodies_SetGravity(md%bodies, gvec)
-  if (flag == LGN_SUCCESS) flag = LGNJoints_AddSpherical(md%joints, LGN_GROUND, &
+  bodies = LGNBodies_Create(G)
+  joints = LGNJoints_Create(G)
+  flag = LGNBodies_SetPrincipalInertia(bodies, 0_c_int, 15.0_c_double, J)
+  if (flag == LGN_SUCCESS) flag = LGNBodies_SetGravity(bodies, gvec)
+  if (flag == LGN_SUCCESS) flag = LGNJoints_AddSpherical(joints, LGN_GROUND, &
                                     [0.0_c_double, 0.0_c_double, 0.0_c_double], 0_c_int, -X)
-  m = LGNJoints_NumConstraints(md%joints) ! 3
+  model = LGNModel_Create(bodies, joints)
+  m = LGNModel_NumConstraints(model) ! 3
 
   ! initial state: x = X, p = identity, u = Omega x X (R = I)
   q = N_VNew_Serial(7_c_int64_t, ctx)
@@ -145,16 +60,7 @@ program heavy_top_f
   vv(4:6) = omega0
 
   mem = LGNCreate(ctx)
-  if (flag == LGN_SUCCESS) flag = LGNSetGroup(mem, G)
-  if (flag == LGN_SUCCESS) flag = LGNSetUserData(mem, c_loc(md))
-  if (flag == LGN_SUCCESS) flag = LGNSetMassFn(mem, c_funloc(mass_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetForceFn(mem, c_funloc(force_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetConstraints(mem, m, c_funloc(constr_fn), &
-                                                    c_funloc(constr_jac_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetStiffnessFn(mem, c_funloc(stiffness_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetDampingFn(mem, c_funloc(damping_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetCurvatureFn(mem, c_funloc(curvature_fn))
-  if (flag == LGN_SUCCESS) flag = LGNSetMassConstant(mem, 1_c_int)
+  if (flag == LGN_SUCCESS) flag = LGNModel_Attach(model, mem) ! every callback
   if (flag == LGN_SUCCESS) flag = LGNInit(mem, 0.0_c_double, q, v)
 
   ! dense linear solver on the (nv + m) x (nv + m) iteration matrix
@@ -199,8 +105,9 @@ program heavy_top_f
   call N_VDestroy(phi)
   call N_VDestroy(q)
   call N_VDestroy(v)
-  call LGNJoints_Destroy(md%joints)
-  call LGNBodies_Destroy(md%bodies)
+  call LGNModel_Destroy(model) ! after LGNFree
+  call LGNJoints_Destroy(joints)
+  call LGNBodies_Destroy(bodies)
   call LGNGroup_Destroy(G)
   if (SUNContext_Free(ctx) /= 0) flag = -1
   if (flag /= LGN_SUCCESS) error stop 1
@@ -212,8 +119,8 @@ contains
     real(c_double) :: kin, pot
     real(c_double), pointer :: ph(:)
 
-    if (LGNBodies_Energy(md%bodies, q, v, kin, pot) /= 0) error stop 1
-    if (LGNJoints_Residual(md%joints, t, q, phi) /= 0) error stop 1
+    if (LGNBodies_Energy(bodies, q, v, kin, pot) /= 0) error stop 1
+    if (LGNJoints_Residual(joints, t, q, phi) /= 0) error stop 1
     ph => FN_VGetArray(phi)
     write (*, "(f5.2, 3(1x, f12.6), 1x, f14.6, 1x, es10.1)") t, qq(1:3), kin + pot, norm2(ph)
   end subroutine print_row

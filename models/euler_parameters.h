@@ -1,6 +1,6 @@
 /* -----------------------------------------------------------------------------
  * Lignum study models: Euler-parameter kinematics shared by the heavy top model
- * (bench/models/heavy_top.c) and the IDA opponent (bench/ida_heavy_top.c).
+ * (models/heavy_top.c) and the IDA opponent (bench/ida_heavy_top.c).
  * SPDX-License-Identifier: BSD-3-Clause
  * -----------------------------------------------------------------------------
  * p = (p0, pbar) in R^4, matrices row-major (doc/theory.md).
