@@ -365,6 +365,13 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
   /* a new start: the independent constraint rows at q0 (lgn_redundancy.c;
    * one process only, so no agreement is needed) */
   if (!mem->ic_done) flag = lgnRedundancyAnalyse(mem, "LGNSolve");
+  /* a direct solver fits before the work arrays are (re)made: a refusal
+   * leaves the state and its getters as they were (fuzz finding 11); a
+   * Krylov solver is set up on the work vectors, after them */
+  if (flag == LGN_SUCCESS && !mem->kry.on) {
+    lgnSetAlgebraicSize(mem);
+    flag = lgnLsCheck(mem);
+  }
   if (flag == LGN_SUCCESS) flag = lgnEnsureWork(mem);
   if (flag == LGN_SUCCESS && mem->rt.nrtfn > 0)
     flag = lgnAgree(mem, lgnAllocRootVectors(mem));
@@ -381,7 +388,7 @@ static int CheckReadyToSolve(LGNMem mem, sunrealtype tout, int itask)
   /* ghost bodies: the owners' state (q0 and v0's ghost entries are not
    * read; the state changes on every rank alike from here on) */
   lgnGhostsRefreshState(mem);
-  flag = lgnLsCheck(mem);
+  if (mem->kry.on) flag = lgnLsCheck(mem);
   if (flag == LGN_SUCCESS && !mem->mat_done) flag = lgnAllocMatrices(mem);
   flag = lgnAgree(mem, flag);
   if (flag != LGN_SUCCESS) return flag;

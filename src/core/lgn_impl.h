@@ -533,6 +533,7 @@ int lgnCallbackMatrix(LGNMem mem, LGNCallbackId cb, int retval, SUNMatrix A,
 int lgnAgreeRanks(LGNMem mem, int flag);
 int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0);
 void lgnFreeState(LGNMem mem);
+void lgnSetAlgebraicSize(LGNMem mem);
 int lgnAllocWork(LGNMem mem);
 int lgnEnsureWork(LGNMem mem);
 int lgnAllocBDF(LGNMem mem);

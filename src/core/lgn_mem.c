@@ -801,6 +801,13 @@ int lgnAllocState(LGNMem mem, N_Vector q0, N_Vector v0)
  * block structure). Allocated lazily at the first LGNSolve (so the model
  * may be described in any order) and again after lgnInvalidate drops it. */
 
+/* The algebraic unknowns after the velocities: lambda, and mu under GGL
+ * (before the work arrays: the linear solver is checked against them). */
+void lgnSetAlgebraicSize(LGNMem mem)
+{
+  mem->nalg = mem->constr_index == LGN_CONSTR_GGL ? 2 * mem->m : mem->m;
+}
+
 int lgnAllocWork(LGNMem mem)
 {
   sunindextype nv = mem->nv, m = mem->m;
@@ -808,8 +815,7 @@ int lgnAllocWork(LGNMem mem)
   int fail = 0;
 
   lgnFreeWork(mem);
-  /* the algebraic unknowns after the velocities: lambda, and mu under GGL */
-  mem->nalg = mem->constr_index == LGN_CONSTR_GGL ? 2 * m : m;
+  lgnSetAlgebraicSize(mem);
   /* every rank allocates or none (the vectors below are made collectively) */
   fail = lgnAgree(mem, BlocksBuild(mem) != LGN_SUCCESS ? LGN_MEM_FAIL : LGN_SUCCESS) !=
          LGN_SUCCESS;
