@@ -2,7 +2,8 @@
 multibody systems (generalized-alpha, Newmark, BDF) on numpy arrays.
 
 Models are built from bodies, joints, spring-dampers and drivers
-(:class:`Multibody`, integrated without Python in the inner loop) or
+(:class:`Multibody`, :class:`PlanarMultibody` for planar mechanisms,
+integrated without Python in the inner loop) or
 written as Python functions (:class:`PythonModel`). :class:`Integrator`
 is Lignum's integrator object; :func:`solve_ivp` runs it in one call.
 See doc/python.md."""
@@ -10,8 +11,9 @@ from ._core import GROUND, flag_name
 from ._errors import LignumError, LignumWarning
 from .integrator import Integrator
 from .ivp import Result, solve_ivp
-from .model import Multibody, PythonModel, harmonic, polynomial, quaternion
+from .model import Multibody, PlanarMultibody, PythonModel, harmonic, polynomial, quaternion
 
 __version__ = "0.1.0"
-__all__ = ["GROUND", "Integrator", "LignumError", "LignumWarning", "Multibody", "PythonModel",
+__all__ = ["GROUND", "Integrator", "LignumError", "LignumWarning", "Multibody",
+           "PlanarMultibody", "PythonModel",
            "Result", "flag_name", "harmonic", "polynomial", "quaternion", "solve_ivp"]

@@ -108,6 +108,8 @@ typedef struct LGNJointsRec *LGNJoints;
 #define LGNPY_CB_JAC ...
 #define LGNPY_CB_STIFFNESS ...
 #define LGNPY_CB_DAMPING ...
+#define LGNPY_CB_APPLIED_DQ ...
+#define LGNPY_CB_APPLIED_DV ...
 #define LGNPY_HAS_STIFFNESS ...
 #define LGNPY_HAS_DAMPING ...
 #define LGNPY_HAS_CURVATURE ...
@@ -115,6 +117,9 @@ typedef struct LGNJointsRec *LGNJoints;
 #define LGNPY_DRIVE_POLYNOMIAL ...
 #define LGNPY_DRIVE_HARMONIC ...
 #define LGNPY_DRIVE_PYTHON ...
+#define LGNPY_GROUP_R3XSO3 ...
+#define LGNPY_GROUP_SE2 ...
+#define LGNPY_GROUP_R2XSO2 ...
 
 typedef struct LGNPySystemRec {
   LGNBodies bodies;
@@ -136,9 +141,9 @@ LGNPySystem *LGNPy_Create(void *handle);
 void LGNPy_Free(LGNPySystem *sys);
 void LGNPy_ClearError(LGNPySystem *sys);
 int LGNPy_AddGroupFactor(LGNPySystem *sys, int kind, int64_t n);
-int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies);
+int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies, int group);
 int LGNPy_PythonModelInit(LGNPySystem *sys, int64_t m, int pyflags);
-int LGNPy_SetAppliedForce(LGNPySystem *sys, int on);
+int LGNPy_SetAppliedForce(LGNPySystem *sys, int on, int has_dq, int has_dv);
 int LGNPy_AddDriver(LGNPySystem *sys, int rotation, int a, const double *s_a,
                     const double *axis_a, const double *ref_a, int b,
                     const double *s_b, const double *ref_b, int kind,
@@ -180,6 +185,19 @@ int LGNJoints_AddCylindrical(LGNJoints J, int a, const sunrealtype sa[3],
                              const sunrealtype axis_a[3], int b, const sunrealtype sb[3],
                              const sunrealtype axis_b[3]);
 sunindextype LGNJoints_NumConstraints(LGNJoints J);
+
+/* lignum_planar.h */
+int LGNBodies_SetPlanarMass(LGNBodies B, int k, sunrealtype m, sunrealtype J);
+int LGNBodies_AddPlanarSpringDamper(LGNBodies B, int a, const sunrealtype sa[2], int b,
+                                    const sunrealtype sb[2], sunrealtype k, sunrealtype c,
+                                    sunrealtype L0);
+int LGNBodies_AddPlanarRotationalSpringDamper(LGNBodies B, int a, int b, sunrealtype kr,
+                                              sunrealtype cr, sunrealtype theta0);
+int LGNJoints_AddPlanarRevolute(LGNJoints J, int a, const sunrealtype sa[2], int b,
+                                const sunrealtype sb[2]);
+int LGNJoints_AddPlanarPrismatic(LGNJoints J, int a, const sunrealtype sa[2],
+                                 const sunrealtype axis_a[2], int b, const sunrealtype sb[2],
+                                 sunrealtype theta0);
 int LGNJoints_DescribeConstraint(LGNJoints J, sunindextype row, char *buf, size_t len);
 
 /* lignum.h: settings, solve, outputs */
@@ -233,7 +251,7 @@ ffibuilder.cdef(CDEF)
 _include_dirs, _libdir = find_lignum()
 ffibuilder.set_source(
     "lignum._lignum",
-    '#include "_glue.h"\n',
+    '#include "_glue.h"\n#include <lignum/lignum_planar.h>\n',
     sources=["lignum/_glue.c"],  # relative to setup.py, as setuptools wants
     include_dirs=["lignum"] + _include_dirs,
     library_dirs=[_libdir],

@@ -159,7 +159,7 @@ def lgnpy_mat_cb(handle, which, t, q, v, vdot, lam, mat):
     fn = cb.mat[which]
     if which in (lib.LGNPY_CB_MASS, lib.LGNPY_CB_JAC):
         fn(t, _view(q, nq, False), M)
-    elif which == lib.LGNPY_CB_DAMPING:
+    elif which in (lib.LGNPY_CB_DAMPING, lib.LGNPY_CB_APPLIED_DQ, lib.LGNPY_CB_APPLIED_DV):
         fn(t, _view(q, nq, False), _view(v, nv, False), M)
     else:
         fn(t, _view(q, nq, False), _view(v, nv, False), _view(vdot, nv, False),

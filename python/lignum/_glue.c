@@ -5,6 +5,9 @@
  * ---------------------------------------------------------------------------*/
 #include "_glue.h"
 
+#include <lignum/lignum_model.h>
+#include <lignum/lignum_planar.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,92 +50,115 @@ void LGNPy_ClearError(LGNPySystem *sys)
   sys->warnings[0] = '\0';
 }
 
-/* ---- multibody model: forwarders to the body and joint sets ---- */
+/* ---- a multibody model: the model object of lignum_model.h installs the
+ * body and joint sets' callbacks; C calls Python only for the user force ---- */
+
+/* g_u = -f, f the applied force of a Python function (g_u arrives zeroed
+ * and the model adds it to the bodies' g: g - f, as LGNModel_SetUserForce
+ * documents). */
+static int GlueUserForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
+{
+  LGNPySystem *sys = (LGNPySystem *)ud;
+  int flag = lgnpy_vec_cb(sys->handle, LGNPY_CB_APPLIED, t, N_VGetArrayPointer(q),
+                          N_VGetArrayPointer(v), N_VGetArrayPointer(g));
+  if (flag) return flag;
+  N_VScale(-1.0, g, g);
+  return 0;
+}
+
+/* K_u = dg_u/dq = -df/dq and C_u = dg_u/dv = -df/dv from the Python
+ * functions (the dense matrix arrives zeroed, the model adds it). */
+static int NegatedAppliedJacobian(LGNPySystem *sys, int which, sunrealtype t, N_Vector q,
+                                  N_Vector v, SUNMatrix D)
+{
+  sunrealtype *d = SUNDenseMatrix_Data(D);
+  sunindextype i, n = SUNDenseMatrix_LData(D);
+  int flag = lgnpy_mat_cb(sys->handle, which, t, N_VGetArrayPointer(q), N_VGetArrayPointer(v),
+                          NULL, NULL, d);
+  if (flag) return flag;
+  for (i = 0; i < n; i++) d[i] = -d[i];
+  return 0;
+}
+
+static int GlueUserStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
+                             N_Vector lambda, SUNMatrix K, void *ud)
+{
+  (void)vdot;
+  (void)lambda;
+  return NegatedAppliedJacobian((LGNPySystem *)ud, LGNPY_CB_APPLIED_DQ, t, q, v, K);
+}
+
+static int GlueUserDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
+{
+  return NegatedAppliedJacobian((LGNPySystem *)ud, LGNPY_CB_APPLIED_DV, t, q, v, C);
+}
+
+/* The model is the integrator's user data: the record is the model's. */
+static int GlueModelRoot(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *gout, void *ud)
+{
+  LGNPySystem *sys = (LGNPySystem *)LGNModel_GetUserData((LGNModel)ud);
+  return lgnpy_vec_cb(sys->handle, LGNPY_CB_ROOT, t, N_VGetArrayPointer(q),
+                      N_VGetArrayPointer(v), gout);
+}
+
+/* ---- a model of Python functions: forwarders to Python ---- */
 
 static int GlueMass(sunrealtype t, N_Vector q, SUNMatrix M, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_mat_cb(sys->handle, LGNPY_CB_MASS, t, N_VGetArrayPointer(q), NULL,
-                        NULL, NULL, SUNDenseMatrix_Data(M));
-  return LGNBodies_MassFn(t, q, M, sys->bodies);
+  return lgnpy_mat_cb(sys->handle, LGNPY_CB_MASS, t, N_VGetArrayPointer(q), NULL, NULL,
+                      NULL, SUNDenseMatrix_Data(M));
 }
 
-/* g = g_bodies - f_applied (the applied force of a Python function). */
 static int GlueForce(sunrealtype t, N_Vector q, N_Vector v, N_Vector g, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  int flag;
-  if (sys->python_model)
-    return lgnpy_vec_cb(sys->handle, LGNPY_CB_FORCE, t, N_VGetArrayPointer(q),
-                        N_VGetArrayPointer(v), N_VGetArrayPointer(g));
-  flag = LGNBodies_ForceFn(t, q, v, g, sys->bodies);
-  if (flag || !sys->applied_force) return flag;
-  N_VConst(0.0, sys->fapplied);
-  flag = lgnpy_vec_cb(sys->handle, LGNPY_CB_APPLIED, t, N_VGetArrayPointer(q),
-                      N_VGetArrayPointer(v), N_VGetArrayPointer(sys->fapplied));
-  if (flag) return flag;
-  N_VLinearSum(1.0, g, -1.0, sys->fapplied, g);
-  return 0;
+  return lgnpy_vec_cb(sys->handle, LGNPY_CB_FORCE, t, N_VGetArrayPointer(q),
+                      N_VGetArrayPointer(v), N_VGetArrayPointer(g));
 }
 
 static int GlueConstr(sunrealtype t, N_Vector q, N_Vector phi, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_vec_cb(sys->handle, LGNPY_CB_CONSTR, t, N_VGetArrayPointer(q), NULL,
-                        N_VGetArrayPointer(phi));
-  return LGNJoints_Residual(sys->joints, t, q, phi) ? -1 : 0;
+  return lgnpy_vec_cb(sys->handle, LGNPY_CB_CONSTR, t, N_VGetArrayPointer(q), NULL,
+                      N_VGetArrayPointer(phi));
 }
 
 static int GlueConstrJac(sunrealtype t, N_Vector q, SUNMatrix B, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_mat_cb(sys->handle, LGNPY_CB_JAC, t, N_VGetArrayPointer(q), NULL,
-                        NULL, NULL, SUNDenseMatrix_Data(B));
-  return LGNJoints_Jacobian(sys->joints, t, q, B) ? -1 : 0;
+  return lgnpy_mat_cb(sys->handle, LGNPY_CB_JAC, t, N_VGetArrayPointer(q), NULL, NULL,
+                      NULL, SUNDenseMatrix_Data(B));
 }
 
 static int GlueCurvature(sunrealtype t, N_Vector q, N_Vector v, N_Vector z, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_vec_cb(sys->handle, LGNPY_CB_CURVATURE, t, N_VGetArrayPointer(q),
-                        N_VGetArrayPointer(v), N_VGetArrayPointer(z));
-  return LGNJoints_Curvature(sys->joints, t, q, v, z) ? -1 : 0;
+  return lgnpy_vec_cb(sys->handle, LGNPY_CB_CURVATURE, t, N_VGetArrayPointer(q),
+                      N_VGetArrayPointer(v), N_VGetArrayPointer(z));
 }
 
 static int GlueConstrTime(sunrealtype t, N_Vector q, N_Vector phit, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_vec_cb(sys->handle, LGNPY_CB_CONSTR_TIME, t, N_VGetArrayPointer(q),
-                        NULL, N_VGetArrayPointer(phit));
-  return LGNJoints_TimeDerivative(sys->joints, t, q, phit) ? -1 : 0;
+  return lgnpy_vec_cb(sys->handle, LGNPY_CB_CONSTR_TIME, t, N_VGetArrayPointer(q), NULL,
+                      N_VGetArrayPointer(phit));
 }
 
-/* K_t = d/dq (M vdot + g + B^T lambda): joints, then bodies, added to the
- * zeroed dense K (the order of examples/teach/heavy_top.c). */
 static int GlueStiffness(sunrealtype t, N_Vector q, N_Vector v, N_Vector vdot,
                          N_Vector lambda, SUNMatrix K, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_mat_cb(sys->handle, LGNPY_CB_STIFFNESS, t, N_VGetArrayPointer(q),
-                        N_VGetArrayPointer(v), N_VGetArrayPointer(vdot),
-                        lambda ? N_VGetArrayPointer(lambda) : NULL, SUNDenseMatrix_Data(K));
-  if (LGNJoints_Stiffness(sys->joints, t, q, lambda, K)) return -1;
-  return LGNBodies_Stiffness(sys->bodies, q, v, K) ? -1 : 0;
+  return lgnpy_mat_cb(sys->handle, LGNPY_CB_STIFFNESS, t, N_VGetArrayPointer(q),
+                      N_VGetArrayPointer(v), N_VGetArrayPointer(vdot),
+                      lambda ? N_VGetArrayPointer(lambda) : NULL, SUNDenseMatrix_Data(K));
 }
 
 static int GlueDamping(sunrealtype t, N_Vector q, N_Vector v, SUNMatrix C, void *ud)
 {
   LGNPySystem *sys = (LGNPySystem *)ud;
-  if (sys->python_model)
-    return lgnpy_mat_cb(sys->handle, LGNPY_CB_DAMPING, t, N_VGetArrayPointer(q),
-                        N_VGetArrayPointer(v), NULL, NULL, SUNDenseMatrix_Data(C));
-  return LGNBodies_DampingFn(t, q, v, C, sys->bodies);
+  return lgnpy_mat_cb(sys->handle, LGNPY_CB_DAMPING, t, N_VGetArrayPointer(q),
+                      N_VGetArrayPointer(v), NULL, NULL, SUNDenseMatrix_Data(C));
 }
 
 static int GlueRoot(sunrealtype t, N_Vector q, N_Vector v, sunrealtype *gout, void *ud)
@@ -186,11 +212,11 @@ void LGNPy_Free(LGNPySystem *sys)
   if (sys->LS) SUNLinSolFree(sys->LS);
   if (sys->A) SUNMatDestroy(sys->A);
   if (sys->y) N_VDestroy(sys->y);
-  if (sys->fapplied) N_VDestroy(sys->fapplied);
   if (sys->q) N_VDestroy(sys->q); /* the data belong to Python's arrays */
   if (sys->v) N_VDestroy(sys->v);
   if (sys->vdot) N_VDestroy(sys->vdot);
   if (sys->lambda) N_VDestroy(sys->lambda);
+  LGNModel_Destroy(&sys->model); /* after LGNFree, before its sets */
   LGNJoints_Destroy(&sys->joints);
   LGNBodies_Destroy(&sys->bodies);
   for (k = 0; k < sys->ndrives; k++) free(sys->drives[k]);
@@ -200,7 +226,8 @@ void LGNPy_Free(LGNPySystem *sys)
   free(sys);
 }
 
-/* kind: 0 R^n, 1 SO(3), 2 R^3 x SO(3), 3 SE(3). */
+/* kind: LGNPY_GROUP_* (0 R^n, 1 SO(3), 2 R^3 x SO(3), 3 SE(3), 4 SE(2),
+ * 5 R^2 x SO(2)). */
 int LGNPy_AddGroupFactor(LGNPySystem *sys, int kind, int64_t n)
 {
   LGNGroup F = NULL;
@@ -212,6 +239,8 @@ int LGNPy_AddGroupFactor(LGNPySystem *sys, int kind, int64_t n)
   case 1: F = LGNGroup_SO3(); break;
   case 2: F = LGNGroup_R3xSO3(); break;
   case 3: F = LGNGroup_SE3(); break;
+  case LGNPY_GROUP_SE2: F = LGNGroup_SE2(); break;
+  case LGNPY_GROUP_R2XSO2: F = LGNGroup_R2xSO2(); break;
   default: return LGN_ILL_INPUT;
   }
   if (!F) return kind == 0 && n <= 0 ? LGN_ILL_INPUT : LGN_MEM_FAIL;
@@ -235,20 +264,28 @@ static int BuildGroup(LGNPySystem *sys)
   return LGN_SUCCESS;
 }
 
-/* nbodies rigid bodies on R^3 x SO(3) (one factor each, as the examples). */
-int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies)
+/* nbodies rigid bodies, one factor of kind `group` each (R^3 x SO(3) as the
+ * examples, or a planar group), their body and joint sets and the model
+ * object on them (lignum_model.h), whose user data is this record. */
+int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies, int group)
 {
   int k, flag;
   if (!sys || sys->G || nbodies < 1 || nbodies > 64) return LGN_ILL_INPUT;
+  if (group != LGNPY_GROUP_R3XSO3 && group != LGNPY_GROUP_SE2 && group != LGNPY_GROUP_R2XSO2)
+    return LGN_ILL_INPUT;
   for (k = 0; k < nbodies; k++)
-    if ((flag = LGNPy_AddGroupFactor(sys, 2, 0))) return flag;
+    if ((flag = LGNPy_AddGroupFactor(sys, group, 0))) return flag;
   if ((flag = BuildGroup(sys))) return flag;
+  sys->planar = group != LGNPY_GROUP_R3XSO3;
   sys->bodies = LGNBodies_Create(sys->G);
   sys->joints = LGNJoints_Create(sys->G);
   if (!sys->bodies || !sys->joints) return LGN_MEM_FAIL;
   LGNBodies_SetErrHandlerFn(sys->bodies, GlueErrHandler, sys);
   LGNJoints_SetErrHandlerFn(sys->joints, GlueErrHandler, sys);
-  return LGN_SUCCESS;
+  sys->model = LGNModel_Create(sys->bodies, sys->joints);
+  if (!sys->model) return LGN_MEM_FAIL;
+  LGNModel_SetErrHandlerFn(sys->model, GlueErrHandler, sys);
+  return LGNModel_SetUserData(sys->model, sys);
 }
 
 int LGNPy_PythonModelInit(LGNPySystem *sys, int64_t m, int pyflags)
@@ -262,11 +299,16 @@ int LGNPy_PythonModelInit(LGNPySystem *sys, int64_t m, int pyflags)
   return LGN_SUCCESS;
 }
 
-int LGNPy_SetAppliedForce(LGNPySystem *sys, int on)
+/* The Python applied force as the model's user force, with its Jacobians
+ * df/dq, df/dv when given (without one, the model leaves all of K_t or C_t
+ * to Lignum's difference quotients, lignum_model.h). */
+int LGNPy_SetAppliedForce(LGNPySystem *sys, int on, int has_dq, int has_dv)
 {
-  if (!sys || !sys->bodies || sys->mem) return LGN_ILL_INPUT;
+  if (!sys || !sys->model || sys->mem || (!on && (has_dq || has_dv))) return LGN_ILL_INPUT;
   sys->applied_force = on != 0;
-  return LGN_SUCCESS;
+  return LGNModel_SetUserForce(sys->model, on ? GlueUserForce : NULL,
+                               has_dq ? GlueUserStiffness : NULL,
+                               has_dv ? GlueUserDamping : NULL);
 }
 
 int LGNPy_AddDriver(LGNPySystem *sys, int rotation, int a, const double *s_a,
@@ -286,7 +328,12 @@ int LGNPy_AddDriver(LGNPySystem *sys, int rotation, int a, const double *s_a,
   d->kind = kind;
   d->index = sys->ndrives;
   for (k = 0; k < 4; k++) d->c[k] = c ? c[k] : 0.0;
-  if (rotation)
+  if (sys->planar && rotation) /* 2-vectors s_a, axis_a, s_b; no references */
+    flag = LGNJoints_AddPlanarRotationDriver(sys->joints, a, b, GlueDrive, d);
+  else if (sys->planar)
+    flag = LGNJoints_AddPlanarTranslationDriver(sys->joints, a, s_a, axis_a, b, s_b, GlueDrive,
+                                                d);
+  else if (rotation)
     flag = LGNJoints_AddRotationDriver(sys->joints, a, axis_a, ref_a, b, ref_b, GlueDrive, d);
   else
     flag = LGNJoints_AddTranslationDriver(sys->joints, a, s_a, axis_a, b, s_b, GlueDrive, d);
@@ -307,28 +354,30 @@ int LGNPy_Attach(LGNPySystem *sys, double t0, double *q0, double *v0,
   sunindextype n;
   int flag;
   if (!sys || !sys->G || sys->mem) return LGN_ILL_INPUT;
-  if (!sys->python_model) sys->m = LGNJoints_NumConstraints(sys->joints);
+  if (!sys->python_model) sys->m = LGNModel_NumConstraints(sys->model);
   n = sys->nv + sys->m;
   sys->q = N_VMake_Serial(sys->nq, q0, sys->ctx);
   sys->v = N_VMake_Serial(sys->nv, v0, sys->ctx);
   sys->vdot = N_VMake_Serial(sys->nv, vdot, sys->ctx);
   sys->lambda = N_VMake_Serial(sys->m > 0 ? sys->m : 1, lambda, sys->ctx);
-  sys->fapplied = N_VNew_Serial(sys->nv, sys->ctx);
   sys->y = N_VNew_Serial(n, sys->ctx);
   sys->A = SUNDenseMatrix(n, n, sys->ctx);
-  if (!sys->q || !sys->v || !sys->vdot || !sys->lambda || !sys->fapplied || !sys->y ||
+  if (!sys->q || !sys->v || !sys->vdot || !sys->lambda || !sys->y ||
       !sys->A)
     return LGN_MEM_FAIL;
   sys->LS = LGNLinSol_Dense(sys->y, sys->A, sys->ctx);
   sys->mem = LGNCreate(sys->ctx);
   if (!sys->LS || !sys->mem) return LGN_MEM_FAIL;
   flag = LGNSetErrHandlerFn(sys->mem, GlueErrHandler, sys);
-  if (!flag) flag = LGNSetGroup(sys->mem, sys->G);
-  if (!flag) flag = LGNSetUserData(sys->mem, sys);
-  if (!flag) flag = LGNSetMassFn(sys->mem, GlueMass);
-  if (!flag) flag = LGNSetForceFn(sys->mem, GlueForce);
-  if (!flag && sys->m > 0) flag = LGNSetConstraints(sys->mem, sys->m, GlueConstr, GlueConstrJac);
-  if (sys->python_model) {
+  if (!flag && !sys->python_model) { /* the model installs every callback */
+    flag = LGNModel_Attach(sys->model, sys->mem);
+  } else if (!flag) {
+    flag = LGNSetGroup(sys->mem, sys->G);
+    if (!flag) flag = LGNSetUserData(sys->mem, sys);
+    if (!flag) flag = LGNSetMassFn(sys->mem, GlueMass);
+    if (!flag) flag = LGNSetForceFn(sys->mem, GlueForce);
+    if (!flag && sys->m > 0)
+      flag = LGNSetConstraints(sys->mem, sys->m, GlueConstr, GlueConstrJac);
     if (!flag && (sys->pyflags & LGNPY_HAS_STIFFNESS))
       flag = LGNSetStiffnessFn(sys->mem, GlueStiffness);
     if (!flag && (sys->pyflags & LGNPY_HAS_DAMPING))
@@ -337,11 +386,6 @@ int LGNPy_Attach(LGNPySystem *sys, double t0, double *q0, double *v0,
       flag = LGNSetCurvatureFn(sys->mem, GlueCurvature);
     if (!flag && sys->m > 0 && (sys->pyflags & LGNPY_HAS_CONSTR_TIME))
       flag = LGNSetConstraintTimeFn(sys->mem, GlueConstrTime);
-  } else {
-    if (!flag) flag = LGNSetStiffnessFn(sys->mem, GlueStiffness);
-    if (!flag) flag = LGNSetDampingFn(sys->mem, GlueDamping);
-    if (!flag && sys->m > 0) flag = LGNSetCurvatureFn(sys->mem, GlueCurvature);
-    if (!flag && sys->ndrives > 0) flag = LGNSetConstraintTimeFn(sys->mem, GlueConstrTime);
   }
   if (!flag) flag = LGNSetMassConstant(sys->mem, mass_constant ? SUNTRUE : SUNFALSE);
   if (!flag) flag = LGNInit(sys->mem, t0, sys->q, sys->v);
@@ -353,7 +397,8 @@ int LGNPy_RootInit(LGNPySystem *sys, int nroots)
 {
   int flag;
   if (!sys || !sys->mem) return LGN_MEM_NULL;
-  flag = LGNRootInit(sys->mem, nroots, nroots > 0 ? GlueRoot : NULL);
+  flag = LGNRootInit(sys->mem, nroots,
+                     nroots < 1 ? NULL : sys->python_model ? GlueRoot : GlueModelRoot);
   if (!flag) sys->nroots = nroots;
   return flag;
 }

@@ -2,14 +2,11 @@
  * The C side of the Python package: one record that owns a model (the body
  * and joint sets, or Python callbacks), its state vectors and an integrator
  * with the dense linear solver, and the model callbacks that Lignum calls.
- * A multibody model runs entirely in C (the callbacks forward to
- * LGNBodies/LGNJoints, as examples/teach/heavy_top.c does); Python is called
- * only for what the user wrote in Python (custom forces, whole models, root
- * functions, drivers given as Python functions).
- *
- * Porting note (model object of lignum_model.h): LGNPy_Attach below installs
- * the multibody callbacks one by one; with the model object it becomes one
- * call, and only LGNPy_MultibodyInit and the Glue* forwarders change.
+ * A multibody model runs entirely in C: the model object of lignum_model.h
+ * (LGNModel_Attach) installs the body and joint sets' callbacks, spatial or
+ * planar (lignum_planar.h); Python is called only for what the user wrote in
+ * Python (an applied force, given to the model as its user force; whole
+ * models; root functions; drivers given as Python functions).
  * SPDX-License-Identifier: BSD-3-Clause
  * ---------------------------------------------------------------------------*/
 #ifndef LIGNUM_PY_GLUE_H
@@ -20,6 +17,7 @@
 #include <lignum/lignum.h>
 #include <lignum/lignum_bodies.h>
 #include <lignum/lignum_joints.h>
+#include <lignum/lignum_model.h>
 #include <nvector/nvector_serial.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
@@ -34,6 +32,8 @@
 #define LGNPY_CB_JAC         11
 #define LGNPY_CB_STIFFNESS   12
 #define LGNPY_CB_DAMPING     13
+#define LGNPY_CB_APPLIED_DQ  14 /* df/dq of the applied force (along G)  */
+#define LGNPY_CB_APPLIED_DV  15 /* df/dv of the applied force            */
 
 /* Python model callbacks present (bit set of LGNPySystem.pyflags). */
 #define LGNPY_HAS_STIFFNESS   1
@@ -45,6 +45,14 @@
 #define LGNPY_DRIVE_POLYNOMIAL 0 /* f = c0 + c1 t + c2 t^2 + c3 t^3  */
 #define LGNPY_DRIVE_HARMONIC   1 /* f = c0 + c1 sin(c2 t + c3)        */
 #define LGNPY_DRIVE_PYTHON     2 /* f, f', f'' from a Python function */
+
+/* Group factors (LGNPy_AddGroupFactor, LGNPy_MultibodyInit). */
+#define LGNPY_GROUP_RN     0
+#define LGNPY_GROUP_SO3    1
+#define LGNPY_GROUP_R3XSO3 2
+#define LGNPY_GROUP_SE3    3
+#define LGNPY_GROUP_SE2    4
+#define LGNPY_GROUP_R2XSO2 5
 
 #define LGNPY_MSG_LEN 1024
 
@@ -62,16 +70,18 @@ typedef struct LGNPySystemRec {
   int nfactors;
   LGNBodies bodies;      /* multibody model (NULL for a Python model) */
   LGNJoints joints;
+  LGNModel model;        /* the model object on the two sets          */
   LGNPyDrive *drives[256];
   int ndrives;
   void *mem;             /* the integrator                            */
   N_Vector q, v;         /* wrap the Python package's arrays          */
   N_Vector vdot, lambda; /* outputs, wrap Python arrays as well       */
-  N_Vector y, fapplied;  /* linear solver template; applied force     */
+  N_Vector y;            /* linear solver template                    */
   SUNMatrix A;
   SUNLinearSolver LS;
   sunindextype nq, nv, m;
   int python_model;      /* callbacks are Python functions            */
+  int planar;            /* a multibody model on SE(2) or R^2 x SO(2) */
   int applied_force;     /* a Python applied force on a C model       */
   int pyflags;           /* LGNPY_HAS_* of a Python model             */
   int nroots;
@@ -89,9 +99,9 @@ void LGNPy_Free(LGNPySystem *sys);
 void LGNPy_ClearError(LGNPySystem *sys);
 
 int LGNPy_AddGroupFactor(LGNPySystem *sys, int kind, int64_t n);
-int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies);
+int LGNPy_MultibodyInit(LGNPySystem *sys, int nbodies, int group);
 int LGNPy_PythonModelInit(LGNPySystem *sys, int64_t m, int pyflags);
-int LGNPy_SetAppliedForce(LGNPySystem *sys, int on);
+int LGNPy_SetAppliedForce(LGNPySystem *sys, int on, int has_dq, int has_dv);
 int LGNPy_AddDriver(LGNPySystem *sys, int rotation, int a, const double *s_a,
                     const double *axis_a, const double *ref_a, int b,
                     const double *s_b, const double *ref_b, int kind,

@@ -36,7 +36,9 @@ def harmonic(offset=0.0, amplitude=1.0, omega=1.0, phase=0.0):
 
 class Multibody:
     """Rigid bodies on (R^3 x SO(3))^n with joints, spring-dampers, drivers
-    and gravity; every callback runs in C (``LGNBodies``, ``LGNJoints``).
+    and gravity; every callback runs in C (the model object ``LGNModel`` on
+    the sets ``LGNBodies``, ``LGNJoints``). Planar mechanisms:
+    :class:`PlanarMultibody`.
 
     Body k has q = (x, p): the centre of mass x (inertial) and the unit
     quaternion p = (w, x, y, z) of its rotation R; v = (u, Omega): the
@@ -50,11 +52,15 @@ class Multibody:
         The gravitational acceleration (inertial), default none.
     """
 
+    _group = lib.LGNPY_GROUP_R3XSO3
+
     def __init__(self, gravity=(0.0, 0.0, 0.0)):
         self.gravity = as_vector(gravity, 3, "gravity")
         self._bodies = []
         self._items = []      # (kind, arguments) in the order of the calls
         self.applied_force = None
+        self.applied_force_dq = None
+        self.applied_force_dv = None
 
     @property
     def nbodies(self):
@@ -180,7 +186,8 @@ class Multibody:
         if not self._bodies:
             raise ValueError("Multibody: add at least one body")
         p = system.ptr
-        system.check(lib.LGNPy_MultibodyInit(p, len(self._bodies)), "LGNPy_MultibodyInit")
+        system.check(lib.LGNPy_MultibodyInit(p, len(self._bodies), self._group),
+                     "LGNPy_MultibodyInit")
         keep = []  # arrays alive during the calls
 
         def ptr(a):
@@ -215,24 +222,52 @@ class Multibody:
                                                                      ptr(rest)),
                              "LGNBodies_AddRotationalSpringDamper")
             else:
-                (lawkind, coeffs, fn) = args[-1]
-                c = ptr(np.array(coeffs, dtype=np.float64))
-                if kind == "rotdriver":
-                    a, axis_a, ref_a, b, ref_b = args[:5]
-                    flag = lib.LGNPy_AddDriver(p, 1, a, ffi.NULL, ptr(axis_a), ptr(ref_a), b,
-                                               ffi.NULL, ptr(ref_b), lawkind, c)
-                else:
-                    a, sa, axis_a, b, sb = args[:5]
-                    flag = lib.LGNPy_AddDriver(p, 0, a, ptr(sa), ptr(axis_a), ffi.NULL, b,
-                                               ptr(sb), ffi.NULL, lawkind, c)
-                system.check(flag, "LGNJoints_AddDriver")
-                cb.drives.append(fn)
-        if self.applied_force is not None:
-            if not callable(self.applied_force):
-                raise TypeError("applied_force: expected a function (t, q, v, f) or None")
-            cb.vec[lib.LGNPY_CB_APPLIED] = self.applied_force
-            system.check(lib.LGNPy_SetAppliedForce(p, 1), "LGNPy_SetAppliedForce")
+                self._add_driver(system, kind, args, ptr)
+        self._set_applied_force(system)
         return self.initial_state()
+
+    @staticmethod
+    def _add_driver(system, kind, args, ptr):
+        """A driver item: rotation (a, axis_a, ref_a, b, ref_b, law) or
+        translation (a, sa, axis_a, b, sb, law); on a planar model the
+        references are None (LGNPy_AddDriver picks the planar function)."""
+        p = system.ptr
+
+        def opt(x):
+            return ffi.NULL if x is None else ptr(x)
+
+        (lawkind, coeffs, fn) = args[-1]
+        c = ptr(np.array(coeffs, dtype=np.float64))
+        if kind == "rotdriver":
+            a, axis_a, ref_a, b, ref_b = args[:5]
+            flag = lib.LGNPy_AddDriver(p, 1, a, ffi.NULL, opt(axis_a), opt(ref_a), b, ffi.NULL,
+                                       opt(ref_b), lawkind, c)
+        else:
+            a, sa, axis_a, b, sb = args[:5]
+            flag = lib.LGNPy_AddDriver(p, 0, a, ptr(sa), ptr(axis_a), ffi.NULL, b, ptr(sb),
+                                       ffi.NULL, lawkind, c)
+        system.check(flag, "LGNJoints_AddDriver")
+        system.callbacks.drives.append(fn)
+
+    def _set_applied_force(self, system):
+        """The Python applied force, given to the model as its user force
+        (LGNModel_SetUserForce) with its Jacobians when set."""
+        f, dq, dv = self.applied_force, self.applied_force_dq, self.applied_force_dv
+        if f is None:
+            if dq is not None or dv is not None:
+                raise TypeError("applied_force_dq, applied_force_dv: need an applied_force")
+            return
+        if not callable(f):
+            raise TypeError("applied_force: expected a function (t, q, v, f) or None")
+        for name, fn in (("applied_force_dq", dq), ("applied_force_dv", dv)):
+            if fn is not None and not callable(fn):
+                raise TypeError(f"{name}: expected a function (t, q, v, D) or None")
+        cb = system.callbacks
+        cb.vec[lib.LGNPY_CB_APPLIED] = f
+        cb.mat[lib.LGNPY_CB_APPLIED_DQ] = dq
+        cb.mat[lib.LGNPY_CB_APPLIED_DV] = dv
+        system.check(lib.LGNPy_SetAppliedForce(system.ptr, 1, dq is not None, dv is not None),
+                     "LGNModel_SetUserForce")
 
     def energy(self, system, q, v):
         """(kinetic, potential) energy at q, v (internal; see
@@ -243,6 +278,155 @@ class Multibody:
         system.check(lib.LGNPy_Energy(system.ptr, double_ptr(q), double_ptr(v), kin, pot),
                      "LGNBodies_Energy")
         return kin[0], pot[0]
+
+
+class PlanarMultibody(Multibody):
+    """A planar mechanism: rigid bodies moving in the x-y plane on (SE(2))^n
+    or (R^2 x SO(2))^n with planar joints, spring-dampers, drivers and
+    gravity; every callback runs in C (``LGNModel`` on planar sets,
+    lignum_planar.h).
+
+    Body k has q = (x, y, theta): the centre of mass and the angle theta
+    (a real number that counts turns). v = (U, omega) on ``"SE2"``, with U
+    the velocity of the centre of mass in the body frame; v = (u, omega) on
+    ``"R2xSO2"``, u inertial. Points ``s`` on a body are 2-vectors in its
+    body frame (centre of mass at the origin); on :data:`GROUND` they are
+    inertial.
+
+    Parameters
+    ----------
+    gravity : 2 reals, optional
+        The gravitational acceleration in the plane, default none.
+    group : ``"SE2"`` (default) or ``"R2xSO2"``
+        The group of each body.
+    """
+
+    _PLANAR_GROUPS = {"SE2": lib.LGNPY_GROUP_SE2, "R2xSO2": lib.LGNPY_GROUP_R2XSO2}
+
+    def __init__(self, gravity=(0.0, 0.0), group="SE2"):
+        if not isinstance(group, str) or group not in self._PLANAR_GROUPS:
+            raise ValueError(f"group: expected 'SE2' or 'R2xSO2', got {group!r}")
+        super().__init__()
+        self.group = group
+        self._group = self._PLANAR_GROUPS[group]
+        self.gravity = np.concatenate([as_vector(gravity, 2, "gravity"), [0.0]])
+
+    def add_body(self, mass, inertia, position=(0.0, 0.0), angle=0.0, velocity=(0.0, 0.0),
+                 angular_velocity=0.0):
+        """Add a rigid body; returns its index.
+
+        mass > 0; inertia > 0: the moment of inertia about the centre of
+        mass (normal to the plane); position: (x, y); angle: theta
+        (radians); velocity: the velocity part of v (body-fixed U on SE2,
+        inertial u on R2xSO2); angular_velocity: omega."""
+        body = dict(mass=as_real(mass, "mass", positive=True),
+                    inertia=as_real(inertia, "inertia", positive=True),
+                    position=as_vector(position, 2, "position"), angle=as_real(angle, "angle"),
+                    velocity=as_vector(velocity, 2, "velocity"),
+                    angular_velocity=as_real(angular_velocity, "angular_velocity"))
+        self._bodies.append(body)
+        return len(self._bodies) - 1
+
+    def revolute(self, a, sa, b, sb):
+        """Planar revolute joint: point sa of body a coincides with sb of b
+        (2 rows; the multipliers are the joint force on b, inertial)."""
+        self._items.append(("revolute", [self._body(a, "a"), as_vector(sa, 2, "sa"),
+                                         self._body(b, "b"), as_vector(sb, 2, "sb")]))
+
+    def prismatic(self, a, sa, axis_a, b, sb, angle=0.0):
+        """Planar prismatic joint: point sb of b slides on the line through
+        sa of a along axis_a (body a's frame, nonzero), and the relative
+        angle is locked, theta_b - theta_a = angle (2 rows)."""
+        self._items.append(("prismatic", [self._body(a, "a"), as_vector(sa, 2, "sa"),
+                                          as_vector(axis_a, 2, "axis_a"), self._body(b, "b"),
+                                          as_vector(sb, 2, "sb"), as_real(angle, "angle")]))
+
+    def spherical(self, *args):
+        raise TypeError("spherical: not a planar joint (PlanarMultibody has revolute and "
+                        "prismatic joints)")
+
+    universal = cylindrical = spherical
+
+    def spring_damper(self, a, sa, b, sb, k, c, length):
+        """Translational spring-damper between points sa of a and sb of b
+        (2-vectors): tension k (L - length) + c dL/dt; k, c, length >= 0."""
+        self._items.append(("spring", [self._body(a, "a"), as_vector(sa, 2, "sa"),
+                                       self._body(b, "b"), as_vector(sb, 2, "sb"),
+                                       as_real(k, "k"), as_real(c, "c"),
+                                       as_real(length, "length")]))
+
+    def rotational_spring_damper(self, a, b, k, c, rest=0.0):
+        """Rotational spring-damper between a and b: torque -k (theta_b -
+        theta_a - rest) - c (omega_b - omega_a) on b, the reaction on a."""
+        self._items.append(("rotspring", [self._body(a, "a"), self._body(b, "b"),
+                                          as_real(k, "k"), as_real(c, "c"),
+                                          as_real(rest, "rest")]))
+
+    def rotation_driver(self, a, b, law):
+        """Prescribed relative angle theta_b - theta_a = f(t) (1 row; with a
+        revolute joint: a motor). ``law``: :func:`polynomial`,
+        :func:`harmonic` (both in C) or a Python function
+        ``t -> (f, f', f'')``."""
+        self._items.append(("rotdriver", [self._body(a, "a"), None, None, self._body(b, "b"),
+                                          None, self._law(law)]))
+
+    def translation_driver(self, a, sa, axis_a, b, sb, law):
+        """Prescribed distance f(t) of point sb of b from sa of a along
+        axis_a (body a's frame): (R_a e) . (p_b - p_a) = f(t), e =
+        axis_a/|axis_a| (1 row; with a prismatic joint: an actuator)."""
+        self._items.append(("transdriver", [self._body(a, "a"), as_vector(sa, 2, "sa"),
+                                            as_vector(axis_a, 2, "axis_a"), self._body(b, "b"),
+                                            as_vector(sb, 2, "sb"), self._law(law)]))
+
+    def initial_state(self):
+        """(q0, v0) from the bodies' positions, angles and velocities."""
+        q = np.concatenate([[*b["position"], b["angle"]] for b in self._bodies])
+        v = np.concatenate([[*b["velocity"], b["angular_velocity"]] for b in self._bodies])
+        return q, v
+
+    def _build(self, system):
+        """Create the planar body and joint sets and the model in ``system``."""
+        if not self._bodies:
+            raise ValueError("PlanarMultibody: add at least one body")
+        p = system.ptr
+        system.check(lib.LGNPy_MultibodyInit(p, len(self._bodies), self._group),
+                     "LGNPy_MultibodyInit")
+        keep = []
+
+        def ptr(a):
+            keep.append(a)
+            return double_ptr(a)
+
+        for k, b in enumerate(self._bodies):
+            system.check(lib.LGNBodies_SetPlanarMass(p.bodies, k, b["mass"], b["inertia"]),
+                         "LGNBodies_SetPlanarMass")
+        if np.any(self.gravity != 0.0):
+            system.check(lib.LGNBodies_SetGravity(p.bodies, ptr(self.gravity)),
+                         "LGNBodies_SetGravity")
+        for kind, args in self._items:
+            if kind == "revolute":
+                a, sa, b, sb = args
+                system.check(lib.LGNJoints_AddPlanarRevolute(p.joints, a, ptr(sa), b, ptr(sb)),
+                             "LGNJoints_AddPlanarRevolute")
+            elif kind == "prismatic":
+                a, sa, axis_a, b, sb, angle = args
+                system.check(lib.LGNJoints_AddPlanarPrismatic(p.joints, a, ptr(sa), ptr(axis_a),
+                                                              b, ptr(sb), angle),
+                             "LGNJoints_AddPlanarPrismatic")
+            elif kind == "spring":
+                a, sa, b, sb, k, c, L0 = args
+                system.check(lib.LGNBodies_AddPlanarSpringDamper(p.bodies, a, ptr(sa), b,
+                                                                 ptr(sb), k, c, L0),
+                             "LGNBodies_AddPlanarSpringDamper")
+            elif kind == "rotspring":
+                a, b, k, c, rest = args
+                system.check(lib.LGNBodies_AddPlanarRotationalSpringDamper(p.bodies, a, b, k, c,
+                                                                           rest),
+                             "LGNBodies_AddPlanarRotationalSpringDamper")
+            else:
+                self._add_driver(system, kind, args, ptr)
+        self._set_applied_force(system)
+        return self.initial_state()
 
 
 _GROUPS = {"SO3": 1, "R3xSO3": 2, "SE3": 3}

@@ -27,6 +27,7 @@ if(NOT rc EQUAL 0)
 endif()
 execute_process(
   COMMAND ${CMAKE_COMMAND} -E env LIGNUM_HEAVY_TOP_REF=${HEAVY_TOP_REF}
+          LIGNUM_PLANAR_REF=${PLANAR_REF}
           LIGNUM_SOURCE_DIR=${SOURCE_DIR} MPLBACKEND=Agg
           ${venv}/bin/python -m pytest -q -p no:cacheprovider ${SOURCE_DIR}/test/python
   WORKING_DIRECTORY ${BUILD_DIR}
