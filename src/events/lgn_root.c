@@ -135,7 +135,7 @@ static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
 {
   const int n = mem->rt.nrtfn;
   sunrealtype tlo = mem->rt.tlo, tmid, alph = SUN_RCONST(1.0), fracint, fracsub;
-  sunbooleantype zroot, sgnchg;
+  sunbooleantype zroot, sgnchg, any;
   int i, imax = 0, side = 0, sideprev = -1, flag;
 
   sgnchg = SignChange(mem, mem->rt.ghi, &imax, &zroot);
@@ -186,13 +186,21 @@ static int Rootfind(LGNMem mem, sunrealtype thi, sunrealtype ttol,
   }
   *trout = thi;
   memcpy(mem->rt.grout, mem->rt.ghi, (size_t)n * sizeof(sunrealtype));
+  any = SUNFALSE;
   for (i = 0; i < n; i++) {
     mem->rt.iroots[i] = 0;
     if (!*found || !mem->rt.gactive[i] || !DirectionOk(mem->rt.rootdir[i], mem->rt.glo[i]))
       continue;
-    if (mem->rt.ghi[i] == SUN_RCONST(0.0) || mem->rt.glo[i] * mem->rt.ghi[i] < SUN_RCONST(0.0))
+    if (mem->rt.ghi[i] == SUN_RCONST(0.0) || mem->rt.glo[i] * mem->rt.ghi[i] < SUN_RCONST(0.0)) {
       mem->rt.iroots[i] = mem->rt.glo[i] > SUN_RCONST(0.0) ? -1 : 1;
+      any               = SUNTRUE;
+    }
   }
+  /* A sign change seen at roundoff level (a g_i taken up at tlo + ttol,
+   * around 0 within roundoff) can leave a bracket whose ends have one sign:
+   * no g_i has a root there, so none is reported (LGN_ROOT_RETURN with no
+   * rootsfound: fuzz finding 12); the search goes on from trout. */
+  *found = *found && any;
   return LGN_SUCCESS;
 }
 
