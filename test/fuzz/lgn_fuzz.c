@@ -1583,6 +1583,9 @@ static void Run(In *in)
       o->rt_q    = N_VGetArrayPointer(o->q0)[o->rt_k % o->nq] + Real(in) * 1e-3;
       o->rt_j    = (int)U8(in);
       o->rt_v    = N_VGetArrayPointer(o->v0)[o->rt_j % o->nv] + Real(in) * 1e-2;
+      /* a level that is not finite makes g so: LGN_RTFUNC_FAIL is then the
+       * right answer, and the set-up is not sane any more */
+      if (!isfinite(o->rt_time) || !isfinite(o->rt_q) || !isfinite(o->rt_v)) o->sane = 0;
       flag = CheckFlag(o, LGNRootInit(mem, n, (s & 8) ? NULL : Roots), "LGNRootInit");
       if (trace) fprintf(stderr, "  LGNRootInit(%d) -> %d, t %g\n", n, flag, o->rt_time);
       if (flag == 0) {
