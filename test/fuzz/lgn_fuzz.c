@@ -1457,7 +1457,9 @@ static void Run(In *in)
         double t = 0.0;
         LGNGetCurrentTime(mem, &t);
         flag = Solve(o, t + 1.0, LGN_ONE_STEP, 0);
-        REQUIRE(flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN,
+        /* a root of g on the way is going on too (the level may lie a
+         * roundoff away from the start: roots at t ~ 1e-16 are legitimate) */
+        REQUIRE(flag == LGN_SUCCESS || flag == LGN_TSTOP_RETURN || flag == LGN_ROOT_RETURN,
                 "the sane model %d (solver %d) does not go on after the fault was removed: %s",
                 o->model, o->solver, LGNGetReturnFlagName(flag));
       }
